@@ -1,0 +1,242 @@
+"""The ``gaitlab`` command.
+
+Every user error ends the same way: one line on stderr naming the file, key or value and
+what is allowed, exit status 2, no traceback, no partial output.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+from typing import Sequence
+
+from . import __version__
+from .errors import GaitlabError
+from .gaits import GAIT_PRESETS
+from .output import MAX_SIZE
+from .render.camera import CAMERA_PRESETS, DEFAULT_CAMERA
+
+EXIT_BAD_INPUT = 2
+MAX_FPS = 240.0
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse, but a usage error is one line (and still exit status 2)."""
+
+    def error(self, message: str) -> None:  # type: ignore[override]
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
+
+
+def _size(text: str) -> tuple[int, int]:
+    try:
+        w_text, h_text = text.lower().split("x")
+        w, h = int(w_text), int(h_text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected WIDTHxHEIGHT in pixels, e.g. 480x360") from None
+    if not (1 <= w <= MAX_SIZE and 1 <= h <= MAX_SIZE):
+        raise argparse.ArgumentTypeError(f"{text!r}: width and height must be between 1 and {MAX_SIZE} pixels")
+    return w, h
+
+
+def _positive(name: str, upper: float):
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r}: expected a number") from None
+        if not math.isfinite(value) or value <= 0 or value > upper:
+            raise argparse.ArgumentTypeError(f"{text!r}: {name} must be greater than 0 and at most {upper:g}")
+        return value
+
+    return parse
+
+
+def _non_negative(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a number of seconds") from None
+    if not math.isfinite(value) or value < 0:
+        raise argparse.ArgumentTypeError(f"{text!r}: must be a finite number of seconds >= 0")
+    return value
+
+
+def _samples(text: str) -> int:
+    if text not in ("0", "2", "4", "8"):
+        raise argparse.ArgumentTypeError(f"{text!r}: expected 0 (off), 2, 4 or 8 samples")
+    return int(text)
+
+
+RENDER_EPILOG = """\
+examples:
+  gaitlab render                                   dog.gif: the dog walking, two seamless cycles
+  gaitlab render horse --gait gallop -o horse.mp4  a galloping horse as H.264 video
+  gaitlab render cat -o cat.png --time 0.3         one frame, 0.3 s into the walk
+  gaitlab render bear --camera side --cycles 3 --fps 30 --size 640x360
+  gaitlab render dog --set gait.duty_factor=0.8 --set legs.hind.femur=0.25 -o slow.gif
+  gaitlab render my_creature.toml -o mine.gif      a creature file of your own
+
+CREATURE is a preset (see 'gaitlab creatures') or a path to a creature .toml file.
+--gait replaces the creature's gait with a preset and drops its gait adjustments; add
+--set gait.KEY=VALUE to adjust the new gait. --set takes any key a creature file has
+('gaitlab creatures --keys' lists them); values are TOML (numbers, "strings").
+Without --seconds the clip is two whole gait cycles, which loop without a seam.
+"""
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="gaitlab", description="Procedural tetrapod locomotion: parametric legs driven by "
+                     "gait oscillators and analytic IK, rendered headless or live.",
+                     epilog="Run 'gaitlab COMMAND --help' for a command's options.")
+    parser.add_argument("--version", action="version", version=f"gaitlab {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+
+    creatures = sub.add_parser("creatures", help="list preset creatures and gaits",
+                               description="List the preset creatures and gaits, one line each.")
+    creatures.add_argument("--keys", action="store_true", help="also list every key a creature file can set")
+
+    render = sub.add_parser("render", help="render a creature to PNG, GIF or MP4 (headless)",
+                            description="Render a creature headless (EGL) to a PNG frame, a looping GIF or an "
+                                        "H.264 MP4.", epilog=RENDER_EPILOG,
+                            formatter_class=argparse.RawDescriptionHelpFormatter)
+    render.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
+                        help="preset name or creature .toml path (default: dog)")
+    render.add_argument("-o", "--output", metavar="OUT", type=Path,
+                        help="output file: .png, .gif or .mp4 (default: CREATURE.gif)")
+    render.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
+    length = render.add_mutually_exclusive_group()
+    length.add_argument("--seconds", metavar="S", type=_positive("--seconds", 600), help="clip length in seconds")
+    length.add_argument("--cycles", metavar="N", type=_positive("--cycles", 600),
+                        help="clip length in gait cycles (default: 2; loops seamlessly)")
+    render.add_argument("--fps", metavar="F", type=_positive("--fps", MAX_FPS), default=25.0,
+                        help="frames per second (default: 25)")
+    render.add_argument("--size", metavar="WxH", type=_size, default=(480, 360), help="image size (default: 480x360)")
+    render.add_argument("--camera", choices=CAMERA_PRESETS, default=DEFAULT_CAMERA,
+                        help=f"camera preset (default: {DEFAULT_CAMERA})")
+    render.add_argument("--time", metavar="T", type=_non_negative, default=0.0,
+                        help="time in seconds of the PNG frame, or of a clip's first frame (default: 0)")
+    render.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                        help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
+    render.add_argument("--msaa", metavar="N", type=_samples, default=4,
+                        help="antialiasing samples: 0 (off), 2, 4 or 8 (default: 4)")
+    render.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
+    render.add_argument("--no-shadow", action="store_true", help="no shadow")
+    render.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
+    render.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
+    return parser
+
+
+# -- commands ----------------------------------------------------------------------------
+
+
+def cmd_creatures(args: argparse.Namespace) -> int:
+    from .kinematics.rig import build_rig
+    from .resources import preset_creature_names
+    from .spec import load_creature
+
+    print("Creatures (gaitlab render NAME):")
+    rows = []
+    for name in preset_creature_names():
+        spec = load_creature(name)
+        rig = build_rig(spec)
+        lift = spec.leg("hind").ankle_lift
+        kind = "plantigrade" if lift < 25 else "digitigrade" if lift < 75 else "unguligrade"
+        rows.append((name, f"{spec.description}  [{kind}, hip height {rig.hip_height:.2f} m, "
+                           f"gait {spec.gait.preset}]"))
+    _print_rows(rows)
+    print("\nGaits (--gait NAME):")
+    _print_rows([(g.name, f"{g.description}  [duty factor {g.duty_factor:.2f}]") for g in GAIT_PRESETS.values()])
+    if args.keys:
+        from .spec import override_keys, rule_for
+
+        print("\nCreature file keys (--set KEY=VALUE):")
+        _print_rows([(key, f"{rule.doc}; {rule.allowed()}") for key in override_keys()
+                     if (rule := rule_for(key)) is not None])
+    return 0
+
+
+def _print_rows(rows: list[tuple[str, str]]) -> None:
+    width = max(len(name) for name, _ in rows)
+    for name, text in rows:
+        print(f"  {name:<{width}}  {text}")
+
+
+def cmd_render(args: argparse.Namespace) -> int:
+    from .output import output_format
+    from .recording import RecordRequest, gif_fps_warning, record
+    from .render.clip import ViewSettings
+    from .render.renderer import RenderOptions
+    from .spec import load_creature, parse_override
+
+    output = args.output or Path(f"{Path(args.creature).stem}.gif")
+    fmt = output_format(output)
+    spec = load_creature(args.creature)
+    overrides: dict[str, object] = {}
+    if args.gait is not None:
+        overrides["gait.preset"] = args.gait
+    for text in args.overrides:
+        key, value = parse_override(text)
+        overrides[key] = value
+    if overrides:
+        spec = spec.with_overrides(overrides)
+    view = ViewSettings(size=args.size, camera=args.camera, samples=args.msaa,
+                        options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
+                                              joints=not args.no_joints))
+    request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,
+                            start=args.time, view=view)
+    if fmt == "gif" and (warning := gif_fps_warning(args.fps)) and not args.quiet:
+        print(warning, file=sys.stderr)
+
+    bar = None
+    progress = None
+    if fmt != "png" and not args.quiet and sys.stderr.isatty():
+        from tqdm import tqdm
+
+        bar = tqdm(total=0, unit="frame", desc=f"render {output.name}", leave=False, dynamic_ncols=True)
+
+        def progress(done: int, total: int) -> None:
+            if bar.total != total:
+                bar.reset(total=total)
+            bar.update(done - bar.n)
+
+    try:
+        result = record(request, progress=progress)
+    finally:
+        if bar is not None:
+            bar.close()
+    if not args.quiet:
+        size = result.path.stat().st_size
+        w, h = args.size
+        if fmt == "png":
+            print(f"wrote {result.path} ({w}x{h}, {spec.name} {spec.gait.preset} at t = {args.time:g} s, "
+                  f"{size / 1024:.0f} KiB)")
+        else:
+            print(f"wrote {result.path}: {result.frames} frames, {result.seconds:.2f} s at {args.fps:g} fps "
+                  f"({result.cycles:.2f} cycles of {spec.name} {spec.gait.preset}), {w}x{h}, "
+                  f"{size / 1024:.0f} KiB")
+    return 0
+
+
+COMMANDS = {"creatures": cmd_creatures, "render": cmd_render}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return EXIT_BAD_INPUT
+    try:
+        return COMMANDS[args.command](args)
+    except GaitlabError as exc:
+        print(f"gaitlab {args.command}: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print(f"gaitlab {args.command}: interrupted; no output written", file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

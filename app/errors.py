@@ -1,0 +1,25 @@
+"""User-facing errors.
+
+Everything a user can get wrong (a creature file, a ``--set`` value, an output path, a
+missing system library) raises a :class:`GaitlabError` whose message is one line that
+names the file/key/value and says what is allowed. The CLI prints that line and exits
+with status 2; it never shows a traceback for these.
+"""
+
+from __future__ import annotations
+
+
+class GaitlabError(Exception):
+    """A problem the user can fix, described in one line."""
+
+
+class SpecError(GaitlabError):
+    """A creature file or override is invalid (syntax, unknown key, bad value, geometry)."""
+
+
+class OutputError(GaitlabError):
+    """An output path cannot be written, or has a format we do not write."""
+
+
+class GLContextError(GaitlabError):
+    """No OpenGL context could be created (missing EGL/Mesa, no display, too old GL)."""

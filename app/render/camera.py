@@ -1,0 +1,117 @@
+"""Cameras: presets (side, front, top, three-quarter), framing, view/projection matrices."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Literal, get_args
+
+import glm
+import numpy as np
+from numpy.typing import NDArray
+
+CameraPreset = Literal["three-quarter", "side", "front", "top"]
+CAMERA_PRESETS: tuple[str, ...] = get_args(CameraPreset)
+DEFAULT_CAMERA: CameraPreset = "three-quarter"
+
+# (azimuth, elevation) in degrees. Azimuth 0 looks at the creature's right side (camera
+# on -X), so it faces screen-right; 90 looks at its face (camera on +Z).
+_PRESET_ANGLES: dict[str, tuple[float, float]] = {
+    "side": (0.0, 6.0),
+    "front": (90.0, 8.0),
+    "top": (0.0, 89.0),
+    "three-quarter": (38.0, 20.0),
+}
+
+
+@dataclass(frozen=True)
+class Camera:
+    """An orbit camera: it looks at ``target`` from ``distance`` along (azimuth, elevation).
+
+    Angles in degrees, lengths in metres. ``ortho`` switches to an orthographic
+    projection whose view height matches the perspective one at the target.
+    """
+
+    target: tuple[float, float, float] = (0.0, 0.4, 0.0)
+    azimuth: float = 38.0
+    elevation: float = 20.0
+    distance: float = 3.0
+    fov: float = 30.0
+    ortho: bool = False
+    top_down: bool = False
+
+    @property
+    def direction(self) -> NDArray[np.float64]:
+        """Unit vector from the target to the eye."""
+        az, el = math.radians(self.azimuth), math.radians(self.elevation)
+        return np.array([-math.cos(el) * math.cos(az), math.sin(el), math.cos(el) * math.sin(az)])
+
+    @property
+    def eye(self) -> NDArray[np.float64]:
+        return np.asarray(self.target) + self.distance * self.direction
+
+    @property
+    def up(self) -> NDArray[np.float64]:
+        return np.array([0.0, 0.0, 1.0]) if self.top_down else np.array([0.0, 1.0, 0.0])
+
+    def view(self) -> glm.mat4:
+        return glm.lookAt(glm.vec3(*self.eye), glm.vec3(*self.target), glm.vec3(*self.up))
+
+    def projection(self, aspect: float) -> glm.mat4:
+        near = max(self.distance * 0.02, 0.01)
+        far = self.distance * 20.0 + 10.0
+        if self.ortho:
+            half_h = self.distance * math.tan(math.radians(self.fov) / 2.0)
+            return glm.ortho(-half_h * aspect, half_h * aspect, -half_h, half_h, near, far)
+        return glm.perspective(math.radians(self.fov), aspect, near, far)
+
+    def view_proj(self, aspect: float) -> glm.mat4:
+        return self.projection(aspect) * self.view()
+
+    def orbit(self, d_azimuth: float, d_elevation: float) -> "Camera":
+        return replace(self, azimuth=self.azimuth + d_azimuth,
+                       elevation=float(np.clip(self.elevation + d_elevation, -5.0, 89.0)), top_down=False)
+
+    def zoom(self, factor: float) -> "Camera":
+        return replace(self, distance=float(np.clip(self.distance * factor, 0.05, 500.0)))
+
+    def pan(self, dx: float, dy: float) -> "Camera":
+        """Move the target by (dx, dy) fractions of the view height, in screen directions."""
+        forward = -self.direction
+        right = np.cross(forward, self.up)
+        right /= max(np.linalg.norm(right), 1e-9)
+        up = np.cross(right, forward)
+        scale = 2.0 * self.distance * math.tan(math.radians(self.fov) / 2.0)
+        target = np.asarray(self.target) + scale * (-dx * right + dy * up)
+        return replace(self, target=tuple(float(v) for v in target))
+
+
+def frame_points(points: NDArray[np.float64], preset: CameraPreset | str = DEFAULT_CAMERA,
+                 aspect: float = 4.0 / 3.0, margin: float = 1.12, fov: float = 30.0,
+                 ortho: bool = False) -> Camera:
+    """A preset camera that keeps every point of ``points`` (N, 3) in view.
+
+    The target is the centre of the points' bounding box; the distance is the smallest
+    that fits all points inside the frustum (exact for a perspective camera), times
+    ``margin``.
+    """
+    if preset not in _PRESET_ANGLES:
+        raise ValueError(f"unknown camera {preset!r}; expected one of {', '.join(CAMERA_PRESETS)}")
+    azimuth, elevation = _PRESET_ANGLES[preset]
+    lo, hi = points.min(axis=0), points.max(axis=0)
+    centre = 0.5 * (lo + hi)
+    cam = Camera(target=tuple(float(v) for v in centre), azimuth=azimuth, elevation=elevation, fov=fov,
+                 ortho=ortho, top_down=(preset == "top"), distance=1.0)
+    back = cam.direction
+    right = np.cross(-back, cam.up)
+    right /= np.linalg.norm(right)
+    up = np.cross(right, -back)
+    rel = points - centre
+    x, y, z = rel @ right, rel @ up, rel @ back  # z > 0: towards the camera
+    tan_v = math.tan(math.radians(fov) / 2.0)
+    tan_h = tan_v * aspect
+    if ortho:
+        need = max(np.abs(y).max() / tan_v, np.abs(x).max() / tan_h)
+    else:
+        need = max((np.abs(x) / tan_h + z).max(), (np.abs(y) / tan_v + z).max())
+    return replace(cam, distance=float(max(need, 1e-3) * margin))

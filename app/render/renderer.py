@@ -1,0 +1,287 @@
+"""The scene renderer: a creature pose, a ground with a grid and a shadow, into any framebuffer.
+
+Lifecycle (the same for a window and for EGL): create with a context, call
+:meth:`SceneRenderer.render` per frame with a target framebuffer, :meth:`release` at the
+end. The renderer owns its GL objects and knows nothing about windows or files.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import glm
+import moderngl
+import numpy as np
+
+from ..kinematics.motion import Pose
+from ..kinematics.rig import Rig
+from .camera import Camera
+from .meshes import unit_capsule, unit_sphere
+from .scene import CAPSULE_FLOATS, ELLIPSOID_FLOATS, SceneInstances, pose_instances, srgb_to_linear
+from .shaders import ShaderLibrary
+
+SHADOW_MAP_SIZE = 256
+LIGHT_DIR = np.array([-0.45, -1.0, -0.35]) / np.linalg.norm([-0.45, -1.0, -0.35])
+
+
+@dataclass(frozen=True)
+class RenderOptions:
+    """What to draw. Colours are ``#rrggbb`` (sRGB)."""
+
+    grid: bool = True
+    shadow: bool = True
+    joints: bool = True
+    grid_spacing: float = 0.25  # metres between minor grid lines
+    sky_color: str = "#cfd9e6"
+    horizon_color: str = "#eef0ee"
+    ground_color: str = "#e3ddd2"
+    line_color: str = "#a89f91"
+
+
+def nice_grid_spacing(scale: float) -> float:
+    """A round grid spacing (1, 2.5 or 5 x 10^k m) near a quarter of ``scale`` (m)."""
+    raw = max(scale / 4.0, 1e-3)
+    exponent = math.floor(math.log10(raw))
+    for step in (1.0, 2.5, 5.0, 10.0):
+        if raw <= step * 10 ** exponent * 1.5:
+            return step * 10 ** exponent
+    return 10.0 ** (exponent + 1)
+
+
+class _InstancedMesh:
+    """A unit mesh drawn once per instance: a detailed version lit in the main pass and a
+    coarse one for the (soft, low-resolution) shadow pass, sharing one instance buffer."""
+
+    def __init__(self, ctx: moderngl.Context, lit: moderngl.Program, depth: moderngl.Program,
+                 detailed: tuple[np.ndarray, np.ndarray], coarse: tuple[np.ndarray, np.ndarray],
+                 vertex_format: str, vertex_attrs: tuple[str, ...],
+                 instance_format: str, instance_attrs: tuple[str, ...], instance_floats: int) -> None:
+        self.instance_floats = instance_floats
+        self.capacity = 64
+        self.instances = ctx.buffer(reserve=self.capacity * instance_floats * 4, dynamic=True)
+        self.count = 0
+        self._objects: list = [self.instances]
+
+        def vao(program: moderngl.Program, mesh: tuple[np.ndarray, np.ndarray]) -> moderngl.VertexArray:
+            vbo = ctx.buffer(mesh[0].astype("f4").tobytes())
+            ibo = ctx.buffer(mesh[1].astype("u4").tobytes())
+            layout = [(vbo, vertex_format, *vertex_attrs), (self.instances, instance_format, *instance_attrs)]
+            array = ctx.vertex_array(program, layout, index_buffer=ibo, index_element_size=4,
+                                     skip_errors=True)  # the depth pass ignores colours
+            self._objects += [array, vbo, ibo]
+            return array
+
+        self.vao_lit = vao(lit, detailed)
+        self.vao_depth = vao(depth, coarse)
+
+    def upload(self, data: np.ndarray) -> None:
+        self.count = int(data.shape[0])
+        if self.count > self.capacity:
+            self.capacity = max(self.count, self.capacity * 2)
+            self.instances.orphan(self.capacity * self.instance_floats * 4)
+        if self.count:
+            self.instances.write(np.ascontiguousarray(data, dtype="f4").tobytes())
+
+    def draw(self, depth_only: bool, count: int | None = None) -> None:
+        """Draw the first ``count`` instances (default all)."""
+        n = self.count if count is None else min(count, self.count)
+        if n:
+            (self.vao_depth if depth_only else self.vao_lit).render(moderngl.TRIANGLES, instances=n)
+
+    def release(self) -> None:
+        for obj in self._objects:
+            obj.release()
+
+
+class SceneRenderer:
+    """Draws poses. One instance per GL context; reuse it for every frame."""
+
+    def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary | None = None) -> None:
+        self.ctx = ctx
+        self.shaders = shaders or ShaderLibrary(ctx)
+        lit_caps = self.shaders.program("capsule.vert", "lit.frag")
+        depth_caps = self.shaders.program("capsule.vert", "depth.frag")
+        lit_ell = self.shaders.program("ellipsoid.vert", "lit.frag")
+        depth_ell = self.shaders.program("ellipsoid.vert", "depth.frag")
+        self.capsules = _InstancedMesh(ctx, lit_caps, depth_caps, unit_capsule(8, 14), unit_capsule(4, 8),
+                                       "3f 1f", ("in_pos", "in_end"),
+                                       "3f 3f 2f 3f/i", ("in_a", "in_b", "in_radius", "in_color"), CAPSULE_FLOATS)
+        self.ellipsoids = _InstancedMesh(ctx, lit_ell, depth_ell, unit_sphere(10, 16), unit_sphere(6, 8),
+                                         "3f", ("in_pos",),
+                                         "3f 3f 3f 3f 3f 3f/i",
+                                         ("in_center", "in_axis_x", "in_axis_y", "in_axis_z", "in_radii", "in_color"),
+                                         ELLIPSOID_FLOATS)
+        self.ground_prog = self.shaders.program("ground.vert", "ground.frag")
+        quad = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4")
+        self.ground_vbo = ctx.buffer(quad.tobytes())
+        self.ground_vao = ctx.vertex_array(self.ground_prog, [(self.ground_vbo, "2f", "in_xz")])
+        self.ground_shadow_prog = self.shaders.program("ground.vert", "ground_shadow.frag")
+        self.ground_shadow_vao = ctx.vertex_array(self.ground_shadow_prog, [(self.ground_vbo, "2f", "in_xz")])
+        self.background_prog = self.shaders.program("background.vert", "background.frag")
+        self.background_vao = ctx.vertex_array(self.background_prog, [])
+
+        self.shadow_map = ctx.depth_texture((SHADOW_MAP_SIZE, SHADOW_MAP_SIZE))
+        self.shadow_map.compare_func = "<="
+        self.shadow_map.filter = (moderngl.LINEAR, moderngl.LINEAR)
+        self.shadow_map.repeat_x = False
+        self.shadow_map.repeat_y = False
+        self.shadow_fbo = ctx.framebuffer(depth_attachment=self.shadow_map)
+        self._lit_programs = (lit_caps, lit_ell, self.ground_prog, self.ground_shadow_prog)
+
+    # -- per frame ------------------------------------------------------------------
+
+    def render(self, pose: Pose, rig: Rig, camera: Camera, target: moderngl.Framebuffer,
+               options: RenderOptions = RenderOptions(), viewport: tuple[int, int, int, int] | None = None) -> None:
+        """Draw ``pose`` of creature ``rig`` seen by ``camera`` into ``target`` (cleared first)."""
+        scene = pose_instances(pose, rig, show_joints=options.joints)
+        self.draw_instances(scene, pose.ground_offset, camera, target, options, viewport)
+
+    # The floor is drawn out to where the fog has turned it into the horizon colour; the
+    # sky shader gives the same colour below the horizon beyond it.
+    FOG_START = 2.5  # x the creature's bounding radius
+    FOG_END = 7.0
+
+    def draw_instances(self, scene: SceneInstances, ground_offset: float, camera: Camera,
+                       target: moderngl.Framebuffer, options: RenderOptions,
+                       viewport: tuple[int, int, int, int] | None = None) -> None:
+        ctx = self.ctx
+        self.capsules.upload(scene.capsules)
+        self.ellipsoids.upload(scene.ellipsoids)
+        viewport = viewport or (0, 0, *target.size)
+        aspect = viewport[2] / max(viewport[3], 1)
+
+        centre, radius = self._bounds(scene)
+        light_vp, shadow_texel = self._light_view_proj(scene)
+        ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
+        ctx.disable(moderngl.BLEND)
+        ctx.depth_func = "<"
+
+        # 1. Shadow pass (depth from the key light).
+        self.shadow_fbo.use()
+        self.shadow_fbo.clear(depth=1.0)
+        if options.shadow:
+            for mesh, casters in ((self.capsules, None), (self.ellipsoids, scene.ellipsoid_casters)):
+                mesh.vao_depth.program["u_view_proj"].write(light_vp)
+                mesh.draw(depth_only=True, count=casters)
+
+        # 2. Main pass, front to back so early depth testing skips hidden pixels:
+        #    creature, then ground, then the sky wherever nothing was drawn.
+        target.use()
+        target.viewport = viewport
+        target.clear(0.0, 0.0, 0.0, 1.0, depth=1.0, viewport=viewport)
+        view_proj = camera.view_proj(aspect)
+        eye = camera.eye
+        self.shadow_map.use(location=0)
+        sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
+        for prog in self._lit_programs:
+            self._set(prog, "u_view_proj", view_proj)
+            self._set(prog, "u_light_view_proj", light_vp)
+            self._set(prog, "u_light_dir", tuple(LIGHT_DIR))
+            self._set(prog, "u_camera_pos", tuple(eye))
+            self._set(prog, "u_sky_color", tuple(sky))
+            self._set(prog, "u_bounce_color", tuple(srgb_to_linear(options.ground_color) * 0.8))
+            self._set(prog, "u_shadow_map", 0)
+            self._set(prog, "u_shadow_strength", 0.7 if options.shadow else 0.0)
+            self._set(prog, "u_shadow_texel", shadow_texel)
+        self.capsules.draw(depth_only=False)
+        self.ellipsoids.draw(depth_only=False)
+
+        ctx.disable(moderngl.CULL_FACE)
+        g = self.ground_prog
+        reach = radius * self.FOG_END * 1.05
+        self._set(g, "u_center", (float(centre[0]), float(centre[2])))
+        self._set(g, "u_half_size", (reach, reach))
+        self._set(g, "u_lift", 0.0)
+        self._set(g, "u_ground_color", tuple(srgb_to_linear(options.ground_color)))
+        self._set(g, "u_line_color", tuple(srgb_to_linear(options.line_color)))
+        self._set(g, "u_horizon_color", tuple(horizon))
+        self._set(g, "u_grid_offset", (0.0, float(ground_offset)))
+        self._set(g, "u_grid_spacing", float(options.grid_spacing))
+        self._set(g, "u_grid_on", 1.0 if options.grid else 0.0)
+        self._set(g, "u_focus", (float(centre[0]), float(centre[2])))
+        self._set(g, "u_fog_range", (radius * self.FOG_START, radius * self.FOG_END))
+        self.ground_vao.render(moderngl.TRIANGLE_STRIP)
+
+        if options.shadow:
+            # The shadow on the floor, over its footprint only, lifted a hair above the floor.
+            lo, hi = self._shadow_footprint(light_vp)
+            gs = self.ground_shadow_prog
+            self._set(gs, "u_center", tuple(0.5 * (lo + hi)))
+            self._set(gs, "u_half_size", tuple(0.5 * (hi - lo)))
+            self._set(gs, "u_lift", 1e-3 * radius)
+            ctx.enable(moderngl.BLEND)
+            ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO
+            self.ground_shadow_vao.render(moderngl.TRIANGLE_STRIP)
+            ctx.disable(moderngl.BLEND)
+            ctx.blend_func = moderngl.DEFAULT_BLENDING
+
+        ctx.depth_func = "<="  # the sky sits exactly on the far plane
+        self._set(self.background_prog, "u_top_color", tuple(sky))
+        self._set(self.background_prog, "u_inverse_view_proj", glm.inverse(view_proj))
+        self._set(self.background_prog, "u_camera_pos", tuple(eye))
+        self._set(self.background_prog, "u_horizon_color", tuple(horizon))
+        self.background_vao.render(moderngl.TRIANGLES, vertices=3)
+        ctx.depth_func = "<"
+
+    @staticmethod
+    def _set(prog: moderngl.Program, name: str, value) -> None:
+        if name not in prog:
+            return
+        uniform = prog[name]
+        if isinstance(value, glm.mat4):
+            uniform.write(value)
+        else:
+            uniform.value = value
+
+    @staticmethod
+    def _bounds(scene: SceneInstances) -> tuple[np.ndarray, float]:
+        pts = np.concatenate([scene.capsules[:, 0:3], scene.capsules[:, 3:6], scene.ellipsoids[:, 0:3]])
+        lo, hi = pts.min(axis=0), pts.max(axis=0)
+        lo[1] = 0.0
+        centre = 0.5 * (lo + hi)
+        return centre, float(np.linalg.norm(hi - lo) * 0.5 + 0.05)
+
+    @staticmethod
+    def _light_view_proj(scene: SceneInstances) -> tuple[glm.mat4, float]:
+        """Orthographic key-light matrix fitted tightly around the shadow casters, and the
+        world size (m) of one shadow-map texel.
+
+        Seen from a directional light, a shadow lies exactly within its casters' xy
+        footprint, so any receiver outside this box is lit and costs no shadow lookups.
+        The depth range reaches past the casters down to the ground under them.
+        """
+        caps, ells = scene.capsules, scene.ellipsoids
+        points = np.concatenate([caps[:, 0:3], caps[:, 3:6], ells[:, 0:3]]).astype(np.float64)
+        pads = np.concatenate([caps[:, 6], caps[:, 7], ells[:, 12:15].max(axis=1)]).astype(np.float64)
+        centre = 0.5 * (points.min(axis=0) + points.max(axis=0))
+        height = float(points[:, 1].max() + pads.max())
+        view = glm.lookAt(glm.vec3(*(centre - LIGHT_DIR * (height + 1.0) * 4.0)), glm.vec3(*centre),
+                          glm.vec3(0.0, 0.0, 1.0))
+        m = np.array(view, dtype=np.float64)  # numpy sees glm matrices row-major (as written in maths)
+        local = points @ m[:3, :3].T + m[:3, 3]
+        lo = local.min(axis=0) - pads.max()
+        hi = local.max(axis=0) + pads.max()
+        reach = height / max(-LIGHT_DIR[1], 1e-3) + 0.01  # from the highest caster down to the ground
+        near, far = -hi[2] - 0.01, -lo[2] + reach
+        proj = glm.ortho(float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1]), float(near), float(far))
+        return proj * view, float(max(hi[0] - lo[0], hi[1] - lo[1]) / SHADOW_MAP_SIZE)
+
+    @staticmethod
+    def _shadow_footprint(light_vp: glm.mat4) -> tuple[np.ndarray, np.ndarray]:
+        """World xz bounds (lo, hi) of the light box's shadow on the plane y = 0."""
+        inverse = np.array(glm.inverse(light_vp), dtype=np.float64)
+        cube = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+        world = cube @ inverse.T
+        world = world[:, :3] / world[:, 3:4]
+        on_ground = world - LIGHT_DIR * (world[:, 1:2] / LIGHT_DIR[1])
+        return on_ground[:, [0, 2]].min(axis=0), on_ground[:, [0, 2]].max(axis=0)
+
+    def release(self) -> None:
+        """Free every GL object this renderer made."""
+        self.capsules.release()
+        self.ellipsoids.release()
+        for obj in (self.ground_vao, self.ground_shadow_vao, self.ground_vbo, self.background_vao, self.shadow_fbo,
+                    self.shadow_map):
+            obj.release()
+        self.shaders.release()

@@ -1,0 +1,169 @@
+"""What to draw, as flat instance arrays (numpy only, no OpenGL), vectorised over frames.
+
+The renderer uploads these arrays as instance buffers: one draw call for every capsule
+(leg bones, trunk, neck, muzzle, ears, tail) and one for every ellipsoid (skull, eyes,
+joint markers). :func:`motion_instances` builds a whole clip in one numpy pass;
+:func:`pose_instances` is the same for a single pose.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..kinematics.motion import Motion, Pose
+from ..kinematics.rig import Rig
+
+CAPSULE_FLOATS = 11  # a (3), b (3), radius a/b (2), colour (3)
+ELLIPSOID_FLOATS = 18  # centre, axis x, axis y, axis z, radii, colour (3 each)
+
+# Bone radius along the leg as a fraction of the leg's radius at the hip:
+# hip, knee, ankle, ball, toe tip.
+_LEG_TAPER = np.array([1.0, 0.78, 0.55, 0.5, 0.38])
+_EYE_COLOR = np.array([0.02, 0.02, 0.025])
+_UP = np.array([0.0, 1.0, 0.0])
+
+
+def srgb_to_linear(hex_color: str) -> NDArray[np.float64]:
+    """``"#rrggbb"`` to the shaders' lighting space (gamma 2.0: the square of the value).
+
+    The shaders convert back with a square root (``to_display`` in lighting.glsl), so an
+    unlit colour comes out exactly as written.
+    """
+    c = np.array([int(hex_color[i:i + 2], 16) for i in (1, 3, 5)]) / 255.0
+    return c * c
+
+
+@dataclass(frozen=True)
+class SceneInstances:
+    """Instance data: capsules (..., N, 11) and ellipsoids (..., M, 18), float32.
+
+    With a leading frame axis for a clip (see :meth:`frame`). Only the first
+    ``ellipsoid_casters`` ellipsoids cast shadows (the skull); eyes and joint markers sit
+    inside other shapes and are left out of the shadow pass.
+    """
+
+    capsules: NDArray[np.float32]
+    ellipsoids: NDArray[np.float32]
+    ellipsoid_casters: int = 1
+
+    def frame(self, index: int) -> "SceneInstances":
+        """One frame of a clip's instances."""
+        return SceneInstances(self.capsules[index], self.ellipsoids[index], self.ellipsoid_casters)
+
+
+def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+
+
+def _frame_axes(z: NDArray[np.float64]) -> tuple[NDArray, NDArray, NDArray]:
+    """Orthonormal (x, y, z) frames (..., 3) with z given and y as close to +Y as possible."""
+    z = _unit(z)
+    x = np.cross(_UP, z)
+    degenerate = np.linalg.norm(x, axis=-1, keepdims=True) < 1e-6
+    x = _unit(np.where(degenerate, np.array([1.0, 0.0, 0.0]), x))
+    return x, np.cross(z, x), z
+
+
+def _capsules(a, b, ra, rb, color) -> NDArray[np.float64]:
+    """Capsule rows (..., N, 11) from end points (..., N, 3), radii and colours (broadcast)."""
+    shape = np.broadcast_shapes(a.shape, b.shape)[:-1]
+    parts = [np.broadcast_to(a, shape + (3,)), np.broadcast_to(b, shape + (3,)),
+             np.broadcast_to(np.asarray(ra, dtype=np.float64)[..., None], shape + (1,)),
+             np.broadcast_to(np.asarray(rb, dtype=np.float64)[..., None], shape + (1,)),
+             np.broadcast_to(color, shape + (3,))]
+    return np.concatenate(parts, axis=-1)
+
+
+def _ellipsoids(centre, axis_z, radii, color) -> NDArray[np.float64]:
+    """Ellipsoid rows (..., M, 18) oriented with their z axis along ``axis_z``."""
+    x, y, z = _frame_axes(np.broadcast_to(axis_z, centre.shape))
+    shape = centre.shape[:-1]
+    return np.concatenate([centre, x, y, z, np.broadcast_to(radii, shape + (3,)),
+                           np.broadcast_to(color, shape + (3,))], axis=-1)
+
+
+def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
+               show_joints: bool) -> SceneInstances:
+    """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
+    array has a leading frame axis T."""
+    look = rig.spec.look
+    head_radius = rig.spec.body.head_radius
+    ear_length = rig.spec.body.ear_length
+    frames = joints.shape[0]
+    body_color = srgb_to_linear(look.body_color)
+    side_colors = np.stack([srgb_to_linear(look.left_color), srgb_to_linear(look.right_color)])
+    leg_color = side_colors[(rig.hip_side < 0).astype(int)]  # (L, 3)
+
+    # Legs: four tapered bones each.
+    radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
+    legs = _capsules(joints[:, :, :-1], joints[:, :, 1:], radii[:, :-1], radii[:, 1:],
+                     leg_color[:, None, :]).reshape(frames, -1, CAPSULE_FLOATS)
+
+    # Trunk: a tube of tapered capsules through the segment centres, capped past both ends.
+    r = spine_radius
+    trunk_pts = np.concatenate([spine[:, :1] - spine_tangent[:, :1] * 0.35 * r[0], spine,
+                                spine[:, -1:] + spine_tangent[:, -1:] * 0.2 * r[-1]], axis=1)
+    trunk_r = np.concatenate([r[:1] * 0.8, r, r[-1:] * 0.9])
+    trunk = _capsules(trunk_pts[:, :-1], trunk_pts[:, 1:], trunk_r[:-1], trunk_r[1:], body_color)
+    neck_c = _capsules(neck[:, :1], neck[:, 1:], 0.55 * r[-1], 0.8 * head_radius, body_color)
+
+    # Head: a round skull and a tapering muzzle towards the nose.
+    skull_back, nose = head[:, 0], head[:, 1]  # (T, 3)
+    head_len = np.linalg.norm(nose - skull_back, axis=-1, keepdims=True)
+    head_dir = _unit(nose - skull_back)
+    skull = skull_back + head_dir * np.minimum(0.5 * head_radius, 0.3 * head_len)
+    muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None], 0.62 * head_radius,
+                       0.34 * head_radius, body_color)
+    tail_r = np.linspace(0.32 * r[0], 0.08 * r[0], tail.shape[1])
+    tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], body_color)
+    hx, hy, _ = _frame_axes(head_dir)
+    sides = np.array([1.0, -1.0])[None, :, None]  # left, right
+    capsule_parts = [legs, trunk, neck_c, muzzle, tail_c]
+    if ear_length > 0:
+        ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
+            + sides * hx[:, None] * 0.55 * head_radius
+        ear_tip = ear_base + ear_length * _unit((hy - head_dir * 0.35)[:, None] + sides * hx[:, None] * 0.25)
+        capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
+
+    skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
+    eye_centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
+        + sides * hx[:, None] * 0.5 * head_radius
+    eyes = _ellipsoids(eye_centres, head_dir[:, None], np.full(3, 0.17 * head_radius), _EYE_COLOR)
+    ellipsoid_parts = [skull_e, eyes]
+    if show_joints:
+        inner = joints[:, :, 1:4].reshape(frames, -1, 3)  # knee, ankle, ball
+        joint_r = (radii[:, 1:4] * 1.08).reshape(-1, 1)
+        joint_color = np.repeat(0.8 * leg_color + 0.12, 3, axis=0)
+        axes = np.broadcast_to(np.eye(3).reshape(1, 1, 9), inner.shape[:2] + (9,))
+        ellipsoid_parts.append(np.concatenate([inner, axes, np.broadcast_to(joint_r, inner.shape[:2] + (3,)),
+                                               np.broadcast_to(joint_color, inner.shape)], axis=-1))
+    return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),
+                          ellipsoids=np.concatenate(ellipsoid_parts, axis=1).astype(np.float32))
+
+
+def motion_instances(motion: Motion, show_joints: bool = True) -> SceneInstances:
+    """Instances of every frame of a clip: capsules (T, N, 11), ellipsoids (T, M, 18)."""
+    return _instances(motion.joints, motion.spine, motion.spine_tangent, motion.spine_radius, motion.neck,
+                      motion.head, motion.tail, motion.rig, show_joints)
+
+
+def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True) -> SceneInstances:
+    """Instances of one pose: capsules (N, 11), ellipsoids (M, 18)."""
+    batch = _instances(pose.joints[None], pose.spine[None], pose.spine_tangent[None], pose.spine_radius,
+                       pose.neck[None], pose.head[None], pose.tail[None], rig, show_joints)
+    return batch.frame(0)
+
+
+def motion_bounds(motion: Motion) -> NDArray[np.float64]:
+    """Corners (8, 3) of a box enclosing the creature over the whole clip, down to the
+    ground, for camera framing."""
+    pad = float(np.max(motion.spine_radius))
+    spine = motion.spine.reshape(-1, 3)
+    pts = np.concatenate([motion.joints.reshape(-1, 3), motion.head.reshape(-1, 3), motion.neck.reshape(-1, 3),
+                          motion.tail.reshape(-1, 3), spine - pad, spine + pad], axis=0)
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    lo[1] = min(lo[1], 0.0)
+    return np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])

@@ -1,0 +1,627 @@
+"""Creature files: load, validate, override, save.
+
+A creature is a TOML file (see ``creatures/dog.toml`` for an annotated example) with the
+tables ``[body]``, ``[legs.fore]``, ``[legs.hind]``, ``[gait]``, ``[motion]`` and ``[look]``.
+Lengths are metres, angles degrees, phases fractions of a cycle, step height and stride
+leg rest lengths. Every key is described once, in :data:`SCHEMA`; loading, overriding
+and the error messages all come from that table, so a wrong file always gets one line
+that names the file, the dotted key, the value and what is allowed.
+
+The spec classes are frozen dataclasses holding the file's own values (degrees stay
+degrees). Kinematic quantities derived from them live in :mod:`app.kinematics.rig`.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import os
+import re
+import tempfile
+import tomllib
+from dataclasses import dataclass, field, fields, replace
+from pathlib import Path
+from typing import Any, Literal, Mapping
+
+import tomli_w
+
+from .errors import SpecError
+from .gaits import GAIT_PRESETS, TETRAPOD_FEET
+from .resources import creatures_dir, preset_creature_names
+
+WaveShape = Literal["planted", "skewed-sine"]
+KneeDirection = Literal["forward", "back"]
+WAVE_SHAPES: tuple[str, ...] = ("planted", "skewed-sine")
+KNEE_DIRECTIONS: tuple[str, ...] = ("forward", "back")
+LEG_PAIRS: tuple[str, ...] = ("fore", "hind")
+DUTY_RANGE = (0.05, 0.95)
+BIAS_LIMIT = 50.0  # |b| <= 50 covers duty factors up to ~0.947
+
+
+# --------------------------------------------------------------------------------------
+# The schema: what each key means and which values it accepts
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Rule:
+    """What one key accepts. ``kind`` is number, integer, text, choice, color, numbers."""
+
+    kind: str
+    lo: float | None = None
+    hi: float | None = None
+    lo_open: bool = False
+    hi_open: bool = False
+    choices: tuple[str, ...] = ()
+    unit: str = ""
+    doc: str = ""
+
+    def allowed(self) -> str:
+        """A short phrase for error messages: what values are allowed."""
+        if self.kind == "choice":
+            return "one of " + ", ".join(self.choices)
+        if self.kind == "color":
+            return 'a colour like "#a07850"'
+        if self.kind == "text":
+            return "a string"
+        what = {"number": "a number", "integer": "a whole number", "numbers": "a list of numbers"}[self.kind]
+        if self.kind == "numbers":
+            what += " each"
+        lo = None if self.lo is None else f"{'>' if self.lo_open else '>='} {self.lo:g}"
+        hi = None if self.hi is None else f"{'<' if self.hi_open else '<='} {self.hi:g}"
+        bounds = " and ".join(b for b in (lo, hi) if b)
+        if self.lo is not None and self.hi is not None:
+            left = "(" if self.lo_open else "["
+            right = ")" if self.hi_open else "]"
+            bounds = f"in {left}{self.lo:g}, {self.hi:g}{right}"
+        return f"{what} {bounds}".strip() + (f" ({self.unit})" if self.unit else "")
+
+
+def _num(lo=None, hi=None, *, lo_open=False, hi_open=False, unit="", doc="") -> Rule:
+    return Rule("number", lo, hi, lo_open, hi_open, unit=unit, doc=doc)
+
+
+def _length(doc: str, *, zero_ok: bool = False, hi: float = 50.0) -> Rule:
+    return _num(0.0, hi, lo_open=not zero_ok, unit="m", doc=doc)
+
+
+BODY_RULES: dict[str, Rule] = {
+    "length": _length("distance from the hind hips to the fore shoulders along the spine"),
+    "width": _length("distance between the left and right hips (and shoulders)"),
+    "segments": Rule("integer", 2, 64, doc="number of body segments drawn along the spine"),
+    "radius": Rule("numbers", 0.0, 10.0, lo_open=True, unit="m",
+                   doc="body radius profile from rump to chest, interpolated along the spine"),
+    "neck_length": _length("neck length (0 for none)", zero_ok=True),
+    "neck_angle": _num(-90, 90, unit="deg", doc="neck elevation above the body axis"),
+    "head_length": _length("head length, back of the skull to the nose"),
+    "head_radius": _length("head radius"),
+    "head_angle": _num(-90, 90, unit="deg", doc="head pitch below the body axis"),
+    "ear_length": _length("ear length (0 for none)", zero_ok=True),
+    "tail_length": _length("tail length (0 for none)", zero_ok=True),
+    "tail_angle": _num(-90, 90, unit="deg", doc="tail droop below the body axis"),
+    "tail_segments": Rule("integer", 1, 32, doc="number of tail segments"),
+}
+
+LEG_RULES: dict[str, Rule] = {
+    "position": _num(-0.25, 1.25, doc="where the pair attaches along the spine: 0 hind end, 1 fore end"),
+    "femur": _length("upper leg (femur / humerus)"),
+    "tibia": _length("lower leg (tibia / radius)"),
+    "metatarsus": _length("foot bone between ankle and ball (metatarsus / metacarpus)"),
+    "toe": _length("toe length, 0 for hooves", zero_ok=True),
+    "ankle_lift": _num(0, 90, unit="deg",
+                       doc="metatarsus angle to the ground at rest: ~0 plantigrade, mid digitigrade, ~90 unguligrade"),
+    "natural_bend": _num(0, 0.6, doc="rest length as a fraction below full extension: L_rest = L_max (1 - bend)"),
+    "knee": Rule("choice", choices=KNEE_DIRECTIONS, doc="which way the middle joint points"),
+    "radius": _length("bone radius at the hip; bones taper towards the foot", hi=2.0),
+}
+
+GAIT_RULES: dict[str, Rule] = {
+    "preset": Rule("choice", choices=tuple(GAIT_PRESETS), doc="gait preset the other keys adjust"),
+    "frequency": _num(0.0, 20.0, lo_open=True, unit="Hz", doc="stride frequency (default: from the preset and hip height)"),
+    "duty_factor": _num(*DUTY_RANGE, lo_open=True, hi_open=True, doc="fraction of the cycle each foot is planted"),
+    "bias": _num(-BIAS_LIMIT, BIAS_LIMIT, doc="the seed's swing/stance bias b; duty = 1/2 + asin(ln(cosh b)/b)/pi"),
+    "front_back": _num(-1, 1, doc="how far (cycle fraction) a fore foot lags the hind foot on its side"),
+    "left_right": _num(-1, 1, doc="how far (cycle fraction) the right side lags the left"),
+    "phases": _num(-1, 1, doc="explicit touchdown phase per foot (LF RF LH RH), left hind = 0"),
+    "step_height": _num(0, 1, unit="leg rest lengths", doc="how high a foot lifts in swing"),
+    "stride": _num(0, 2, unit="leg rest lengths", doc="fore-aft travel of a planted foot relative to its hip"),
+    "wave": Rule("choice", choices=WAVE_SHAPES,
+                 doc="planted: linear stance, exact duty; skewed-sine: the seed's two skewed waves"),
+}
+
+MOTION_RULES: dict[str, Rule] = {
+    "bob": _num(0, 0.2, unit="leg rest lengths", doc="body bob amplitude (default: the gait preset's)"),
+    "bob_phase": _num(-1, 1, doc="bob timing relative to the feet, cycle fraction"),
+    "yaw": _num(0, 30, unit="deg", doc="how far the hips and shoulders turn with the feet"),
+    "tail_sway": _num(0, 60, unit="deg", doc="side-to-side tail swing"),
+}
+
+LOOK_RULES: dict[str, Rule] = {
+    "body_color": Rule("color", doc="body, neck, head and tail colour"),
+    "left_color": Rule("color", doc="colour of the left legs"),
+    "right_color": Rule("color", doc="colour of the right legs"),
+}
+
+TOP_RULES: dict[str, Rule] = {
+    "name": Rule("text", doc="creature name"),
+    "description": Rule("text", doc="one line describing the creature"),
+}
+
+TABLES: dict[str, dict[str, Rule]] = {
+    "body": BODY_RULES,
+    "gait": GAIT_RULES,
+    "motion": MOTION_RULES,
+    "look": LOOK_RULES,
+}
+_COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}$")
+
+
+# --------------------------------------------------------------------------------------
+# The spec classes
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class BodySpec:
+    """The trunk, neck, head and tail. Lengths in metres, angles in degrees."""
+
+    length: float
+    width: float
+    radius: tuple[float, ...]
+    segments: int = 8
+    neck_length: float = 0.0
+    neck_angle: float = 30.0
+    head_length: float = 0.2
+    head_radius: float = 0.06
+    head_angle: float = 20.0
+    ear_length: float = 0.0
+    tail_length: float = 0.0
+    tail_angle: float = 30.0
+    tail_segments: int = 6
+
+
+@dataclass(frozen=True)
+class LegSpec:
+    """One left/right pair of legs: four bones, ankle lift (degrees), natural bend."""
+
+    name: str
+    femur: float
+    tibia: float
+    metatarsus: float
+    toe: float
+    ankle_lift: float
+    knee: KneeDirection
+    position: float
+    natural_bend: float = 0.1
+    radius: float = 0.03
+
+
+@dataclass(frozen=True)
+class GaitSpec:
+    """A gait preset and the keys that adjust it; ``None`` means "from the preset"."""
+
+    preset: str = "walk"
+    frequency: float | None = None
+    duty_factor: float | None = None
+    bias: float | None = None
+    front_back: float | None = None
+    left_right: float | None = None
+    phases: tuple[tuple[str, float], ...] | None = None
+    step_height: float | None = None
+    stride: float | None = None
+    wave: WaveShape = "planted"
+
+    @property
+    def preset_spec(self):
+        """The :class:`app.gaits.GaitPreset` this gait adjusts."""
+        return GAIT_PRESETS[self.preset]
+
+
+@dataclass(frozen=True)
+class MotionSpec:
+    """Secondary body motion. ``bob=None`` takes the gait preset's bob."""
+
+    bob: float | None = None
+    bob_phase: float = 0.0
+    yaw: float = 4.0
+    tail_sway: float = 8.0
+
+
+@dataclass(frozen=True)
+class LookSpec:
+    """Colours, as ``#rrggbb`` strings."""
+
+    body_color: str = "#b59a7a"
+    left_color: str = "#2f8f9d"
+    right_color: str = "#d8664f"
+
+
+@dataclass(frozen=True)
+class CreatureSpec:
+    """A whole creature, as in its TOML file. Frozen: use :meth:`with_overrides`."""
+
+    name: str
+    body: BodySpec
+    legs: tuple[LegSpec, ...]
+    gait: GaitSpec = GaitSpec()
+    motion: MotionSpec = MotionSpec()
+    look: LookSpec = LookSpec()
+    description: str = ""
+    source: str = field(default="", compare=False)
+
+    # -- access ---------------------------------------------------------------------
+
+    def leg(self, name: str) -> LegSpec:
+        """The leg pair called ``name`` (``fore`` or ``hind``)."""
+        for leg in self.legs:
+            if leg.name == name:
+                return leg
+        raise KeyError(name)
+
+    @property
+    def foot_names(self) -> tuple[str, ...]:
+        """Foot names in array order: ``("LF", "RF", "LH", "RH")``."""
+        return TETRAPOD_FEET
+
+    # -- conversion -----------------------------------------------------------------
+
+    def to_dict(self) -> dict[str, Any]:
+        """The TOML document for this creature (keys with ``None`` values left out)."""
+        doc: dict[str, Any] = {"name": self.name}
+        if self.description:
+            doc["description"] = self.description
+        doc["body"] = _table(self.body)
+        doc["legs"] = {leg.name: _table(leg, skip=("name",)) for leg in self.legs}
+        gait = _table(self.gait)
+        if self.gait.phases is not None:
+            gait["phases"] = dict(self.gait.phases)
+        doc["gait"] = gait
+        doc["motion"] = _table(self.motion)
+        doc["look"] = _table(self.look)
+        return doc
+
+    def with_overrides(self, overrides: Mapping[str, Any]) -> "CreatureSpec":
+        """A copy with dotted keys replaced, e.g. ``{"gait.duty_factor": 0.7}``.
+
+        Setting ``gait.preset`` resets the other gait keys to the new preset's values,
+        except those set in the same call. The result is validated as a whole.
+        """
+        data = self.to_dict()
+        items = sorted(overrides.items(), key=lambda kv: kv[0] != "gait.preset")
+        for key, value in items:
+            _apply_override(data, key, value, self)
+        return creature_from_dict(data, source=self.source or f"<{self.name}>", origin="--set")
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write the creature as TOML, atomically (temporary file, then rename)."""
+        path = Path(path)
+        text = "# Gaitlab creature (saved)\n" + tomli_w.dumps(self.to_dict())
+        return atomic_write_text(path, text)
+
+
+def _table(obj: Any, skip: tuple[str, ...] = ()) -> dict[str, Any]:
+    out: dict[str, Any] = {}
+    for f in fields(obj):
+        if f.name in skip or f.name == "phases":
+            continue
+        value = getattr(obj, f.name)
+        if value is None:
+            continue
+        out[f.name] = list(value) if isinstance(value, tuple) else value
+    return out
+
+
+def atomic_write_text(path: Path, text: str) -> Path:
+    """Write ``text`` to ``path`` through a temporary file in the same folder."""
+    from .output import check_output_dir  # local import: output imports nothing from spec
+
+    check_output_dir(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+# --------------------------------------------------------------------------------------
+# Loading and validation
+# --------------------------------------------------------------------------------------
+
+
+def load_creature(name_or_path: str | os.PathLike[str]) -> CreatureSpec:
+    """Load a preset by name (``"dog"``) or a creature TOML file by path."""
+    text_name = os.fspath(name_or_path)
+    path = Path(text_name)
+    looks_like_path = text_name.endswith(".toml") or os.sep in text_name or "/" in text_name
+    if not looks_like_path:
+        preset = creatures_dir() / f"{text_name}.toml"
+        if preset.is_file():
+            path = preset
+        elif not path.is_file():
+            known = preset_creature_names()
+            hint = _did_you_mean(text_name, known)
+            raise SpecError(f"unknown creature {text_name!r}{hint}; presets are: {', '.join(known)} "
+                            "(or give a path to a .toml file)")
+    if not path.is_file():
+        raise SpecError(f"{text_name}: no such creature file")
+    try:
+        raw = path.read_bytes().decode("utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise SpecError(f"{text_name}: cannot read creature file: {exc}") from None
+    try:
+        data = tomllib.loads(raw)
+    except tomllib.TOMLDecodeError as exc:
+        raise SpecError(f"{text_name}: TOML syntax error: {exc}") from None
+    return creature_from_dict(data, source=str(path))
+
+
+def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: str | None = None) -> CreatureSpec:
+    """Build and validate a creature from a TOML-shaped dict. Raises :class:`SpecError`."""
+    where = origin or source
+    _check_keys(data, {**TOP_RULES, "body": None, "legs": None, "gait": None, "motion": None, "look": None},
+                "", where, tables=("body", "legs", "gait", "motion", "look"))
+    name = _value(data, "name", TOP_RULES["name"], where, required=False, default=Path(source).stem)
+    description = _value(data, "description", TOP_RULES["description"], where, required=False, default="")
+
+    body_t = _subtable(data, "body", where, required=True)
+    body = BodySpec(**_read_table(body_t, BODY_RULES, "body", where, required=("length", "width", "radius")))
+
+    legs_t = _subtable(data, "legs", where, required=True)
+    unknown = [k for k in legs_t if k not in LEG_PAIRS]
+    if unknown:
+        raise SpecError(f"{where}: legs.{unknown[0]}: unknown leg pair{_did_you_mean(unknown[0], LEG_PAIRS)}; "
+                        f"a creature has the pairs {', '.join('[legs.' + p + ']' for p in LEG_PAIRS)}")
+    legs = []
+    for pair in LEG_PAIRS:
+        table = _subtable(legs_t, pair, where, required=True, prefix="legs.")
+        values = _read_table(table, LEG_RULES, f"legs.{pair}", where,
+                             required=("femur", "tibia", "metatarsus", "toe", "ankle_lift"))
+        values.setdefault("knee", "back" if pair == "fore" else "forward")
+        values.setdefault("position", 1.0 if pair == "fore" else 0.0)
+        legs.append(LegSpec(name=pair, **values))
+    fore, hind = legs
+    if fore.position <= hind.position:
+        raise SpecError(f"{where}: legs.fore.position = {fore.position:g} must be ahead of "
+                        f"legs.hind.position = {hind.position:g}")
+
+    gait = _read_gait(_subtable(data, "gait", where, required=False), where)
+    motion = MotionSpec(**_read_table(_subtable(data, "motion", where, required=False), MOTION_RULES, "motion", where))
+    look = LookSpec(**_read_table(_subtable(data, "look", where, required=False), LOOK_RULES, "look", where))
+
+    spec = CreatureSpec(name=name, description=description, body=body, legs=tuple(legs),
+                        gait=gait, motion=motion, look=look, source=source)
+    _check_geometry(spec, where)
+    return spec
+
+
+def _read_gait(table: Mapping[str, Any], where: str) -> GaitSpec:
+    values = _read_table(table, {k: v for k, v in GAIT_RULES.items() if k != "phases"}, "gait", where,
+                         extra=("phases",))
+    if "phases" in table:
+        phases_t = table["phases"]
+        if not isinstance(phases_t, Mapping):
+            raise SpecError(f"{where}: gait.phases must be a table like {{ LF = 0.25, RF = 0.75, LH = 0, RH = 0.5 }}")
+        _check_keys(phases_t, dict.fromkeys(TETRAPOD_FEET), "gait.phases.", where)
+        missing = [f for f in TETRAPOD_FEET if f not in phases_t]
+        if missing:
+            raise SpecError(f"{where}: gait.phases is missing {', '.join(missing)}; give a phase for each of "
+                            f"{', '.join(TETRAPOD_FEET)}")
+        values["phases"] = tuple((foot, _value(phases_t, foot, GAIT_RULES["phases"], where, prefix="gait.phases."))
+                                 for foot in TETRAPOD_FEET)
+    gait = GaitSpec(**values)
+    if gait.duty_factor is not None and gait.bias is not None:
+        raise SpecError(f"{where}: gait: give duty_factor or bias, not both (duty_factor = {gait.duty_factor:g}, "
+                        f"bias = {gait.bias:g})")
+    if gait.bias is not None:
+        from .kinematics.oscillator import duty_from_bias
+
+        duty = float(duty_from_bias(gait.bias))
+        lo, hi = DUTY_RANGE
+        if not lo < duty < hi:
+            raise SpecError(f"{where}: gait.bias = {gait.bias:g} gives duty factor {duty:.3f}; "
+                            f"the duty factor must be in ({lo:g}, {hi:g})")
+    if gait.phases is not None and (gait.front_back is not None or gait.left_right is not None):
+        raise SpecError(f"{where}: gait: give phases or front_back/left_right, not both")
+    if not gait.preset_spec.symmetric and gait.phases is None and (
+            gait.front_back is not None or gait.left_right is not None):
+        raise SpecError(f"{where}: gait.preset = {gait.preset!r} is asymmetric (explicit per-foot phases); "
+                        "adjust it with gait.phases.LF etc., not front_back/left_right")
+    return gait
+
+
+def _check_geometry(spec: CreatureSpec, where: str) -> None:
+    """Reject creatures whose legs cannot stand: the rest pose must be reachable."""
+    for leg in spec.legs:
+        lift = math.radians(leg.ankle_lift)
+        reach = leg.femur + leg.tibia
+        l_max = math.sqrt(reach ** 2 - (leg.metatarsus * math.cos(lift)) ** 2) + leg.metatarsus * math.sin(lift) \
+            if reach > leg.metatarsus * math.cos(lift) else 0.0
+        l_rest = l_max * min(1.0, max(0.2, 1.0 - leg.natural_bend))
+        fold = abs(leg.femur - leg.tibia) - leg.metatarsus
+        if reach <= leg.metatarsus * math.cos(lift):
+            raise SpecError(f"{where}: legs.{leg.name}: femur + tibia ({reach:g} m) must be longer than the "
+                            f"flat part of the metatarsus ({leg.metatarsus * math.cos(lift):.3g} m)")
+        if fold >= 0.8 * l_rest:
+            raise SpecError(f"{where}: legs.{leg.name}: unreachable geometry: femur {leg.femur:g} and tibia "
+                            f"{leg.tibia:g} differ by more than the leg can fold at its rest length "
+                            f"{l_rest:.3g} m; make them closer in length")
+    if spec.leg("hind").radius * 2 > spec.body.width * 1.5:
+        raise SpecError(f"{where}: legs.hind.radius = {spec.leg('hind').radius:g} m is too thick for "
+                        f"body.width = {spec.body.width:g} m (legs would overlap)")
+
+
+# -- table readers ---------------------------------------------------------------------
+
+
+def _check_keys(table: Mapping[str, Any], allowed: Mapping[str, Any], prefix: str, where: str,
+                tables: tuple[str, ...] = ()) -> None:
+    for key in table:
+        if key not in allowed:
+            full = f"{prefix}{key}" if not prefix or prefix.endswith(".") else f"{prefix}.{key}"
+            names = [f"{prefix}{k}" if prefix.endswith(".") or not prefix else f"{prefix}.{k}" for k in allowed]
+            raise SpecError(f"{where}: unknown key {full!r}{_did_you_mean(full, names)}; allowed here: "
+                            f"{', '.join(names)}")
+        if key in tables and not isinstance(table[key], Mapping):
+            raise SpecError(f"{where}: {prefix}{key} must be a table ([{prefix}{key}])")
+
+
+def _subtable(data: Mapping[str, Any], key: str, where: str, required: bool, prefix: str = "") -> Mapping[str, Any]:
+    if key not in data:
+        if required:
+            raise SpecError(f"{where}: missing table [{prefix}{key}]")
+        return {}
+    value = data[key]
+    if not isinstance(value, Mapping):
+        raise SpecError(f"{where}: {prefix}{key} must be a table ([{prefix}{key}]), got {value!r}")
+    return value
+
+
+def _read_table(table: Mapping[str, Any], rules: Mapping[str, Rule], name: str, where: str,
+                required: tuple[str, ...] = (), extra: tuple[str, ...] = ()) -> dict[str, Any]:
+    _check_keys(table, {**rules, **dict.fromkeys(extra)}, f"{name}.", where)
+    out: dict[str, Any] = {}
+    for key in required:
+        if key not in table:
+            raise SpecError(f"{where}: missing key {name}.{key} ({rules[key].doc}; {rules[key].allowed()})")
+    for key, rule in rules.items():
+        if key in table:
+            out[key] = _value(table, key, rule, where, prefix=f"{name}.")
+    return out
+
+
+def _value(table: Mapping[str, Any], key: str, rule: Rule, where: str, prefix: str = "",
+           required: bool = True, default: Any = None) -> Any:
+    if key not in table:
+        if required:
+            raise SpecError(f"{where}: missing key {prefix}{key}")
+        return default
+    return check_value(f"{prefix}{key}", table[key], rule, where)
+
+
+def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
+    """Validate one value against its rule; returns it in the spec's type."""
+
+    def bad(reason: str = "") -> SpecError:
+        return SpecError(f"{where}: {key} = {_show(value)}: {reason or 'expected ' + rule.allowed()}")
+
+    if rule.kind == "text":
+        if not isinstance(value, str):
+            raise bad()
+        return value
+    if rule.kind == "choice":
+        if value not in rule.choices:
+            raise SpecError(f"{where}: {key} = {_show(value)}: unknown{_did_you_mean(str(value), rule.choices)}; "
+                            f"expected {rule.allowed()}")
+        return value
+    if rule.kind == "color":
+        if not isinstance(value, str) or not _COLOR_RE.match(value):
+            raise bad()
+        return value.lower()
+    if rule.kind == "numbers":
+        if not isinstance(value, (list, tuple)) or not value:
+            raise bad()
+        return tuple(_number(v, rule, bad) for v in value)
+    if rule.kind == "integer":
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or float(value) != int(value):
+            raise bad()
+        value = int(value)
+    return _number(value, rule, bad)
+
+
+def _number(value: Any, rule: Rule, bad) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise bad()
+    number = float(value) if rule.kind != "integer" else int(value)
+    if not math.isfinite(number):
+        raise bad("not a finite number; expected " + rule.allowed())
+    if rule.lo is not None and (number < rule.lo or (rule.lo_open and number == rule.lo)):
+        raise bad()
+    if rule.hi is not None and (number > rule.hi or (rule.hi_open and number == rule.hi)):
+        raise bad()
+    return number
+
+
+def _show(value: Any) -> str:
+    if isinstance(value, float) and not math.isfinite(value):
+        return str(value)
+    return repr(value) if isinstance(value, str) else str(value).lower() if isinstance(value, bool) else str(value)
+
+
+def _did_you_mean(word: str, options) -> str:
+    match = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
+    return f" (did you mean {match[0]!r}?)" if match else ""
+
+
+# -- overrides -------------------------------------------------------------------------
+
+
+def override_keys() -> list[str]:
+    """Every dotted key that :meth:`CreatureSpec.with_overrides` accepts."""
+    keys = [f"{table}.{k}" for table, rules in TABLES.items() for k in rules if k != "phases"]
+    keys += [f"legs.{pair}.{k}" for pair in LEG_PAIRS for k in LEG_RULES]
+    keys += [f"gait.phases.{foot}" for foot in TETRAPOD_FEET]
+    keys += list(TOP_RULES)
+    return keys
+
+
+def rule_for(key: str) -> Rule | None:
+    """The rule that governs a dotted key, or ``None`` if there is no such key."""
+    parts = key.split(".")
+    if len(parts) == 1:
+        return TOP_RULES.get(parts[0])
+    if parts[0] == "legs" and len(parts) == 3 and parts[1] in LEG_PAIRS:
+        return LEG_RULES.get(parts[2])
+    if parts[:2] == ["gait", "phases"] and len(parts) == 3 and parts[2] in TETRAPOD_FEET:
+        return GAIT_RULES["phases"]
+    if len(parts) == 2 and parts[0] in TABLES and parts[1] != "phases":
+        return TABLES[parts[0]].get(parts[1])
+    return None
+
+
+def _apply_override(data: dict[str, Any], key: str, value: Any, spec: CreatureSpec) -> None:
+    rule = rule_for(key)
+    if rule is None:
+        raise SpecError(f"--set {key}: unknown key{_did_you_mean(key, override_keys())}; "
+                        "keys look like body.length, legs.hind.femur, gait.duty_factor, gait.phases.LF")
+    value = check_value(key, value, rule, "--set")
+    parts = key.split(".")
+    if key == "gait.preset":
+        data["gait"] = {"preset": value, "wave": data.get("gait", {}).get("wave", "planted")}
+        return
+    if parts[:2] == ["gait", "phases"]:
+        gait = data.setdefault("gait", {})
+        if "phases" not in gait:
+            from .kinematics.gait import resolve_phases
+
+            gait["phases"] = dict(zip(TETRAPOD_FEET, (float(p) for p in resolve_phases(spec.gait))))
+            gait.pop("front_back", None)
+            gait.pop("left_right", None)
+        gait["phases"][parts[2]] = value
+        return
+    if key in ("gait.duty_factor", "gait.bias"):
+        data.setdefault("gait", {}).pop("bias" if key == "gait.duty_factor" else "duty_factor", None)
+    if key in ("gait.front_back", "gait.left_right"):
+        data.setdefault("gait", {}).pop("phases", None)
+    node = data
+    for part in parts[:-1]:
+        node = node.setdefault(part, {})
+    node[parts[-1]] = value
+
+
+def parse_override(text: str) -> tuple[str, Any]:
+    """Parse a ``KEY=VALUE`` command-line override; VALUE is read as a TOML value."""
+    if "=" not in text:
+        raise SpecError(f"--set {text!r}: expected KEY=VALUE, e.g. --set gait.duty_factor=0.7")
+    key, raw = (s.strip() for s in text.split("=", 1))
+    if rule_for(key) is None:
+        raise SpecError(f"--set {key}: unknown key{_did_you_mean(key, override_keys())}; "
+                        "keys look like body.length, legs.hind.femur, gait.duty_factor, gait.phases.LF")
+    try:
+        value = tomllib.loads(f"v = {raw}")["v"]
+    except tomllib.TOMLDecodeError:
+        value = raw  # a bare word such as a preset name; validated against the key's rule
+    return key, value

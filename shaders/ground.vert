@@ -1,0 +1,16 @@
+#version 330 core
+// A rectangle on the ground plane, used for the floor and for the shadow that lies on it.
+
+in vec2 in_xz;  // unit square corner in [-1, 1]^2
+
+uniform mat4 u_view_proj;
+uniform vec2 u_center;     // world xz of the rectangle's centre
+uniform vec2 u_half_size;  // half extents in x and z (metres)
+uniform float u_lift;      // height above y = 0 (metres)
+
+out vec3 v_world;
+
+void main() {
+    v_world = vec3(u_center.x + in_xz.x * u_half_size.x, u_lift, u_center.y + in_xz.y * u_half_size.y);
+    gl_Position = u_view_proj * vec4(v_world, 1.0);
+}

@@ -1,0 +1,15 @@
+#version 330 core
+#include "lighting.glsl"
+#include "shadow.glsl"
+
+in vec3 v_world;
+in vec3 v_normal;
+in vec3 v_color;
+
+out vec4 frag_color;
+
+void main() {
+    vec3 n = normalize(v_normal);
+    float lit = light_visibility(v_world, n);
+    frag_color = vec4(to_display(shade(v_color, n, v_world, lit)), 1.0);
+}
