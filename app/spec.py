@@ -434,21 +434,27 @@ def _read_gait(table: Mapping[str, Any], where: str) -> GaitSpec:
 
 
 def _check_geometry(spec: CreatureSpec, where: str) -> None:
-    """Reject creatures whose legs cannot stand: the rest pose must be reachable."""
+    """Reject creatures whose legs cannot stand: the rest pose must be reachable.
+
+    At rest the ball is straight below the hip at the rest length and the metatarsus
+    rises behind it at the ankle lift; the hip-to-ankle distance must then lie within
+    what femur and tibia can span, [|femur - tibia|, femur + tibia].
+    """
     for leg in spec.legs:
         lift = math.radians(leg.ankle_lift)
         reach = leg.femur + leg.tibia
-        l_max = math.sqrt(reach ** 2 - (leg.metatarsus * math.cos(lift)) ** 2) + leg.metatarsus * math.sin(lift) \
-            if reach > leg.metatarsus * math.cos(lift) else 0.0
+        flat = leg.metatarsus * math.cos(lift)
+        if reach <= flat:
+            raise SpecError(f"{where}: legs.{leg.name}: unreachable geometry: femur + tibia ({reach:g} m) must be "
+                            f"longer than the flat part of the metatarsus ({flat:.3g} m)")
+        l_max = math.sqrt(reach ** 2 - flat ** 2) + leg.metatarsus * math.sin(lift)
         l_rest = l_max * min(1.0, max(0.2, 1.0 - leg.natural_bend))
-        fold = abs(leg.femur - leg.tibia) - leg.metatarsus
-        if reach <= leg.metatarsus * math.cos(lift):
-            raise SpecError(f"{where}: legs.{leg.name}: femur + tibia ({reach:g} m) must be longer than the "
-                            f"flat part of the metatarsus ({leg.metatarsus * math.cos(lift):.3g} m)")
-        if fold >= 0.8 * l_rest:
+        ankle_at_rest = math.hypot(flat, l_rest - leg.metatarsus * math.sin(lift))
+        fold = abs(leg.femur - leg.tibia)
+        if ankle_at_rest < fold * 1.02:
             raise SpecError(f"{where}: legs.{leg.name}: unreachable geometry: femur {leg.femur:g} and tibia "
-                            f"{leg.tibia:g} differ by more than the leg can fold at its rest length "
-                            f"{l_rest:.3g} m; make them closer in length")
+                            f"{leg.tibia:g} cannot fold to the rest pose (hip to ankle {ankle_at_rest:.3g} m < "
+                            f"|femur - tibia| = {fold:.3g} m); make them closer in length or lower natural_bend")
     if spec.leg("hind").radius * 2 > spec.body.width * 1.5:
         raise SpecError(f"{where}: legs.hind.radius = {spec.leg('hind').radius:g} m is too thick for "
                         f"body.width = {spec.body.width:g} m (legs would overlap)")

@@ -36,9 +36,12 @@ _TINY_SLOPE = 1e-12
 
 
 def _log_cosh(b: NDArray[np.float64]) -> NDArray[np.float64]:
-    """``ln(cosh b)`` without overflow."""
+    """``ln(cosh b)`` accurate for all b: ``log1p(2 sinh^2(b/2))`` for small |b| (no
+    cancellation), ``|b| + log1p(e^(-2|b|)) - ln 2`` for large |b| (no overflow)."""
     a = np.abs(b)
-    return a + np.log1p(np.exp(-2.0 * a)) - np.log(2.0)
+    small = np.log1p(2.0 * np.sinh(0.5 * np.minimum(a, 2.0)) ** 2)
+    large = a + np.log1p(np.exp(-2.0 * a)) - np.log(2.0)
+    return np.where(a < 2.0, small, large)
 
 
 def duty_threshold(bias: ArrayLike) -> NDArray[np.float64]:

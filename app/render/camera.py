@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass, replace
 from typing import Literal, get_args
 
-import glm
+from pyglm import glm
 import numpy as np
 from numpy.typing import NDArray
 
