@@ -47,7 +47,7 @@ def _positive(name: str, upper: float):
         except ValueError:
             raise argparse.ArgumentTypeError(f"{text!r}: expected a number") from None
         if not math.isfinite(value) or value <= 0 or value > upper:
-            raise argparse.ArgumentTypeError(f"{text!r}: {name} must be greater than 0 and at most {upper:g}")
+            raise argparse.ArgumentTypeError(f"{text!r}: must be greater than 0 and at most {upper:g} {name}")
         return value
 
     return parse
@@ -107,10 +107,10 @@ def build_parser() -> argparse.ArgumentParser:
                         help="output file: .png, .gif or .mp4 (default: CREATURE.gif)")
     render.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
     length = render.add_mutually_exclusive_group()
-    length.add_argument("--seconds", metavar="S", type=_positive("--seconds", 600), help="clip length in seconds")
-    length.add_argument("--cycles", metavar="N", type=_positive("--cycles", 600),
+    length.add_argument("--seconds", metavar="S", type=_positive("seconds", 600), help="clip length in seconds")
+    length.add_argument("--cycles", metavar="N", type=_positive("cycles", 600),
                         help="clip length in gait cycles (default: 2; loops seamlessly)")
-    render.add_argument("--fps", metavar="F", type=_positive("--fps", MAX_FPS), default=25.0,
+    render.add_argument("--fps", metavar="F", type=_positive("frames per second", MAX_FPS), default=25.0,
                         help="frames per second (default: 25)")
     render.add_argument("--size", metavar="WxH", type=_size, default=(480, 360), help="image size (default: 480x360)")
     render.add_argument("--camera", choices=CAMERA_PRESETS, default=DEFAULT_CAMERA,
@@ -175,6 +175,11 @@ def cmd_render(args: argparse.Namespace) -> int:
     spec = load_creature(args.creature)
     overrides: dict[str, object] = {}
     if args.gait is not None:
+        if args.gait not in GAIT_PRESETS:
+            from .spec import did_you_mean
+
+            raise GaitlabError(f"--gait {args.gait!r}: unknown gait{did_you_mean(args.gait, GAIT_PRESETS)}; "
+                               f"gaits are: {', '.join(GAIT_PRESETS)}")
         overrides["gait.preset"] = args.gait
     for text in args.overrides:
         key, value = parse_override(text)

@@ -38,10 +38,20 @@ def check_output_dir(path: str | os.PathLike[str]) -> None:
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
         raise OutputError(f"{os.fspath(path)}: output folder {os.fspath(parent)!r} does not exist")
-    if not os.access(parent, os.W_OK | os.X_OK):
-        raise OutputError(f"{os.fspath(path)}: output folder {os.fspath(parent)!r} is not writable")
     if path.is_dir():
         raise OutputError(f"{os.fspath(path)}: is a folder; give a file name ending in .png, .gif or .mp4")
+    try:  # a real probe: permission bits say nothing for root or for special file systems
+        fd, probe = tempfile.mkstemp(prefix=".gaitlab-probe-", dir=parent)
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as exc:
+        raise OutputError(f"{os.fspath(path)}: output folder {os.fspath(parent)!r} is not writable "
+                          f"({exc.strerror or exc})") from None
+
+
+def cannot_write(path: str | os.PathLike[str], exc: OSError) -> OutputError:
+    """The one-line error for an OS failure while writing ``path``."""
+    return OutputError(f"{os.fspath(path)}: cannot write: {exc.strerror or exc}")
 
 
 def gif_durations(frame_count: int, fps: float) -> list[int]:
@@ -57,14 +67,21 @@ class AtomicPath:
     def __init__(self, final: str | os.PathLike[str]) -> None:
         self.final = Path(final)
         check_output_dir(self.final)
-        fd, tmp = tempfile.mkstemp(prefix=f".{self.final.stem}.", suffix=f".partial{self.final.suffix}",
-                                   dir=self.final.parent)
+        try:
+            fd, tmp = tempfile.mkstemp(prefix=f".{self.final.stem}.", suffix=f".partial{self.final.suffix}",
+                                       dir=self.final.parent)
+        except OSError as exc:
+            raise cannot_write(self.final, exc) from None
         os.close(fd)
         self.tmp = Path(tmp)
 
     def commit(self) -> Path:
-        os.chmod(self.tmp, 0o644)
-        os.replace(self.tmp, self.final)
+        try:
+            os.chmod(self.tmp, 0o644)
+            os.replace(self.tmp, self.final)
+        except OSError as exc:
+            self.discard()
+            raise cannot_write(self.final, exc) from None
         return self.final
 
     def discard(self) -> None:
@@ -76,8 +93,10 @@ class AtomicPath:
     def __exit__(self, exc_type, exc, tb) -> None:
         if exc_type is None:
             self.commit()
-        else:
-            self.discard()
+            return
+        self.discard()
+        if isinstance(exc, OSError):
+            raise cannot_write(self.final, exc) from None
 
 
 def write_png(path: str | os.PathLike[str], image: NDArray[np.uint8]) -> Path:

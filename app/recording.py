@@ -15,7 +15,8 @@ import numpy as np
 from .errors import GaitlabError
 from .kinematics.motion import Motion, frame_count, solve_motion
 from .kinematics.rig import Rig, build_rig
-from .output import GIF_MAX_FPS, MAX_SIZE, Mp4Writer, check_output_dir, output_format, write_gif, write_png
+from .output import (GIF_MAX_FPS, MAX_SIZE, Mp4Writer, cannot_write, check_output_dir, output_format, write_gif,
+                     write_png)
 from .render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
 from .render.renderer import RenderOptions
 from .spec import CreatureSpec
@@ -89,10 +90,18 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
 
 def record(request: RecordRequest, progress: Progress | None = None,
            ctx: moderngl.Context | None = None) -> RecordResult:
-    """Render ``request`` and write its file. Raises :class:`GaitlabError` on bad input.
+    """Render ``request`` and write its file. Raises :class:`GaitlabError` on bad input
+    or when the file cannot be written (nothing is left behind then).
 
     ``ctx``: an existing GL context to render in (the viewer's); default a new EGL one.
     """
+    try:
+        return _record(request, progress, ctx)
+    except OSError as exc:
+        raise cannot_write(request.output, exc) from None
+
+
+def _record(request: RecordRequest, progress: Progress | None, ctx: moderngl.Context | None) -> RecordResult:
     fmt = output_format(request.output)
     check_output_dir(request.output)
     if fmt == "mp4" and (request.view.size[0] % 2 or request.view.size[1] % 2):

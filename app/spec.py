@@ -343,7 +343,7 @@ def load_creature(name_or_path: str | os.PathLike[str]) -> CreatureSpec:
             path = preset
         elif not path.is_file():
             known = preset_creature_names()
-            hint = _did_you_mean(text_name, known)
+            hint = did_you_mean(text_name, known)
             raise SpecError(f"unknown creature {text_name!r}{hint}; presets are: {', '.join(known)} "
                             "(or give a path to a .toml file)")
     if not path.is_file():
@@ -373,7 +373,7 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
     legs_t = _subtable(data, "legs", where, required=True)
     unknown = [k for k in legs_t if k not in LEG_PAIRS]
     if unknown:
-        raise SpecError(f"{where}: legs.{unknown[0]}: unknown leg pair{_did_you_mean(unknown[0], LEG_PAIRS)}; "
+        raise SpecError(f"{where}: legs.{unknown[0]}: unknown leg pair{did_you_mean(unknown[0], LEG_PAIRS)}; "
                         f"a creature has the pairs {', '.join('[legs.' + p + ']' for p in LEG_PAIRS)}")
     legs = []
     for pair in LEG_PAIRS:
@@ -469,7 +469,7 @@ def _check_keys(table: Mapping[str, Any], allowed: Mapping[str, Any], prefix: st
         if key not in allowed:
             full = f"{prefix}{key}" if not prefix or prefix.endswith(".") else f"{prefix}.{key}"
             names = [f"{prefix}{k}" if prefix.endswith(".") or not prefix else f"{prefix}.{k}" for k in allowed]
-            raise SpecError(f"{where}: unknown key {full!r}{_did_you_mean(full, names)}; allowed here: "
+            raise SpecError(f"{where}: unknown key {full!r}{did_you_mean(full, names)}; allowed here: "
                             f"{', '.join(names)}")
         if key in tables and not isinstance(table[key], Mapping):
             raise SpecError(f"{where}: {prefix}{key} must be a table ([{prefix}{key}])")
@@ -520,7 +520,7 @@ def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
         return value
     if rule.kind == "choice":
         if value not in rule.choices:
-            raise SpecError(f"{where}: {key} = {_show(value)}: unknown{_did_you_mean(str(value), rule.choices)}; "
+            raise SpecError(f"{where}: {key} = {_show(value)}: unknown{did_you_mean(str(value), rule.choices)}; "
                             f"expected {rule.allowed()}")
         return value
     if rule.kind == "color":
@@ -557,7 +557,8 @@ def _show(value: Any) -> str:
     return repr(value) if isinstance(value, str) else str(value).lower() if isinstance(value, bool) else str(value)
 
 
-def _did_you_mean(word: str, options) -> str:
+def did_you_mean(word: str, options) -> str:
+    """' (did you mean 'x'?)' for the closest of ``options``, or ''."""
     match = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
     return f" (did you mean {match[0]!r}?)" if match else ""
 
@@ -591,7 +592,7 @@ def rule_for(key: str) -> Rule | None:
 def _apply_override(data: dict[str, Any], key: str, value: Any, spec: CreatureSpec) -> None:
     rule = rule_for(key)
     if rule is None:
-        raise SpecError(f"--set {key}: unknown key{_did_you_mean(key, override_keys())}; "
+        raise SpecError(f"--set {key}: unknown key{did_you_mean(key, override_keys())}; "
                         "keys look like body.length, legs.hind.femur, gait.duty_factor, gait.phases.LF")
     value = check_value(key, value, rule, "--set")
     parts = key.split(".")
@@ -624,7 +625,7 @@ def parse_override(text: str) -> tuple[str, Any]:
         raise SpecError(f"--set {text!r}: expected KEY=VALUE, e.g. --set gait.duty_factor=0.7")
     key, raw = (s.strip() for s in text.split("=", 1))
     if rule_for(key) is None:
-        raise SpecError(f"--set {key}: unknown key{_did_you_mean(key, override_keys())}; "
+        raise SpecError(f"--set {key}: unknown key{did_you_mean(key, override_keys())}; "
                         "keys look like body.length, legs.hind.femur, gait.duty_factor, gait.phases.LF")
     try:
         value = tomllib.loads(f"v = {raw}")["v"]

@@ -13,9 +13,12 @@ in vec3 in_color;
 
 uniform mat4 u_view_proj;
 
+#include "shadow_vertex.glsl"
+
 out vec3 v_world;
 out vec3 v_normal;
 out vec3 v_color;
+out vec3 v_shadow;  // light-space position
 
 void main() {
     vec3 axis = in_b - in_a;
@@ -32,5 +35,6 @@ void main() {
     float slope = len > 1e-9 ? (in_radius.x - in_radius.y) / len : 0.0;
     v_normal = normalize(dir + y * slope * (1.0 - abs(in_pos.y)));
     v_color = in_color;
+    v_shadow = shadow_coord(v_world, v_normal);
     gl_Position = u_view_proj * vec4(v_world, 1.0);
 }

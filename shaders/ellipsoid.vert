@@ -12,9 +12,12 @@ in vec3 in_color;
 
 uniform mat4 u_view_proj;
 
+#include "shadow_vertex.glsl"
+
 out vec3 v_world;
 out vec3 v_normal;
 out vec3 v_color;
+out vec3 v_shadow;  // light-space position
 
 void main() {
     vec3 scaled = in_pos * in_radii;
@@ -22,5 +25,6 @@ void main() {
     vec3 n = in_pos / in_radii;  // inverse-transpose of the scale
     v_normal = normalize(in_axis_x * n.x + in_axis_y * n.y + in_axis_z * n.z);
     v_color = in_color;
+    v_shadow = shadow_coord(v_world, v_normal);
     gl_Position = u_view_proj * vec4(v_world, 1.0);
 }

@@ -2,7 +2,8 @@
 #include "lighting.glsl"
 // Ground: a matte floor with an anti-aliased grid that moves with the ground (so planted
 // feet stay on one spot of it), fading into the horizon colour with distance. The floor
-// is flat and fully lit here; the creature's shadow is multiplied onto it afterwards by
+// is flat, so its lighting is one constant (u_floor_light, from the same lighting model
+// on the CPU); the creature's shadow is multiplied onto it afterwards by
 // ground_shadow.frag over the shadow's footprint only.
 
 in vec3 v_world;
@@ -10,6 +11,7 @@ in vec3 v_world;
 uniform vec3 u_ground_color;   // linear
 uniform vec3 u_line_color;     // linear
 uniform vec3 u_horizon_color;  // linear
+uniform vec3 u_floor_light;    // ambient + sun reaching the floor (linear)
 uniform vec2 u_grid_offset;    // metres the ground has moved (added to world xz)
 uniform float u_grid_spacing;  // metres between minor lines
 uniform float u_grid_on;       // 0 or 1
@@ -23,14 +25,12 @@ void main() {
     vec2 fw = max(fwidth(coord), vec2(1e-6));
     // Minor lines every unit, major lines every 5; both fade out before they would alias.
     vec2 minor_d = abs(fract(coord - 0.5) - 0.5) / fw;
-    vec2 major_d = abs(fract(coord * 0.2 - 0.5) - 0.5) / (fw * 0.2 * 1.5);
-    float minor = (1.0 - min(min(minor_d.x, minor_d.y), 1.0)) * (1.0 - smoothstep(0.25, 0.6, max(fw.x, fw.y)));
-    float major = (1.0 - min(min(major_d.x, major_d.y), 1.0)) * (1.0 - smoothstep(1.25, 3.0, max(fw.x, fw.y)));
+    vec2 major_d = abs(fract(coord * 0.2 - 0.5) - 0.5) / (fw * 0.3);
+    float spread = max(fw.x, fw.y);
+    float minor = (1.0 - min(min(minor_d.x, minor_d.y), 1.0)) * (1.0 - smoothstep(0.25, 0.6, spread));
+    float major = (1.0 - min(min(major_d.x, major_d.y), 1.0)) * (1.0 - smoothstep(1.25, 3.0, spread));
     float line = u_grid_on * max(minor * 0.45, major * 0.8);
-    vec3 albedo = mix(u_ground_color, u_line_color, line);
-    const vec3 up = vec3(0.0, 1.0, 0.0);
-    float wrapped = max((-u_light_dir.y + 0.35) * (1.0 / 1.35), 0.0);
-    vec3 color = albedo * (ambient_light(up) + SUN_COLOR * wrapped);
+    vec3 color = mix(u_ground_color, u_line_color, line) * u_floor_light;
     float fog = smoothstep(u_fog_range.x, u_fog_range.y, length(v_world.xz - u_focus));
     frag_color = vec4(to_display(mix(color, u_horizon_color, fog)), 1.0);
 }

@@ -8,9 +8,13 @@ uniform vec2 u_center;     // world xz of the rectangle's centre
 uniform vec2 u_half_size;  // half extents in x and z (metres)
 uniform float u_lift;      // height above y = 0 (metres)
 
+#include "shadow_vertex.glsl"
+
 out vec3 v_world;
+out vec3 v_shadow;  // light-space position (used by the shadow pass only)
 
 void main() {
     v_world = vec3(u_center.x + in_xz.x * u_half_size.x, u_lift, u_center.y + in_xz.y * u_half_size.y);
+    v_shadow = shadow_coord(v_world, vec3(0.0, 1.0, 0.0));
     gl_Position = u_view_proj * vec4(v_world, 1.0);
 }

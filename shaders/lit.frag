@@ -5,11 +5,12 @@
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_color;
+in vec3 v_shadow;
 
 out vec4 frag_color;
 
 void main() {
     vec3 n = normalize(v_normal);
-    float lit = light_visibility(v_world, n);
+    float lit = light_visibility(v_shadow);
     frag_color = vec4(to_display(shade(v_color, n, v_world, lit)), 1.0);
 }

@@ -1,24 +1,17 @@
 // Shadow lookups into the key light's depth map (comparison sampler, bilinear: every
-// tap is already a 2x2 percentage-closer filter).
+// tap is already a 2x2 percentage-closer filter). The light-space coordinate comes from
+// the vertex shader (shadow_vertex.glsl): the light's projection is orthographic, so it
+// interpolates exactly across triangles.
 
 uniform sampler2DShadow u_shadow_map;
-uniform mat4 u_light_view_proj;
 uniform float u_shadow_strength;  // 0 = no shadow, 1 = full
-uniform float u_shadow_texel;     // world size (m) of one shadow-map texel
-
-vec3 shadow_coord(vec3 p, vec3 n) {
-    // Normal offset of two texels keeps lit surfaces from shadowing themselves (acne).
-    vec4 lp = u_light_view_proj * vec4(p + n * (2.0 * u_shadow_texel), 1.0);
-    return lp.xyz / lp.w * 0.5 + 0.5;
-}
 
 bool outside_shadow_map(vec3 c) {
     return c.x <= 0.0 || c.x >= 1.0 || c.y <= 0.0 || c.y >= 1.0 || c.z >= 1.0;
 }
 
 // One bilinear tap: for surfaces of the creature itself (self-shadowing).
-float light_visibility(vec3 p, vec3 n) {
-    vec3 c = shadow_coord(p, n);
+float light_visibility(vec3 c) {
     if (outside_shadow_map(c)) {
         return 1.0;
     }
@@ -26,8 +19,7 @@ float light_visibility(vec3 p, vec3 n) {
 }
 
 // Four bilinear taps (a soft 4x4-texel footprint): for the shadow on the ground.
-float light_visibility_soft(vec3 p, vec3 n) {
-    vec3 c = shadow_coord(p, n);
+float light_visibility_soft(vec3 c) {
     if (outside_shadow_map(c)) {
         return 1.0;
     }

@@ -4,8 +4,12 @@ A leg is femur, tibia, metatarsus and toe. The IK target is the *ball* (the join
 between metatarsus and toe). The redundancy of the three-link chain is removed by
 fixing the metatarsus angle first (the ankle lift, adjusted for how far the leg is
 extended and how far it has swung), then the knee follows from the law of cosines on
-the hip-ankle-knee triangle. Every function is vectorised: legs on the last axis, any
-number of leading batch axes (frames, creatures).
+the hip-ankle-knee triangle.
+
+Vectorised: legs on the last axis, any number of leading batch axes (frames). The work
+is done on scalar component arrays in each leg's own frame (forward, up, lateral), which
+keeps numpy on contiguous arrays; :mod:`app.kinematics.leg_scalar` states the same
+formulas for one leg in plain Python.
 """
 
 from __future__ import annotations
@@ -18,13 +22,32 @@ MAX_ANKLE_ANGLE = 0.75 * np.pi  # the ankle may pass over the ball a little, not
 _REACH_MARGIN = 1e-6  # keep the knee triangle this far (relative) from straight or folded flat
 
 
-def _dot(a: NDArray, b: NDArray) -> NDArray:
-    return np.einsum("...i,...i->...", a, b)
+def _norm3(x: NDArray, y: NDArray, z: NDArray) -> NDArray:
+    return np.sqrt(x * x + y * y + z * z)
 
 
-def _unit(v: NDArray, fallback: NDArray) -> NDArray:
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
-    return np.where(n > 1e-12, v / np.where(n > 1e-12, n, 1.0), fallback)
+def _reach_rotation(wf, wu, wl, hf, hu, hl, length, cos_target):
+    """Directions (f, u, l) at angle acos(cos_target) from the hip direction, rotated from
+    the wanted direction w towards (or away from) it; inputs are 1-D subsets."""
+    inv = 1.0 / length
+    tf, tu, tl = -hf * inv, -hu * inv, -hl * inv  # unit direction ball -> hip
+    along = wf * tf + wu * tu + wl * tl
+    sf, su, sl = wf - along * tf, wu - along * tu, wl - along * tl
+    # When the wanted direction is (nearly) the hip direction itself, rotate in the
+    # sagittal plane, towards the back.
+    weak = _norm3(sf, su, sl) <= 1e-3
+    back = -tf
+    sf = np.where(weak, -1.0 - back * tf, sf)
+    su = np.where(weak, -back * tu, su)
+    sl = np.where(weak, -back * tl, sl)
+    n = np.maximum(_norm3(sf, su, sl), 1e-300)
+    sin_t = np.sqrt(np.maximum(1.0 - cos_target * cos_target, 0.0))
+    df, du, dl = cos_target * tf + sin_t * sf / n, cos_target * tu + sin_t * su / n, cos_target * tl + sin_t * sl / n
+    dn = _norm3(df, du, dl)
+    return df / dn, du / dn, dl / dn
+
+
+_CHUNK_LEGS = 16384  # legs solved per pass: keeps numpy's temporaries in the L2 cache
 
 
 def solve_legs(
@@ -48,8 +71,8 @@ def solve_legs(
     """Solve legs for hip and ball positions.
 
     hip, target:   (..., L, 3) world positions (m) of each hip and its ball target
-    forward, up:   (..., L, 3) unit vectors of each leg's sagittal frame (body heading
-                   and world up); broadcastable, e.g. (3,)
+    forward, up:   (..., L, 3) orthonormal vectors of each leg's sagittal frame (body
+                   heading and world up); broadcastable, e.g. (3,)
     toe_curl:      (..., L) in [0, 1]: 0 keeps the toe flat, 1 drops it by the ankle lift
     femur..knee_sign: (L,) rig arrays (m, radians, +1 knee forward / -1 back)
     ground_height: height (m) of the ground under each ball, for keeping the toe above it
@@ -59,92 +82,132 @@ def solve_legs(
     [L_min, L_max] of the hip; a farther target pulls it in along the hip-target line, a
     nearer one slides it away horizontally at the target's height.
     """
+    rig = dict(femur=femur, tibia=tibia, metatarsus=metatarsus, toe=toe, ankle_lift=ankle_lift, l_max=l_max,
+               l_rest=l_rest, l_min=l_min, knee_sign=knee_sign)
     hip = np.asarray(hip, dtype=np.float64)
     target = np.asarray(target, dtype=np.float64)
-    fwd = np.broadcast_to(np.asarray(forward, dtype=np.float64), hip.shape)
-    upv = np.broadcast_to(np.asarray(up, dtype=np.float64), hip.shape)
+    shape = np.broadcast_shapes(hip.shape, target.shape)
+    rows = int(np.prod(shape[:-2], dtype=np.int64)) if len(shape) > 2 else 1
+    per_row = shape[-2]
+    if len(shape) != 3 or rows * per_row <= 2 * _CHUNK_LEGS:
+        return _solve(hip, target, forward, up, toe_curl, ground_height, **rig)
+    # Long clips: solve blocks of frames. Per-frame inputs are sliced, shared ones passed whole.
+    step = max(1, _CHUNK_LEGS // per_row)
+    out = np.empty(shape[:-1] + (5, 3))
 
-    # 1. Clamp the hip-to-ball distance into the leg's range. Too far: pull the ball in
-    #    along the hip line (it rises). Too near: slide it away along the ground, keeping
-    #    its height, so a low hip never pushes the foot underground.
-    h = target - hip
-    dist = np.linalg.norm(h, axis=-1)
-    h_vert = _dot(h, upv)[..., None] * upv
-    h_flat = h - h_vert
-    flat_len = np.linalg.norm(h_flat, axis=-1)
-    flat_dir = _unit(h_flat, -fwd)
-    need = np.sqrt(np.maximum(l_min ** 2 - _dot(h, upv) ** 2, 0.0))
-    slid = h_vert + flat_dir * np.maximum(need, flat_len)[..., None]
-    h = np.where((dist < l_min)[..., None], slid, h)
-    dist = np.linalg.norm(h, axis=-1)
-    direction = _unit(h, -upv)
+    def part(a, lo, hi):
+        a = np.asarray(a, dtype=np.float64)
+        return a[lo:hi] if a.ndim >= 2 and a.shape[0] == shape[0] else a
+
+    for lo in range(0, shape[0], step):
+        hi = min(lo + step, shape[0])
+        out[lo:hi] = _solve(np.broadcast_to(hip, shape)[lo:hi], np.broadcast_to(target, shape)[lo:hi],
+                            part(forward, lo, hi), part(up, lo, hi), part(toe_curl, lo, hi),
+                            part(ground_height, lo, hi), **rig)
+    return out
+
+
+def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, metatarsus, toe, ankle_lift,
+           l_max, l_rest, l_min, knee_sign) -> NDArray[np.float64]:
+    """:func:`solve_legs` on one block (see there)."""
+    shape = np.broadcast_shapes(hip.shape, target.shape)
+    hip = np.broadcast_to(hip, shape)
+    fwd = np.asarray(forward, dtype=np.float64)
+    upv = np.asarray(up, dtype=np.float64)
+    lat = np.cross(upv, fwd)
+    shared_frame = fwd.ndim == 1 and upv.ndim == 1  # one frame for every leg: use BLAS
+    basis = np.stack([fwd, upv, lat], axis=-2)  # rows: forward, up, lateral
+    h = np.asarray(target, dtype=np.float64) - hip
+    # Components in the leg frame: forward, up, lateral.
+    if shared_frame:
+        hf, hu, hl = np.moveaxis(h @ basis.T, -1, 0)
+    else:
+        hf, hu, hl = (np.einsum("...i,...i->...", h, axis) for axis in (fwd, upv, lat))
+
+    # 1. Clamp the hip-to-ball distance into the leg's range. Too near: slide the ball
+    #    away along the ground, keeping its height. Too far: pull it in along the line.
+    dist = _norm3(hf, hu, hl)
+    near = dist < l_min
+    if np.any(near):
+        flat = np.hypot(hf, hl)
+        need = np.sqrt(np.maximum(l_min * l_min - hu * hu, 0.0))
+        tiny = flat <= 1e-12
+        scale = np.maximum(need, flat) / np.where(tiny, 1.0, flat)
+        hf = np.where(near, np.where(tiny, -need, hf * scale), hf)
+        hl = np.where(near & ~tiny, hl * scale, hl)
+        dist = _norm3(hf, hu, hl)
     length = np.clip(dist, l_min, l_max)
-    h = direction * length[..., None]
-    ball = hip + h
+    zero = dist <= 1e-12
+    s = length / np.where(zero, 1.0, dist)
+    hf, hl = np.where(zero, 0.0, hf * s), np.where(zero, 0.0, hl * s)
+    hu = np.where(zero, -length, hu * s)
 
     # 2. Metatarsus angle: rest lift, flattened when the leg is compressed, raised as it
     #    extends towards L_max, then rotated with the whole leg's swing about the hip.
-    h_fwd = _dot(h, fwd)
-    h_up = _dot(h, upv)
-    swing_angle = np.arctan2(h_fwd, -h_up)  # > 0 when the foot is ahead of the hip
-    span = np.maximum(l_max - l_rest, 1e-12)
-    extension = np.clip((length - l_rest) / span, 0.0, 1.0)
+    swing = np.arctan2(hf, -hu)  # > 0 when the foot is ahead of the hip
+    extension = np.clip((length - l_rest) / np.maximum(l_max - l_rest, 1e-12), 0.0, 1.0)
     lift = ankle_lift * np.minimum(1.0, np.sqrt(length / l_rest)) + (0.5 * np.pi - ankle_lift) * extension ** 2
-    alpha = np.clip(lift - swing_angle, 0.0, MAX_ANKLE_ANGLE)
+    alpha = np.clip(lift - swing, 0.0, MAX_ANKLE_ANGLE)
+    wf, wu = -np.cos(alpha), np.sin(alpha)  # wanted direction ball -> ankle (no lateral part)
+    wl = np.zeros_like(wf)
 
-    cos_a = np.cos(alpha)[..., None]
-    sin_a = np.sin(alpha)[..., None]
-    m = metatarsus[..., None]
-    wanted = -cos_a * fwd + sin_a * upv  # unit direction ball -> ankle
-
-    # 3. Keep the ankle reachable: it lies on a sphere of radius m about the ball, and the
-    #    points within [|f - t|, f + t] of the hip form a band of that sphere around the
-    #    direction to the hip: angle phi from it with
-    #    |ankle - hip|^2 = l^2 + m^2 - 2 l m cos(phi). Rotate the wanted direction
-    #    towards (or away from) the hip until it lies in the band.
-    to_hip = -direction
+    # 3. Keep the ankle reachable. It lies on a sphere of radius m about the ball; the
+    #    points within [|f - t|, f + t] of the hip form a band of that sphere at angles
+    #    phi from the hip direction with |ankle - hip|^2 = l^2 + m^2 - 2 l m cos(phi).
+    #    Where the wanted direction is outside the band (rare), rotate it to the band's edge.
+    m = metatarsus
+    two_lm = 2.0 * length * m
+    safe = np.where(two_lm > 1e-12, two_lm, 1.0)
+    base = length * length + m * m
     reach_max = (femur + tibia) * (1.0 - _REACH_MARGIN)
     reach_min = np.abs(femur - tibia) * (1.0 + _REACH_MARGIN)
-    two_lm = 2.0 * length * metatarsus
-    safe = np.maximum(two_lm, 1e-300)
-    base = length ** 2 + metatarsus ** 2
-    phi_max = np.arccos(np.clip((base - reach_max ** 2) / safe, -1.0, 1.0))
-    phi_min = np.arccos(np.clip((base - reach_min ** 2) / safe, -1.0, 1.0))
-    phi = np.arccos(np.clip(_dot(wanted, to_hip), -1.0, 1.0))
-    clamped = np.clip(phi, phi_min, phi_max)
-    # Rotate within the plane of the wanted direction, or (when that is nearly the hip
-    # direction itself) within the sagittal plane, towards the back.
-    side_wanted = wanted - _dot(wanted, to_hip)[..., None] * to_hip
-    side_back = -fwd - _dot(-fwd, to_hip)[..., None] * to_hip
-    well_defined = np.linalg.norm(side_wanted, axis=-1, keepdims=True) > 1e-3
-    side = np.where(well_defined, _unit(side_wanted, upv), _unit(side_back, upv))
-    adjusted = _unit(np.cos(clamped)[..., None] * to_hip + np.sin(clamped)[..., None] * side, to_hip)
-    use = ((clamped != phi) & (two_lm > 1e-12))[..., None]
-    ankle = ball + m * np.where(use, adjusted, wanted)
+    cos_edge_far = (base - reach_max * reach_max) / safe  # need cos(phi) >= this
+    cos_edge_near = (base - reach_min * reach_min) / safe  # need cos(phi) <= this
+    cos_phi = (wf * hf + wu * hu) / -length
+    fix = (two_lm > 1e-12) & ((cos_phi < cos_edge_far) | (cos_phi > cos_edge_near))
+    if np.any(fix):
+        idx = np.nonzero(fix)
+        bshape = fix.shape
+        pick = lambda a: np.broadcast_to(a, bshape)[idx]  # noqa: E731
+        cos_t = np.clip(np.clip(cos_phi[idx], pick(cos_edge_far), pick(cos_edge_near)), -1.0, 1.0)
+        rf, ru, rl = _reach_rotation(wf[idx], wu[idx], wl[idx], hf[idx], hu[idx], hl[idx], length[idx], cos_t)
+        wf, wu, wl = wf.copy(), wu.copy(), wl.copy()
+        wf[idx], wu[idx], wl[idx] = rf, ru, rl
+    af, au, al = hf + m * wf, hu + m * wu, hl + m * wl  # ankle relative to the hip
 
-    # 4. Knee from the law of cosines, bent towards the knee's pole (forward or back). The
-    #    knee sits a = (d^2 + f^2 - t^2) / 2d along the hip-ankle line and h off it, with h
-    #    from Heron's factorised form, which stays exact for nearly straight or folded legs.
-    d_vec = ankle - hip
-    d = np.maximum(np.linalg.norm(d_vec, axis=-1), 1e-12)
-    e = d_vec / d[..., None]
+    # 4. Knee: a = (d^2 + f^2 - t^2) / 2d along the hip-ankle line and h off it (Heron's
+    #    factorised form, exact for nearly straight or folded legs), towards the pole:
+    #    forward for knees, back for elbows.
     f, t = femur, tibia
+    d = np.maximum(_norm3(af, au, al), 1e-12)
+    ef, eu, el = af / d, au / d, al / d
     along = (d * d + f * f - t * t) / (2.0 * d)
-    heron = (f + t - d) * (d + t - f) * (d + f - t) * (d + f + t)
-    off = np.sqrt(np.maximum(heron, 0.0)) / (2.0 * d)
-    pole = knee_sign[..., None] * fwd
-    perp = pole - _dot(pole, e)[..., None] * e
-    fallback = upv - _dot(upv, e)[..., None] * e
-    p_hat = _unit(perp, _unit(fallback, upv))
-    knee = hip + along[..., None] * e + off[..., None] * p_hat
+    off = np.sqrt(np.maximum((f + t - d) * (d + t - f) * (d + f - t) * (d + f + t), 0.0)) / (2.0 * d)
+    pf, pu, pl = knee_sign * (1.0 - ef * ef), knee_sign * (-ef * eu), knee_sign * (-ef * el)
+    pn = _norm3(pf, pu, pl)
+    degenerate = pn <= 1e-12
+    if np.any(degenerate):  # hip-ankle line along the pole: bend towards up instead
+        pf, pu, pl = np.where(degenerate, -eu * ef, pf), np.where(degenerate, 1.0 - eu * eu, pu), \
+            np.where(degenerate, -eu * el, pl)
+        pn = np.maximum(_norm3(pf, pu, pl), 1e-300)
+    kf, ku, kl = along * ef + off * pf / pn, along * eu + off * pu / pn, along * el + off * pl / pn
 
     # 5. Toe: flat on the ground while planted, dropping by the ankle lift in the air,
     #    never below the ground.
-    height = _dot(ball, upv) - ground_height
-    safe_toe = np.maximum(toe, 1e-12)
-    room = np.arcsin(np.clip(height / safe_toe, 0.0, 1.0))
+    hip_height = hip @ upv if shared_frame else np.einsum("...i,...i->...", hip, upv)
+    height = hip_height + hu - ground_height
+    room = np.arcsin(np.clip(height / np.maximum(toe, 1e-12), 0.0, 1.0))
     drop = np.minimum(ankle_lift * np.clip(toe_curl, 0.0, 1.0), room)
-    toe_dir = np.cos(drop)[..., None] * fwd - np.sin(drop)[..., None] * upv
-    toe_tip = ball + toe[..., None] * toe_dir
+    tf, tu = hf + toe * np.cos(drop), hu - toe * np.sin(drop)
 
-    return np.stack([hip, knee, ankle, ball, toe_tip], axis=-2)
+    # Back to world space: hip + f * forward + u * up + l * lateral, for all four joints.
+    batch = shape[:-1]
+    local = np.stack(np.broadcast_arrays(kf, ku, kl, af, au, al, hf, hu, hl, tf, tu, hl), axis=-1)
+    local = local.reshape(batch + (4, 3))  # knee, ankle, ball, toe in (forward, up, lateral)
+    joints = np.empty(batch + (5, 3))
+    joints[..., 0, :] = hip
+    if shared_frame:  # one BLAS product for every joint of every leg and frame
+        joints[..., 1:, :] = (local.reshape(-1, 3) @ basis).reshape(local.shape) + hip[..., None, :]
+    else:
+        joints[..., 1:, :] = np.einsum("...jk,...kc->...jc", local, basis) + hip[..., None, :]
+    return joints

@@ -22,6 +22,7 @@ from .scene import CAPSULE_FLOATS, ELLIPSOID_FLOATS, SceneInstances, pose_instan
 from .shaders import ShaderLibrary
 
 SHADOW_MAP_SIZE = 256
+SUN_COLOR = np.array([0.95, 0.90, 0.84])  # as in shaders/lighting.glsl
 LIGHT_DIR = np.array([-0.45, -1.0, -0.35]) / np.linalg.norm([-0.45, -1.0, -0.35])
 
 
@@ -128,6 +129,8 @@ class SceneRenderer:
         self.shadow_map.repeat_y = False
         self.shadow_fbo = ctx.framebuffer(depth_attachment=self.shadow_map)
         self._lit_programs = (lit_caps, lit_ell, self.ground_prog, self.ground_shadow_prog)
+        self._members: dict[int, set[str]] = {}
+        self._uniforms: dict[tuple[int, str], object] = {}
 
     # -- per frame ------------------------------------------------------------------
 
@@ -146,8 +149,15 @@ class SceneRenderer:
                        target: moderngl.Framebuffer, options: RenderOptions,
                        viewport: tuple[int, int, int, int] | None = None) -> None:
         ctx = self.ctx
-        self.capsules.upload(scene.capsules)
-        self.ellipsoids.upload(scene.ellipsoids)
+        # Nearest first, so the depth test rejects hidden fragments before shading them.
+        eye = np.asarray(camera.eye, dtype=np.float32)
+        caps = scene.capsules
+        cap_order = np.argsort(((0.5 * (caps[:, 0:3] + caps[:, 3:6]) - eye) ** 2).sum(axis=1))
+        self.capsules.upload(caps[cap_order])
+        casters = scene.ellipsoids[:scene.ellipsoid_casters]
+        rest = scene.ellipsoids[scene.ellipsoid_casters:]
+        rest = rest[np.argsort(((rest[:, 0:3] - eye) ** 2).sum(axis=1))]
+        self.ellipsoids.upload(np.concatenate([casters, rest]))
         viewport = viewport or (0, 0, *target.size)
         aspect = viewport[2] / max(viewport[3], 1)
 
@@ -196,6 +206,8 @@ class SceneRenderer:
         self._set(g, "u_ground_color", tuple(srgb_to_linear(options.ground_color)))
         self._set(g, "u_line_color", tuple(srgb_to_linear(options.line_color)))
         self._set(g, "u_horizon_color", tuple(horizon))
+        floor_ambient, floor_sun = self._floor_light(options)
+        self._set(g, "u_floor_light", tuple(floor_ambient + floor_sun))
         self._set(g, "u_grid_offset", (0.0, float(ground_offset)))
         self._set(g, "u_grid_spacing", float(options.grid_spacing))
         self._set(g, "u_grid_on", 1.0 if options.grid else 0.0)
@@ -210,6 +222,7 @@ class SceneRenderer:
             self._set(gs, "u_center", tuple(0.5 * (lo + hi)))
             self._set(gs, "u_half_size", tuple(0.5 * (hi - lo)))
             self._set(gs, "u_lift", 1e-3 * radius)
+            self._set(gs, "u_shadowed_ratio", tuple(floor_ambient / (floor_ambient + floor_sun)))
             ctx.enable(moderngl.BLEND)
             ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO
             self.ground_shadow_vao.render(moderngl.TRIANGLE_STRIP)
@@ -224,15 +237,31 @@ class SceneRenderer:
         self.background_vao.render(moderngl.TRIANGLES, vertices=3)
         ctx.depth_func = "<"
 
-    @staticmethod
-    def _set(prog: moderngl.Program, name: str, value) -> None:
-        if name not in prog:
+    def _set(self, prog: moderngl.Program, name: str, value) -> None:
+        """Set a uniform if the program has it and its value changed since the last frame."""
+        members = self._members.get(prog.glo)
+        if members is None:
+            members = self._members[prog.glo] = {m for m in prog if isinstance(prog[m], moderngl.Uniform)}
+        if name not in members:
             return
+        key = (prog.glo, name)
+        if self._uniforms.get(key) == value:
+            return
+        self._uniforms[key] = value
         uniform = prog[name]
         if isinstance(value, glm.mat4):
             uniform.write(value)
         else:
             uniform.value = value
+
+    @staticmethod
+    def _floor_light(options: RenderOptions) -> tuple[np.ndarray, np.ndarray]:
+        """Ambient and sun light reaching the flat floor: lighting.glsl's model for an
+        upward normal (``ambient_light(up)`` and the wrapped key light)."""
+        sky = srgb_to_linear(options.sky_color)
+        ambient = sky * 0.55  # mix(bounce, sky, 0.5 + 0.5 * n.y) with n = up
+        wrapped = max((-LIGHT_DIR[1] + 0.35) / 1.35, 0.0)
+        return ambient, SUN_COLOR * wrapped
 
     @staticmethod
     def _bounds(scene: SceneInstances) -> tuple[np.ndarray, float]:

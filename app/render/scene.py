@@ -9,6 +9,7 @@ joint markers). :func:`motion_instances` builds a whole clip in one numpy pass;
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -26,14 +27,19 @@ _EYE_COLOR = np.array([0.02, 0.02, 0.025])
 _UP = np.array([0.0, 1.0, 0.0])
 
 
+@lru_cache(maxsize=256)
+def _srgb_to_linear(hex_color: str) -> tuple[float, float, float]:
+    c = np.array([int(hex_color[i:i + 2], 16) for i in (1, 3, 5)]) / 255.0
+    return tuple(float(v) for v in c * c)
+
+
 def srgb_to_linear(hex_color: str) -> NDArray[np.float64]:
     """``"#rrggbb"`` to the shaders' lighting space (gamma 2.0: the square of the value).
 
     The shaders convert back with a square root (``to_display`` in lighting.glsl), so an
     unlit colour comes out exactly as written.
     """
-    c = np.array([int(hex_color[i:i + 2], 16) for i in (1, 3, 5)]) / 255.0
-    return c * c
+    return np.array(_srgb_to_linear(hex_color))
 
 
 @dataclass(frozen=True)
