@@ -23,7 +23,10 @@ def gaitlab(*args: str, cwd: Path | None = None, env: dict | None = None) -> sub
 
 
 def test_console_script_is_installed() -> None:
-    assert shutil.which("gaitlab") is not None
+    script = Path(sys.executable).with_name("gaitlab")
+    assert script.exists() or shutil.which("gaitlab") is not None
+    out = subprocess.run([str(script) if script.exists() else "gaitlab", "--version"], capture_output=True, text=True)
+    assert out.returncode == 0 and out.stdout.startswith("gaitlab ")
 
 
 def test_help_teaches() -> None:
