@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..spec import CreatureSpec
 from .leg import solve_legs
-from .oscillator import foot_wave
+from .oscillator import FootWave, foot_wave
 from .rig import Rig, build_rig
 from .spine import arc_length_parameters, bezier, bezier_tangent
 
@@ -111,36 +111,47 @@ def _pitch(direction: NDArray[np.float64], angle: ArrayLike) -> NDArray[np.float
     return np.cos(angle) * flat + np.sin(angle) * UP
 
 
+def foot_waves(rig: Rig, clock: NDArray[np.float64], offsets: ArrayLike, duty: ArrayLike,
+               shape: str) -> tuple[NDArray[np.float64], FootWave, FootWave]:
+    """Each foot's phase (T, L) and its oscillator, plus the oscillator sampled for the
+    body bob (shifted by ``motion.bob_phase``). clock (T,); offsets (T, L) or (L,);
+    duty (T, 1) or scalar."""
+    phase = np.mod(clock[:, None] - np.asarray(offsets, dtype=np.float64), 1.0)
+    wave = foot_wave(phase, duty, shape)  # type: ignore[arg-type]
+    bob_wave = foot_wave(phase - rig.spec.motion.bob_phase, duty, shape)  # type: ignore[arg-type]
+    return phase, wave, bob_wave
+
+
 def solve_motion(rig: Rig, clock: ArrayLike, *, offsets: ArrayLike | None = None,
                  duty: ArrayLike | None = None, stride: ArrayLike | None = None,
                  step_height: ArrayLike | None = None, bob: ArrayLike | None = None,
                  ground_offset: ArrayLike | None = None, times: ArrayLike | None = None,
-                 fps: float = 60.0) -> Motion:
+                 fps: float = 60.0,
+                 waves: tuple[NDArray[np.float64], FootWave, FootWave] | None = None) -> Motion:
     """Poses for gait clock values.
 
-    clock: (T,) cycles. Optional per-frame gait values (default: the rig's gait):
-    offsets (T, L) or (L,) touchdown phases; duty, stride (mean leg rest lengths),
-    step_height (leg rest lengths) and bob (leg rest lengths) as (T,) or scalars.
-    ground_offset (T,) metres of ground travel (default: stride / duty * clock, i.e. the
-    distance the planted feet have been carried since clock 0).
+    clock: (T,) cycles. Optional gait values (default: the rig's gait): offsets
+    (touchdown phases), duty, stride (mean leg rest lengths) and step_height (leg rest
+    lengths), each a scalar, (L,) per foot or (T, L); bob (leg rest lengths) a scalar or
+    (T,). ground_offset (T,) metres of ground travel (default: the planted feet's mean
+    stride / duty times the clock, i.e. how far they have been carried since clock 0).
+    ``waves`` replaces the oscillators (phase, wave, bob wave as from
+    :func:`foot_waves`), e.g. a cross-fade of two wave shapes.
     """
     gait = rig.gait
-    spec = rig.spec
     clock = np.atleast_1d(np.asarray(clock, dtype=np.float64))
     frames = clock.shape[0]
-    col = lambda v, default: np.broadcast_to(np.asarray(default if v is None else v, dtype=np.float64),
-                                             (frames,))[:, None]  # noqa: E731
-    offsets = np.broadcast_to(np.asarray(gait.offsets if offsets is None else offsets, dtype=np.float64),
-                              (frames, rig.leg_count))
-    duty_t = col(duty, gait.duty_factor)
-    stride_m = col(stride, gait.stride) * float(rig.l_rest.mean())
-    lift_m = col(step_height, gait.step_height) * rig.l_rest
-    bob_t = col(bob, gait.bob)
+    per_foot = lambda v, default: np.broadcast_to(np.asarray(default if v is None else v, dtype=np.float64),
+                                                  (frames, rig.leg_count))  # noqa: E731
+    offsets = per_foot(offsets, gait.offsets)
+    duty_t = per_foot(duty, gait.duty_factor)
+    stride_m = per_foot(stride, gait.stride) * float(rig.l_rest.mean())
+    lift_m = per_foot(step_height, gait.step_height) * rig.l_rest
+    bob_t = np.broadcast_to(np.asarray(gait.bob if bob is None else bob, dtype=np.float64), (frames,))[:, None]
+    spec = rig.spec
 
     # Feet: oscillators -> targets on the moving ground.
-    phase = np.mod(clock[:, None] - offsets, 1.0)
-    wave = foot_wave(phase, duty_t, gait.wave)
-    bob_wave = foot_wave(phase - spec.motion.bob_phase, duty_t, gait.wave)
+    phase, wave, bob_wave = waves if waves is not None else foot_waves(rig, clock, offsets, duty_t, gait.wave)
 
     # Body: bob and yaw per pair (fore, hind) from the feet of that pair.
     pairs = np.array([[0, 1], [2, 3]])
@@ -215,7 +226,7 @@ def solve_motion(rig: Rig, clock: ArrayLike, *, offsets: ArrayLike | None = None
     root[:, 3, 3] = 1.0
 
     if ground_offset is None:
-        ground_offset = (stride_m[:, 0] / duty_t[:, 0]) * clock
+        ground_offset = (stride_m / duty_t).mean(axis=1) * clock
     times = np.arange(frames) / fps if times is None else np.asarray(times, dtype=np.float64)
     return Motion(times=times, clock=clock, joints=joints, contact=wave.contact, phase=phase, spine=spine,
                   spine_tangent=spine_tangent, spine_radius=spine_radius, neck=neck, head=head, tail=tail,
