@@ -86,6 +86,19 @@ Without --seconds the clip is two whole gait cycles, which loop without a seam.
 """
 
 
+VIEW_EPILOG = """\
+examples:
+  gaitlab view                                  the dog, walking
+  gaitlab view horse --gait gallop
+  xvfb-run -s "-screen 0 1280x800x24" gaitlab view --frames 120 --screenshot shot.png
+  gaitlab view --no-vsync --report-fps --frames 600     measure the frame rate
+
+mouse: left drag orbit, right/middle drag pan, wheel zoom, double-click focus.
+keys: Space play/pause, Right step, R reset view, F12 screenshot, G record,
+      Tab hide UI, F1 help, Ctrl+Q quit.
+"""
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="gaitlab", description="Procedural tetrapod locomotion: parametric legs driven by "
                      "gait oscillators and analytic IK, rendered headless or live.",
@@ -125,6 +138,26 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--no-shadow", action="store_true", help="no shadow")
     render.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
     render.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
+
+    view = sub.add_parser("view", help="open the interactive viewer (needs a display; try xvfb-run)",
+                          description="Open a window in which the creature walks and every parameter is a live "
+                                      "control. F1 in the window lists the keyboard and mouse controls.",
+                          epilog=VIEW_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    view.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
+                      help="preset name or creature .toml path (default: dog)")
+    view.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
+    view.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                      help="override a creature key (repeatable)")
+    view.add_argument("--size", metavar="WxH", type=_size, default=(1280, 720), help="window size (default: 1280x720)")
+    view.add_argument("--no-vsync", action="store_true", help="do not wait for the display (for measuring)")
+    view.add_argument("--msaa", metavar="N", type=_samples, default=0,
+                      help="window antialiasing samples: 0, 2, 4 or 8 (default: 0, fastest without a GPU)")
+    view.add_argument("--frames", metavar="N", type=int, help="run N frames (fixed 1/60 s steps), then exit")
+    view.add_argument("--screenshot", metavar="PATH", type=Path,
+                      help="with --frames: save the window (with UI) as PNG after the last frame")
+    view.add_argument("--hide-ui", action="store_true", help="start with the panels hidden (Tab shows them)")
+    view.add_argument("--report-fps", action="store_true", help="print the frame rate and time split at exit")
+    view.add_argument("--dump-state", metavar="PATH", type=Path, help=argparse.SUPPRESS)
     return parser
 
 
@@ -134,15 +167,14 @@ def build_parser() -> argparse.ArgumentParser:
 def cmd_creatures(args: argparse.Namespace) -> int:
     from .kinematics.rig import build_rig
     from .resources import preset_creature_names
-    from .spec import load_creature
+    from .spec import leg_type, load_creature
 
     print("Creatures (gaitlab render NAME):")
     rows = []
     for name in preset_creature_names():
         spec = load_creature(name)
         rig = build_rig(spec)
-        lift = spec.leg("hind").ankle_lift
-        kind = "plantigrade" if lift < 25 else "digitigrade" if lift < 75 else "unguligrade"
+        kind = leg_type(spec.leg("hind").ankle_lift)
         rows.append((name, f"{spec.description}  [{kind}, hip height {rig.hip_height:.2f} m, "
                            f"gait {spec.gait.preset}]"))
     _print_rows(rows)
@@ -168,24 +200,10 @@ def cmd_render(args: argparse.Namespace) -> int:
     from .recording import RecordRequest, gif_fps_warning, record
     from .render.clip import ViewSettings
     from .render.renderer import RenderOptions
-    from .spec import load_creature, parse_override
 
     output = args.output or Path(f"{Path(args.creature).stem}.gif")
     fmt = output_format(output)
-    spec = load_creature(args.creature)
-    overrides: dict[str, object] = {}
-    if args.gait is not None:
-        if args.gait not in GAIT_PRESETS:
-            from .spec import did_you_mean
-
-            raise GaitlabError(f"--gait {args.gait!r}: unknown gait{did_you_mean(args.gait, GAIT_PRESETS)}; "
-                               f"gaits are: {', '.join(GAIT_PRESETS)}")
-        overrides["gait.preset"] = args.gait
-    for text in args.overrides:
-        key, value = parse_override(text)
-        overrides[key] = value
-    if overrides:
-        spec = spec.with_overrides(overrides)
+    spec = _load_with_overrides(args)
     view = ViewSettings(size=args.size, camera=args.camera, samples=args.msaa,
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
                                               joints=not args.no_joints))
@@ -224,7 +242,46 @@ def cmd_render(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = {"creatures": cmd_creatures, "render": cmd_render}
+def _load_with_overrides(args: argparse.Namespace):
+    """The creature named on the command line with --gait and --set applied."""
+    from .spec import did_you_mean, load_creature, parse_override
+
+    spec = load_creature(args.creature)
+    overrides: dict[str, object] = {}
+    if args.gait is not None:
+        if args.gait not in GAIT_PRESETS:
+            raise GaitlabError(f"--gait {args.gait!r}: unknown gait{did_you_mean(args.gait, GAIT_PRESETS)}; "
+                               f"gaits are: {', '.join(GAIT_PRESETS)}")
+        overrides["gait.preset"] = args.gait
+    for text in args.overrides:
+        key, value = parse_override(text)
+        overrides[key] = value
+    return spec.with_overrides(overrides) if overrides else spec
+
+
+def cmd_view(args: argparse.Namespace) -> int:
+    from .output import check_output_dir, output_format
+    from .resources import preset_creature_names
+
+    if args.frames is not None and args.frames < 1:
+        raise GaitlabError(f"--frames {args.frames}: must be at least 1")
+    if args.screenshot is not None:
+        if args.frames is None:
+            raise GaitlabError("--screenshot needs --frames N (the screenshot is taken after the last frame); "
+                               "in the window, press F12")
+        if output_format(args.screenshot) != "png":
+            raise GaitlabError(f"--screenshot {args.screenshot}: screenshots are PNG; use a .png name")
+        check_output_dir(args.screenshot)
+    spec = _load_with_overrides(args)
+    from .ui.viewer import ViewerOptions, run_viewer
+
+    options = ViewerOptions(size=args.size, vsync=not args.no_vsync, samples=args.msaa, frames=args.frames,
+                            screenshot=args.screenshot, hide_ui=args.hide_ui, report_fps=args.report_fps,
+                            dump_state=args.dump_state, presets=preset_creature_names())
+    return run_viewer(spec, options)
+
+
+COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "view": cmd_view}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -88,6 +88,118 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
     return solve_motion(rig, clock, times=times, fps=fps), cycles
 
 
+class Recording:
+    """A recording in progress, rendered a few frames at a time so a UI can show progress
+    and stay responsive. :func:`record` drives one to the end; the viewer steps one per
+    UI frame. Both produce the same file for the same request.
+
+    Raises :class:`GaitlabError` (nothing written) for bad requests or unwritable paths.
+    """
+
+    def __init__(self, request: RecordRequest, ctx: moderngl.Context | None = None) -> None:
+        self.request = request
+        self.format = output_format(request.output)
+        check_output_dir(request.output)
+        w, h = request.view.size
+        if self.format == "mp4" and (w % 2 or h % 2):
+            raise GaitlabError(f"{request.output}: MP4 (H.264, yuv420p) needs an even width and height, "
+                               f"got {w}x{h}")
+        rig = build_rig(request.spec)
+        self.frequency = rig.gait.frequency
+        view = request.view
+        if self.format == "png":
+            cycle, _ = clip_motion(rig, request.fps, cycles=1.0)
+            self.motion = solve_motion(rig, np.array([rig.gait.frequency * request.start]),
+                                       times=np.array([request.start]), fps=request.fps)
+            self.camera = clip_camera(cycle, view)
+            self.options = _with_grid(view.options, loop_grid_spacing(cycle, None))
+            self.cycles: float | None = None
+        else:
+            self.motion, self.cycles = clip_motion(rig, request.fps, request.seconds, request.cycles, request.start)
+            self.camera = clip_camera(self.motion, view)
+            self.options = _with_grid(view.options, loop_grid_spacing(self.motion, self.cycles))
+        self.total = self.motion.frame_count
+        self.done = 0
+        self._frames: list[np.ndarray] = []
+        self._renderer = ClipRenderer(view.size, view.samples, ctx=ctx)
+        self._mp4: Mp4Writer | None = None
+        try:
+            if self.format == "mp4":
+                self._mp4 = Mp4Writer(request.output, view.size, request.fps)
+        except BaseException:
+            self._renderer.release()
+            raise
+
+    @property
+    def finished(self) -> bool:
+        return self.done >= self.total
+
+    @property
+    def progress(self) -> float:
+        """Fraction of frames rendered, [0, 1]."""
+        return self.done / self.total
+
+    def step(self, frames: int = 1) -> bool:
+        """Render up to ``frames`` more frames; True when all are rendered."""
+        try:
+            for _ in range(min(frames, self.total - self.done)):
+                image = self._renderer.frame(self.motion, self.done, self.camera, self.options)
+                if self._mp4 is not None:
+                    self._mp4.add(image)
+                else:
+                    self._frames.append(image)
+                self.done += 1
+        except OSError as exc:
+            self.cancel()
+            raise cannot_write(self.request.output, exc) from None
+        except BaseException:
+            self.cancel()
+            raise
+        return self.finished
+
+    def finish(self) -> RecordResult:
+        """Render what is left, write the file (atomically) and free the renderer."""
+        request = self.request
+        try:
+            self.step(self.total - self.done)
+            if self.format == "png":
+                write_png(request.output, self._frames[0])
+            elif self.format == "gif":
+                samples = [self._frames[i] for i in sorted({0, self.total // 3, (2 * self.total) // 3})]
+                write_gif(request.output, self._frames, request.fps, samples)
+            else:
+                assert self._mp4 is not None
+                self._mp4.close(ok=True)
+                self._mp4 = None
+        except OSError as exc:
+            self.cancel()
+            raise cannot_write(request.output, exc) from None
+        except BaseException:
+            self.cancel()
+            raise
+        self._release()
+        if self.format == "png":
+            return RecordResult(Path(request.output), 1, 0.0, 0.0)
+        seconds = self.total / request.fps
+        cycles = self.cycles if self.cycles is not None else seconds * self.frequency
+        return RecordResult(Path(request.output), self.total, seconds, cycles)
+
+    def cancel(self) -> None:
+        """Stop without writing anything (a partial MP4 is deleted)."""
+        if self._mp4 is not None:
+            try:
+                self._mp4.close(ok=False)
+            finally:
+                self._mp4 = None
+        self._release()
+
+    def _release(self) -> None:
+        self._frames = []
+        if self._renderer is not None:
+            self._renderer.release()
+            self._renderer = None  # type: ignore[assignment]
+
+
 def record(request: RecordRequest, progress: Progress | None = None,
            ctx: moderngl.Context | None = None) -> RecordResult:
     """Render ``request`` and write its file. Raises :class:`GaitlabError` on bad input
@@ -96,59 +208,14 @@ def record(request: RecordRequest, progress: Progress | None = None,
     ``ctx``: an existing GL context to render in (the viewer's); default a new EGL one.
     """
     try:
-        return _record(request, progress, ctx)
+        job = Recording(request, ctx)
     except OSError as exc:
         raise cannot_write(request.output, exc) from None
-
-
-def _record(request: RecordRequest, progress: Progress | None, ctx: moderngl.Context | None) -> RecordResult:
-    fmt = output_format(request.output)
-    check_output_dir(request.output)
-    if fmt == "mp4" and (request.view.size[0] % 2 or request.view.size[1] % 2):
-        w, h = request.view.size
-        raise GaitlabError(f"{request.output}: MP4 (H.264, yuv420p) needs an even width and height, got {w}x{h}")
-    rig = build_rig(request.spec)
-    view = request.view
-    if fmt == "png":
-        cycle, _ = clip_motion(rig, request.fps, cycles=1.0)
-        motion = solve_motion(rig, np.array([rig.gait.frequency * request.start]), times=np.array([request.start]),
-                              fps=request.fps)
-        camera = clip_camera(cycle, view)
-        options = _with_grid(view.options, loop_grid_spacing(cycle, None))
-        with ClipRenderer(view.size, view.samples, ctx=ctx) as renderer:
-            image = renderer.frame(motion, 0, camera, options)
-        write_png(request.output, image)
+    while not job.finished:
+        job.step(1)
         if progress:
-            progress(1, 1)
-        return RecordResult(Path(request.output), 1, 0.0, 0.0)
-
-    motion, cycles = clip_motion(rig, request.fps, request.seconds, request.cycles, request.start)
-    camera = clip_camera(motion, view)
-    options = _with_grid(view.options, loop_grid_spacing(motion, cycles))
-    total = motion.frame_count
-    with ClipRenderer(view.size, view.samples, ctx=ctx) as renderer:
-        if fmt == "gif":
-            frames = []
-            for i in range(total):
-                frames.append(renderer.frame(motion, i, camera, options))
-                if progress:
-                    progress(i + 1, total)
-            samples = [frames[i] for i in sorted({0, total // 3, (2 * total) // 3})]
-            write_gif(request.output, frames, request.fps, samples)
-        else:
-            writer = Mp4Writer(request.output, view.size, request.fps)
-            ok = False
-            try:
-                for i in range(total):
-                    writer.add(renderer.frame(motion, i, camera, options))
-                    if progress:
-                        progress(i + 1, total)
-                ok = True
-            finally:
-                writer.close(ok)
-    seconds = total / request.fps
-    return RecordResult(Path(request.output), total, seconds,
-                        cycles if cycles is not None else seconds * rig.gait.frequency)
+            progress(job.done, job.total)
+    return job.finish()
 
 
 def _with_grid(options: RenderOptions, spacing: float) -> RenderOptions:

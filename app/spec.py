@@ -280,17 +280,18 @@ class CreatureSpec:
         doc["look"] = _table(self.look)
         return doc
 
-    def with_overrides(self, overrides: Mapping[str, Any]) -> "CreatureSpec":
+    def with_overrides(self, overrides: Mapping[str, Any], origin: str = "--set") -> "CreatureSpec":
         """A copy with dotted keys replaced, e.g. ``{"gait.duty_factor": 0.7}``.
 
         Setting ``gait.preset`` resets the other gait keys to the new preset's values,
-        except those set in the same call. The result is validated as a whole.
+        except those set in the same call. The result is validated as a whole; errors
+        start with ``origin`` (where the values came from; "" for none).
         """
         data = self.to_dict()
         items = sorted(overrides.items(), key=lambda kv: kv[0] != "gait.preset")
         for key, value in items:
-            _apply_override(data, key, value, self)
-        return creature_from_dict(data, source=self.source or f"<{self.name}>", origin="--set")
+            _apply_override(data, key, value, self, origin)
+        return creature_from_dict(data, source=self.source or f"<{self.name}>", origin=origin)
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write the creature as TOML, atomically (temporary file, then rename)."""
@@ -373,7 +374,7 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
     legs_t = _subtable(data, "legs", where, required=True)
     unknown = [k for k in legs_t if k not in LEG_PAIRS]
     if unknown:
-        raise SpecError(f"{where}: legs.{unknown[0]}: unknown leg pair{did_you_mean(unknown[0], LEG_PAIRS)}; "
+        raise SpecError(f"{_at(where)}legs.{unknown[0]}: unknown leg pair{did_you_mean(unknown[0], LEG_PAIRS)}; "
                         f"a creature has the pairs {', '.join('[legs.' + p + ']' for p in LEG_PAIRS)}")
     legs = []
     for pair in LEG_PAIRS:
@@ -385,7 +386,7 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
         legs.append(LegSpec(name=pair, **values))
     fore, hind = legs
     if fore.position <= hind.position:
-        raise SpecError(f"{where}: legs.fore.position = {fore.position:g} must be ahead of "
+        raise SpecError(f"{_at(where)}legs.fore.position = {fore.position:g} must be ahead of "
                         f"legs.hind.position = {hind.position:g}")
 
     gait = _read_gait(_subtable(data, "gait", where, required=False), where)
@@ -404,17 +405,17 @@ def _read_gait(table: Mapping[str, Any], where: str) -> GaitSpec:
     if "phases" in table:
         phases_t = table["phases"]
         if not isinstance(phases_t, Mapping):
-            raise SpecError(f"{where}: gait.phases must be a table like {{ LF = 0.25, RF = 0.75, LH = 0, RH = 0.5 }}")
+            raise SpecError(f"{_at(where)}gait.phases must be a table like {{ LF = 0.25, RF = 0.75, LH = 0, RH = 0.5 }}")
         _check_keys(phases_t, dict.fromkeys(TETRAPOD_FEET), "gait.phases.", where)
         missing = [f for f in TETRAPOD_FEET if f not in phases_t]
         if missing:
-            raise SpecError(f"{where}: gait.phases is missing {', '.join(missing)}; give a phase for each of "
+            raise SpecError(f"{_at(where)}gait.phases is missing {', '.join(missing)}; give a phase for each of "
                             f"{', '.join(TETRAPOD_FEET)}")
         values["phases"] = tuple((foot, _value(phases_t, foot, GAIT_RULES["phases"], where, prefix="gait.phases."))
                                  for foot in TETRAPOD_FEET)
     gait = GaitSpec(**values)
     if gait.duty_factor is not None and gait.bias is not None:
-        raise SpecError(f"{where}: gait: give duty_factor or bias, not both (duty_factor = {gait.duty_factor:g}, "
+        raise SpecError(f"{_at(where)}gait: give duty_factor or bias, not both (duty_factor = {gait.duty_factor:g}, "
                         f"bias = {gait.bias:g})")
     if gait.bias is not None:
         from .kinematics.oscillator import duty_from_bias
@@ -422,13 +423,13 @@ def _read_gait(table: Mapping[str, Any], where: str) -> GaitSpec:
         duty = float(duty_from_bias(gait.bias))
         lo, hi = DUTY_RANGE
         if not lo < duty < hi:
-            raise SpecError(f"{where}: gait.bias = {gait.bias:g} gives duty factor {duty:.3f}; "
+            raise SpecError(f"{_at(where)}gait.bias = {gait.bias:g} gives duty factor {duty:.3f}; "
                             f"the duty factor must be in ({lo:g}, {hi:g})")
     if gait.phases is not None and (gait.front_back is not None or gait.left_right is not None):
-        raise SpecError(f"{where}: gait: give phases or front_back/left_right, not both")
+        raise SpecError(f"{_at(where)}gait: give phases or front_back/left_right, not both")
     if not gait.preset_spec.symmetric and gait.phases is None and (
             gait.front_back is not None or gait.left_right is not None):
-        raise SpecError(f"{where}: gait.preset = {gait.preset!r} is asymmetric (explicit per-foot phases); "
+        raise SpecError(f"{_at(where)}gait.preset = {gait.preset!r} is asymmetric (explicit per-foot phases); "
                         "adjust it with gait.phases.LF etc., not front_back/left_right")
     return gait
 
@@ -445,18 +446,18 @@ def _check_geometry(spec: CreatureSpec, where: str) -> None:
         reach = leg.femur + leg.tibia
         flat = leg.metatarsus * math.cos(lift)
         if reach <= flat:
-            raise SpecError(f"{where}: legs.{leg.name}: unreachable geometry: femur + tibia ({reach:g} m) must be "
+            raise SpecError(f"{_at(where)}legs.{leg.name}: unreachable geometry: femur + tibia ({reach:g} m) must be "
                             f"longer than the flat part of the metatarsus ({flat:.3g} m)")
         l_max = math.sqrt(reach ** 2 - flat ** 2) + leg.metatarsus * math.sin(lift)
         l_rest = l_max * min(1.0, max(0.2, 1.0 - leg.natural_bend))
         ankle_at_rest = math.hypot(flat, l_rest - leg.metatarsus * math.sin(lift))
         fold = abs(leg.femur - leg.tibia)
         if ankle_at_rest < fold * 1.02:
-            raise SpecError(f"{where}: legs.{leg.name}: unreachable geometry: femur {leg.femur:g} and tibia "
+            raise SpecError(f"{_at(where)}legs.{leg.name}: unreachable geometry: femur {leg.femur:g} and tibia "
                             f"{leg.tibia:g} cannot fold to the rest pose (hip to ankle {ankle_at_rest:.3g} m < "
                             f"|femur - tibia| = {fold:.3g} m); make them closer in length or lower natural_bend")
     if spec.leg("hind").radius * 2 > spec.body.width * 1.5:
-        raise SpecError(f"{where}: legs.hind.radius = {spec.leg('hind').radius:g} m is too thick for "
+        raise SpecError(f"{_at(where)}legs.hind.radius = {spec.leg('hind').radius:g} m is too thick for "
                         f"body.width = {spec.body.width:g} m (legs would overlap)")
 
 
@@ -469,20 +470,20 @@ def _check_keys(table: Mapping[str, Any], allowed: Mapping[str, Any], prefix: st
         if key not in allowed:
             full = f"{prefix}{key}" if not prefix or prefix.endswith(".") else f"{prefix}.{key}"
             names = [f"{prefix}{k}" if prefix.endswith(".") or not prefix else f"{prefix}.{k}" for k in allowed]
-            raise SpecError(f"{where}: unknown key {full!r}{did_you_mean(full, names)}; allowed here: "
+            raise SpecError(f"{_at(where)}unknown key {full!r}{did_you_mean(full, names)}; allowed here: "
                             f"{', '.join(names)}")
         if key in tables and not isinstance(table[key], Mapping):
-            raise SpecError(f"{where}: {prefix}{key} must be a table ([{prefix}{key}])")
+            raise SpecError(f"{_at(where)}{prefix}{key} must be a table ([{prefix}{key}])")
 
 
 def _subtable(data: Mapping[str, Any], key: str, where: str, required: bool, prefix: str = "") -> Mapping[str, Any]:
     if key not in data:
         if required:
-            raise SpecError(f"{where}: missing table [{prefix}{key}]")
+            raise SpecError(f"{_at(where)}missing table [{prefix}{key}]")
         return {}
     value = data[key]
     if not isinstance(value, Mapping):
-        raise SpecError(f"{where}: {prefix}{key} must be a table ([{prefix}{key}]), got {value!r}")
+        raise SpecError(f"{_at(where)}{prefix}{key} must be a table ([{prefix}{key}]), got {value!r}")
     return value
 
 
@@ -492,7 +493,7 @@ def _read_table(table: Mapping[str, Any], rules: Mapping[str, Rule], name: str, 
     out: dict[str, Any] = {}
     for key in required:
         if key not in table:
-            raise SpecError(f"{where}: missing key {name}.{key} ({rules[key].doc}; {rules[key].allowed()})")
+            raise SpecError(f"{_at(where)}missing key {name}.{key} ({rules[key].doc}; {rules[key].allowed()})")
     for key, rule in rules.items():
         if key in table:
             out[key] = _value(table, key, rule, where, prefix=f"{name}.")
@@ -503,7 +504,7 @@ def _value(table: Mapping[str, Any], key: str, rule: Rule, where: str, prefix: s
            required: bool = True, default: Any = None) -> Any:
     if key not in table:
         if required:
-            raise SpecError(f"{where}: missing key {prefix}{key}")
+            raise SpecError(f"{_at(where)}missing key {prefix}{key}")
         return default
     return check_value(f"{prefix}{key}", table[key], rule, where)
 
@@ -511,8 +512,10 @@ def _value(table: Mapping[str, Any], key: str, rule: Rule, where: str, prefix: s
 def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
     """Validate one value against its rule; returns it in the spec's type."""
 
+    prefix = f"{_at(where)}" if where else ""
+
     def bad(reason: str = "") -> SpecError:
-        return SpecError(f"{where}: {key} = {_show(value)}: {reason or 'expected ' + rule.allowed()}")
+        return SpecError(f"{prefix}{key} = {_show(value)}: {reason or 'expected ' + rule.allowed()}")
 
     if rule.kind == "text":
         if not isinstance(value, str):
@@ -520,7 +523,7 @@ def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
         return value
     if rule.kind == "choice":
         if value not in rule.choices:
-            raise SpecError(f"{where}: {key} = {_show(value)}: unknown{did_you_mean(str(value), rule.choices)}; "
+            raise SpecError(f"{prefix}{key} = {_show(value)}: unknown{did_you_mean(str(value), rule.choices)}; "
                             f"expected {rule.allowed()}")
         return value
     if rule.kind == "color":
@@ -557,6 +560,11 @@ def _show(value: Any) -> str:
     return repr(value) if isinstance(value, str) else str(value).lower() if isinstance(value, bool) else str(value)
 
 
+def _at(where: str) -> str:
+    """The "file: " prefix of an error message, or nothing when there is no origin."""
+    return f"{where}: " if where else ""
+
+
 def did_you_mean(word: str, options) -> str:
     """' (did you mean 'x'?)' for the closest of ``options``, or ''."""
     match = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
@@ -589,12 +597,12 @@ def rule_for(key: str) -> Rule | None:
     return None
 
 
-def _apply_override(data: dict[str, Any], key: str, value: Any, spec: CreatureSpec) -> None:
+def _apply_override(data: dict[str, Any], key: str, value: Any, spec: CreatureSpec, origin: str = "--set") -> None:
     rule = rule_for(key)
     if rule is None:
-        raise SpecError(f"--set {key}: unknown key{did_you_mean(key, override_keys())}; "
+        raise SpecError(f"{origin + ' ' if origin else ''}{key}: unknown key{did_you_mean(key, override_keys())}; "
                         "keys look like body.length, legs.hind.femur, gait.duty_factor, gait.phases.LF")
-    value = check_value(key, value, rule, "--set")
+    value = check_value(key, value, rule, origin)
     parts = key.split(".")
     if key == "gait.preset":
         data["gait"] = {"preset": value, "wave": data.get("gait", {}).get("wave", "planted")}
@@ -617,6 +625,43 @@ def _apply_override(data: dict[str, Any], key: str, value: Any, spec: CreatureSp
     for part in parts[:-1]:
         node = node.setdefault(part, {})
     node[parts[-1]] = value
+
+
+def spec_value(spec: CreatureSpec, key: str) -> Any:
+    """The value a creature file holds for a dotted key (``None`` for a gait or motion key
+    left to its preset)."""
+    if rule_for(key) is None:
+        raise KeyError(key)
+    parts = key.split(".")
+    if parts[0] == "legs":
+        return getattr(spec.leg(parts[1]), parts[2])
+    if parts[:2] == ["gait", "phases"]:
+        return None if spec.gait.phases is None else dict(spec.gait.phases)[parts[2]]
+    node: Any = spec
+    for part in parts:
+        node = getattr(node, part)
+    return node
+
+
+def without_adjustment(spec: CreatureSpec, key: str) -> CreatureSpec:
+    """A copy with an optional gait/motion key (one that may be ``None``) given back to its
+    preset, e.g. ``gait.duty_factor``; ``gait.phases.LF`` clears all per-foot phases."""
+    data = spec.to_dict()
+    table, name = key.split(".")[0], key.split(".")[1]
+    data.get(table, {}).pop(name, None)
+    return creature_from_dict(data, source=spec.source or f"<{spec.name}>")
+
+
+LegType = Literal["plantigrade", "digitigrade", "unguligrade"]
+LEG_TYPES: tuple[str, ...] = ("plantigrade", "digitigrade", "unguligrade")
+# (ankle lift in degrees, toe length as a fraction of the metatarsus) typical of each type.
+LEG_TYPE_SHAPES: dict[str, tuple[float, float]] = {
+    "plantigrade": (8.0, 0.6), "digitigrade": (62.0, 0.5), "unguligrade": (84.0, 0.18)}
+
+
+def leg_type(ankle_lift: float) -> LegType:
+    """Which of the three leg types an ankle lift (degrees) reads as."""
+    return "plantigrade" if ankle_lift < 25 else "digitigrade" if ankle_lift < 75 else "unguligrade"
 
 
 def parse_override(text: str) -> tuple[str, Any]:

@@ -1,8 +1,11 @@
 #version 330 core
-// Full-screen triangle; no vertex buffer needed (gl_VertexID).
-out vec2 v_uv;
+// Sky: a screen-space band from the far edge of the floor up to the top of the view,
+// drawn on the far plane (only where nothing else was drawn). in_height is how far up
+// the sky each vertex looks (ray elevation), interpolated across the band.
+in vec2 in_ndc;
+in float in_height;
+out float v_height;
 void main() {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    v_uv = p;
-    gl_Position = vec4(p * 2.0 - 1.0, 1.0, 1.0);  // on the far plane: drawn last, only where empty
+    v_height = in_height;
+    gl_Position = vec4(in_ndc, 1.0, 1.0);
 }

@@ -73,6 +73,7 @@ class LiveMotion:
         self._bob_from = self._bob_to = g.bob
         self._wave_from = self._wave_to = g.wave
         self._blend = 1.0  # progress of the frequency / bob / wave blend, 0..1
+        self._feet_settled = True
         self._speed_cap = self._steady_swing_speed()  # m/s no swinging foot may exceed
 
     # The planted wave's swing, sampled: d(forward)/ds (smootherstep, per stride) and
@@ -120,11 +121,14 @@ class LiveMotion:
     @property
     def blending(self) -> bool:
         """True until every foot and every blended value has reached the new gait."""
+        return self._blend < 1.0 or not self._feet_settled
+
+    def _update_settled(self) -> None:
         g = self.rig.gait
-        feet_done = (np.allclose(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5, 0.0, atol=1e-12)
-                     and np.allclose(self.duty, g.duty_factor) and np.allclose(self.stride, g.stride)
-                     and np.allclose(self.stride_lift, g.stride) and np.allclose(self.step_height, g.step_height))
-        return self._blend < 1.0 or not feet_done
+        offset_error = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max()
+        self._feet_settled = bool(
+            offset_error <= 1e-12 and np.all(self.duty == g.duty_factor) and np.all(self.stride == g.stride)
+            and np.all(self.stride_lift == g.stride) and np.all(self.step_height == g.step_height))
 
     def set_spec(self, spec: CreatureSpec, blend: bool = True) -> None:
         """Switch to a new creature spec; gait changes blend unless ``blend`` is False."""
@@ -137,6 +141,7 @@ class LiveMotion:
         if not blend:
             self._adopt_all()
             return
+        self._update_settled()
         self._speed_cap = max(speed_now, self._steady_swing_speed())
         if (g.frequency, g.bob, g.wave) != (self._freq_to, self._bob_to, self._wave_to):
             self._freq_from, self._bob_from, self._wave_from = frequency, bob, wave
@@ -209,6 +214,8 @@ class LiveMotion:
         # the stance it has just left (phase = duty).
         change = np.clip(change, after - 1.0 + 1e-9, after - self.duty)
         self.offsets = np.mod(self.offsets + np.where(airborne, change, 0.0), 1.0)
+        if not self._feet_settled:
+            self._update_settled()
         if not self.blending:
             self._speed_cap = self._steady_swing_speed()
 

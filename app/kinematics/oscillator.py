@@ -25,6 +25,7 @@ All functions broadcast over any array shape and do no Python-level looping.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -63,8 +64,23 @@ def bias_from_duty(duty: ArrayLike, iterations: int = 64) -> NDArray[np.float64]
     """Inverse of :func:`duty_from_bias` by vectorised bisection (monotone, exact to ~1e-15).
 
     ``duty``: any shape, each in (0, 1). Returns the bias ``b`` with ``duty_from_bias(b) == duty``.
+    Gaits use a handful of distinct duty factors, so each distinct value is solved once
+    (and remembered) however large the array.
     """
     d = np.asarray(duty, dtype=np.float64)
+    values, inverse = np.unique(d, return_inverse=True)
+    if values.size <= 16:
+        solved = np.array([_bias_for_duty(float(v), iterations) for v in values])
+        return solved[inverse].reshape(d.shape)
+    return _bisect_bias(d, iterations)
+
+
+@lru_cache(maxsize=4096)
+def _bias_for_duty(duty: float, iterations: int) -> float:
+    return float(_bisect_bias(np.array(duty), iterations))
+
+
+def _bisect_bias(d: NDArray[np.float64], iterations: int) -> NDArray[np.float64]:
     target = np.sin(np.pi * (d - 0.5))  # the threshold c the bias must produce
     lo = np.full(d.shape, -200.0)
     hi = np.full(d.shape, 200.0)

@@ -22,6 +22,8 @@ from .scene import CAPSULE_FLOATS, ELLIPSOID_FLOATS, SceneInstances, pose_instan
 from .shaders import ShaderLibrary
 
 SHADOW_MAP_SIZE = 256
+FLOOR_SEGMENTS = 64
+THIN_CAPSULE = 0.35  # capsules thinner than this fraction of the thickest use the coarse mesh
 SUN_COLOR = np.array([0.95, 0.90, 0.84])  # as in shaders/lighting.glsl
 LIGHT_DIR = np.array([-0.45, -1.0, -0.35]) / np.linalg.norm([-0.45, -1.0, -0.35])
 
@@ -105,22 +107,36 @@ class SceneRenderer:
         depth_caps = self.shaders.program("capsule.vert", "depth.frag")
         lit_ell = self.shaders.program("ellipsoid.vert", "lit.frag")
         depth_ell = self.shaders.program("ellipsoid.vert", "depth.frag")
+        # Two levels of detail each: thick capsules (trunk, neck, head) and the skull get
+        # finer meshes than thin ones (leg bones, tail, ears) and small spheres (joints,
+        # eyes), whose facets a few pixels wide do not show. Vertex shading runs on one
+        # CPU thread in a software rasteriser, so this matters.
+        capsule_layout = ("3f 1f", ("in_pos", "in_end"), "3f 3f 2f 3f/i",
+                          ("in_a", "in_b", "in_radius", "in_color"), CAPSULE_FLOATS)
+        ellipsoid_layout = ("3f", ("in_pos",), "3f 3f 3f 3f 3f 3f/i",
+                            ("in_center", "in_axis_x", "in_axis_y", "in_axis_z", "in_radii", "in_color"),
+                            ELLIPSOID_FLOATS)
         self.capsules = _InstancedMesh(ctx, lit_caps, depth_caps, unit_capsule(8, 14), unit_capsule(4, 8),
-                                       "3f 1f", ("in_pos", "in_end"),
-                                       "3f 3f 2f 3f/i", ("in_a", "in_b", "in_radius", "in_color"), CAPSULE_FLOATS)
+                                       *capsule_layout)
+        self.thin_capsules = _InstancedMesh(ctx, lit_caps, depth_caps, unit_capsule(6, 9), unit_capsule(2, 6),
+                                            *capsule_layout)
         self.ellipsoids = _InstancedMesh(ctx, lit_ell, depth_ell, unit_sphere(10, 16), unit_sphere(6, 8),
-                                         "3f", ("in_pos",),
-                                         "3f 3f 3f 3f 3f 3f/i",
-                                         ("in_center", "in_axis_x", "in_axis_y", "in_axis_z", "in_radii", "in_color"),
-                                         ELLIPSOID_FLOATS)
+                                         *ellipsoid_layout)
+        self.small_ellipsoids = _InstancedMesh(ctx, lit_ell, depth_ell, unit_sphere(6, 9), unit_sphere(3, 4),
+                                               *ellipsoid_layout)
         self.ground_prog = self.shaders.program("ground.vert", "ground.frag")
-        quad = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4")
-        self.ground_vbo = ctx.buffer(quad.tobytes())
+        # The floor is a disc (a fan) out to where the fog has reached the horizon colour.
+        angles = np.linspace(0.0, 2.0 * np.pi, FLOOR_SEGMENTS + 1)
+        disc = np.concatenate([[[0.0, 0.0]], np.stack([np.cos(angles), np.sin(angles)], axis=1)]).astype("f4")
+        self.ground_vbo = ctx.buffer(disc.tobytes())
         self.ground_vao = ctx.vertex_array(self.ground_prog, [(self.ground_vbo, "2f", "in_xz")])
+        quad = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4")
+        self.quad_vbo = ctx.buffer(quad.tobytes())
         self.ground_shadow_prog = self.shaders.program("ground.vert", "ground_shadow.frag")
-        self.ground_shadow_vao = ctx.vertex_array(self.ground_shadow_prog, [(self.ground_vbo, "2f", "in_xz")])
+        self.ground_shadow_vao = ctx.vertex_array(self.ground_shadow_prog, [(self.quad_vbo, "2f", "in_xz")])
         self.background_prog = self.shaders.program("background.vert", "background.frag")
-        self.background_vao = ctx.vertex_array(self.background_prog, [])
+        self.sky_vbo = ctx.buffer(reserve=4 * 3 * 4, dynamic=True)
+        self.background_vao = ctx.vertex_array(self.background_prog, [(self.sky_vbo, "2f 1f", "in_ndc", "in_height")])
 
         self.shadow_map = ctx.depth_texture((SHADOW_MAP_SIZE, SHADOW_MAP_SIZE))
         self.shadow_map.compare_func = "<="
@@ -142,8 +158,8 @@ class SceneRenderer:
 
     # The floor is drawn out to where the fog has turned it into the horizon colour; the
     # sky shader gives the same colour below the horizon beyond it.
-    FOG_START = 2.5  # x the creature's bounding radius
-    FOG_END = 7.0
+    FOG_START = 2.2  # x the creature's bounding radius
+    FOG_END = 5.0
 
     def draw_instances(self, scene: SceneInstances, ground_offset: float, camera: Camera,
                        target: moderngl.Framebuffer, options: RenderOptions,
@@ -152,12 +168,13 @@ class SceneRenderer:
         # Nearest first, so the depth test rejects hidden fragments before shading them.
         eye = np.asarray(camera.eye, dtype=np.float32)
         caps = scene.capsules
-        cap_order = np.argsort(((0.5 * (caps[:, 0:3] + caps[:, 3:6]) - eye) ** 2).sum(axis=1))
-        self.capsules.upload(caps[cap_order])
-        casters = scene.ellipsoids[:scene.ellipsoid_casters]
-        rest = scene.ellipsoids[scene.ellipsoid_casters:]
-        rest = rest[np.argsort(((rest[:, 0:3] - eye) ** 2).sum(axis=1))]
-        self.ellipsoids.upload(np.concatenate([casters, rest]))
+        caps = caps[np.argsort(((0.5 * (caps[:, 0:3] + caps[:, 3:6]) - eye) ** 2).sum(axis=1))]
+        thick = caps[:, 6:8].max(axis=1) >= THIN_CAPSULE * caps[:, 6:8].max()
+        self.capsules.upload(caps[thick])
+        self.thin_capsules.upload(caps[~thick])
+        small = scene.ellipsoids[scene.ellipsoid_casters:]
+        self.ellipsoids.upload(scene.ellipsoids[:scene.ellipsoid_casters])
+        self.small_ellipsoids.upload(small[np.argsort(((small[:, 0:3] - eye) ** 2).sum(axis=1))])
         viewport = viewport or (0, 0, *target.size)
         aspect = viewport[2] / max(viewport[3], 1)
 
@@ -171,19 +188,19 @@ class SceneRenderer:
         self.shadow_fbo.use()
         self.shadow_fbo.clear(depth=1.0)
         if options.shadow:
-            for mesh, casters in ((self.capsules, None), (self.ellipsoids, scene.ellipsoid_casters)):
+            for mesh in (self.capsules, self.thin_capsules, self.ellipsoids):  # small spheres cast no shadow
                 mesh.vao_depth.program["u_view_proj"].write(light_vp)
-                mesh.draw(depth_only=True, count=casters)
+                mesh.draw(depth_only=True)
 
         # 2. Main pass, front to back so early depth testing skips hidden pixels:
         #    creature, then ground, then the sky wherever nothing was drawn.
         target.use()
         target.viewport = viewport
-        target.clear(0.0, 0.0, 0.0, 1.0, depth=1.0, viewport=viewport)
+        sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
+        target.clear(*np.sqrt(horizon), 1.0, depth=1.0, viewport=viewport)  # beyond the floor: horizon
         view_proj = camera.view_proj(aspect)
         eye = camera.eye
         self.shadow_map.use(location=0)
-        sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
         for prog in self._lit_programs:
             self._set(prog, "u_view_proj", view_proj)
             self._set(prog, "u_light_view_proj", light_vp)
@@ -194,8 +211,8 @@ class SceneRenderer:
             self._set(prog, "u_shadow_map", 0)
             self._set(prog, "u_shadow_strength", 0.7 if options.shadow else 0.0)
             self._set(prog, "u_shadow_texel", shadow_texel)
-        self.capsules.draw(depth_only=False)
-        self.ellipsoids.draw(depth_only=False)
+        for mesh in (self.capsules, self.ellipsoids, self.thin_capsules, self.small_ellipsoids):
+            mesh.draw(depth_only=False)
 
         ctx.disable(moderngl.CULL_FACE)
         g = self.ground_prog
@@ -213,11 +230,11 @@ class SceneRenderer:
         self._set(g, "u_grid_on", 1.0 if options.grid else 0.0)
         self._set(g, "u_focus", (float(centre[0]), float(centre[2])))
         self._set(g, "u_fog_range", (radius * self.FOG_START, radius * self.FOG_END))
-        self.ground_vao.render(moderngl.TRIANGLE_STRIP)
+        self.ground_vao.render(moderngl.TRIANGLE_FAN)
 
         if options.shadow:
             # The shadow on the floor, over its footprint only, lifted a hair above the floor.
-            lo, hi = self._shadow_footprint(light_vp)
+            lo, hi = self._shadow_footprint(scene, shadow_texel)
             gs = self.ground_shadow_prog
             self._set(gs, "u_center", tuple(0.5 * (lo + hi)))
             self._set(gs, "u_half_size", tuple(0.5 * (hi - lo)))
@@ -229,13 +246,14 @@ class SceneRenderer:
             ctx.disable(moderngl.BLEND)
             ctx.blend_func = moderngl.DEFAULT_BLENDING
 
-        ctx.depth_func = "<="  # the sky sits exactly on the far plane
-        self._set(self.background_prog, "u_top_color", tuple(sky))
-        self._set(self.background_prog, "u_inverse_view_proj", glm.inverse(view_proj))
-        self._set(self.background_prog, "u_camera_pos", tuple(eye))
-        self._set(self.background_prog, "u_horizon_color", tuple(horizon))
-        self.background_vao.render(moderngl.TRIANGLES, vertices=3)
-        ctx.depth_func = "<"
+        band = self._sky_band(camera, aspect, centre, reach)
+        if band is not None:
+            ctx.depth_func = "<="  # the sky sits exactly on the far plane
+            self.sky_vbo.write(band.tobytes())
+            self._set(self.background_prog, "u_top_color", tuple(sky))
+            self._set(self.background_prog, "u_horizon_color", tuple(horizon))
+            self.background_vao.render(moderngl.TRIANGLE_STRIP)
+            ctx.depth_func = "<"
 
     def _set(self, prog: moderngl.Program, name: str, value) -> None:
         """Set a uniform if the program has it and its value changed since the last frame."""
@@ -297,20 +315,44 @@ class SceneRenderer:
         return proj * view, float(max(hi[0] - lo[0], hi[1] - lo[1]) / SHADOW_MAP_SIZE)
 
     @staticmethod
-    def _shadow_footprint(light_vp: glm.mat4) -> tuple[np.ndarray, np.ndarray]:
-        """World xz bounds (lo, hi) of the light box's shadow on the plane y = 0."""
-        inverse = np.array(glm.inverse(light_vp), dtype=np.float64)
-        cube = np.array([[x, y, z, 1.0] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
-        world = cube @ inverse.T
-        world = world[:, :3] / world[:, 3:4]
-        on_ground = world - LIGHT_DIR * (world[:, 1:2] / LIGHT_DIR[1])
-        return on_ground[:, [0, 2]].min(axis=0), on_ground[:, [0, 2]].max(axis=0)
+    def _shadow_footprint(scene: SceneInstances, texel: float) -> tuple[np.ndarray, np.ndarray]:
+        """World xz bounds (lo, hi) of the creature's shadow on the plane y = 0: every
+        caster point projected along the light, padded by its radius."""
+        caps, ells = scene.capsules, scene.ellipsoids[:scene.ellipsoid_casters]
+        points = np.concatenate([caps[:, 0:3], caps[:, 3:6], ells[:, 0:3]]).astype(np.float64)
+        pad = float(max(caps[:, 6:8].max(), ells[:, 12:15].max() if len(ells) else 0.0))
+        on_ground = points - LIGHT_DIR * (points[:, 1:2] / LIGHT_DIR[1])
+        pad = pad / abs(LIGHT_DIR[1]) + 4.0 * texel
+        return on_ground[:, [0, 2]].min(axis=0) - pad, on_ground[:, [0, 2]].max(axis=0) + pad
+
+    @staticmethod
+    def _sky_band(camera: Camera, aspect: float, centre: np.ndarray, reach: float) -> np.ndarray | None:
+        """The sky's screen band: from the floor's far edge straight ahead up to the top
+        of the view, as 4 vertices (ndc x, ndc y, height); None when no sky is in view."""
+        forward = np.asarray(camera.target, dtype=np.float64) - camera.eye
+        flat = np.array([forward[0], 0.0, forward[2]])
+        if camera.top_down or np.linalg.norm(flat) < 1e-6:
+            return None
+        flat /= np.linalg.norm(flat)
+        edge = np.array([centre[0], 0.0, centre[2]]) + flat * reach
+        vp = np.array(camera.view_proj(aspect), dtype=np.float64)
+        clip = vp @ np.append(edge, 1.0)
+        y0 = float(np.clip(clip[1] / clip[3], -1.0, 1.0)) if clip[3] > 0 else -1.0
+        if y0 >= 1.0:
+            return None
+        if camera.ortho:
+            h1 = 0.6
+        else:
+            far = np.linalg.inv(vp) @ np.array([0.0, 1.0, 1.0, 1.0])
+            ray = far[:3] / far[3] - camera.eye
+            h1 = max(float(ray[1] / np.linalg.norm(ray)), 0.0)
+        return np.array([[-1, y0, 0.0], [1, y0, 0.0], [-1, 1, h1], [1, 1, h1]], dtype="f4")
 
     def release(self) -> None:
         """Free every GL object this renderer made."""
-        self.capsules.release()
-        self.ellipsoids.release()
-        for obj in (self.ground_vao, self.ground_shadow_vao, self.ground_vbo, self.background_vao, self.shadow_fbo,
-                    self.shadow_map):
+        for mesh in (self.capsules, self.thin_capsules, self.ellipsoids, self.small_ellipsoids):
+            mesh.release()
+        for obj in (self.ground_vao, self.ground_shadow_vao, self.ground_vbo, self.quad_vbo, self.background_vao,
+                    self.sky_vbo, self.shadow_fbo, self.shadow_map):
             obj.release()
         self.shaders.release()

@@ -1,0 +1,445 @@
+"""The viewer's panels, HUD and help overlay: imgui widgets that call :class:`ViewerState`.
+
+Every value is shown in a slider (Ctrl+click to type a number) with a reset button that
+gives it back its value from the loaded creature. No logic lives here beyond layout.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from imgui_bundle import imgui
+
+from ..gaits import GAIT_PRESETS, TETRAPOD_FEET
+from ..render.camera import CAMERA_PRESETS
+from ..spec import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES, rule_for
+from .state import ViewerState
+
+ICON_RESET = "\uf2ea"
+ICON_PLAY = "\uf04b"
+ICON_PAUSE = "\uf04c"
+ICON_STEP = "\uf051"
+ICON_CAMERA = "\uf030"
+ICON_RECORD = "\uf111"
+ICON_SAVE = "\uf0c7"
+ICON_OPEN = "\uf07c"
+
+SIDEBAR_WIDTH = 380.0
+SIDEBAR_COLOR = (0.094, 0.094, 0.102)  # display RGB of the sidebar's background
+_ERROR = imgui.ImVec4(1.0, 0.45, 0.4, 1.0)
+_OK = imgui.ImVec4(0.55, 0.85, 0.6, 1.0)
+_ACCENT = imgui.ImVec4(0.26, 0.52, 0.85, 1.0)
+
+SHORTCUTS: tuple[tuple[str, str], ...] = (
+    ("Space", "play / pause"),
+    ("Right", "step one frame"),
+    ("R", "reset the view"),
+    ("F12", "screenshot (PNG)"),
+    ("G", "record a GIF/MP4 (Record panel settings)"),
+    ("Tab", "hide / show the UI"),
+    ("F1", "this help"),
+    ("Ctrl+Q", "quit"),
+    ("Left drag", "orbit"),
+    ("Right / middle drag", "pan"),
+    ("Wheel", "zoom"),
+    ("Double-click", "focus on the point under the cursor"),
+)
+
+
+@dataclass
+class FrameStats:
+    """Smoothed timings (milliseconds) shown in the HUD."""
+
+    fps: float = 0.0
+    frame_ms: float = 0.0
+    simulate_ms: float = 0.0
+    scene_ms: float = 0.0
+    ui_ms: float = 0.0
+
+
+@dataclass
+class PanelContext:
+    """What the panels need besides the state."""
+
+    presets: list[str]
+    scale: float = 1.0
+    icons: bool = True
+    stats: FrameStats = field(default_factory=FrameStats)
+    recording_progress: float | None = None  # 0..1 while a recording runs
+    recording_label: str = ""
+
+
+# -- small helpers ------------------------------------------------------------------------
+
+
+def _icon(pc: PanelContext, icon: str, text: str) -> str:
+    return f"{icon}  {text}" if pc.icons else text
+
+
+def _remember(state: ViewerState, key: str) -> None:
+    lo, hi = imgui.get_item_rect_min(), imgui.get_item_rect_max()
+    state.widget_rects[key] = (lo.x, lo.y, hi.x, hi.y)
+
+
+def _doc(key: str) -> str:
+    rule = rule_for(key)
+    return f"{key}: {rule.doc}" if rule else key
+
+
+def _begin_rows(name: str, pc: PanelContext) -> bool:
+    flags = imgui.TableFlags_.sizing_fixed_fit
+    if not imgui.begin_table(name, 3, flags):
+        return False
+    imgui.table_setup_column("label", imgui.TableColumnFlags_.width_fixed, 118 * pc.scale)
+    imgui.table_setup_column("value", imgui.TableColumnFlags_.width_stretch)
+    imgui.table_setup_column("reset", imgui.TableColumnFlags_.width_fixed, 26 * pc.scale)
+    return True
+
+
+def _label(text: str, tooltip: str) -> None:
+    imgui.table_next_row()
+    imgui.table_next_column()
+    imgui.align_text_to_frame_padding()
+    imgui.text(text)
+    if tooltip:
+        imgui.set_item_tooltip(tooltip)
+    imgui.table_next_column()
+    imgui.set_next_item_width(-1)
+
+
+def _reset(state: ViewerState, key: str, pc: PanelContext) -> None:
+    imgui.table_next_column()
+    modified = state.is_modified(key)
+    imgui.begin_disabled(not modified)
+    if imgui.small_button(f"{ICON_RESET if pc.icons else 'R'}##reset-{key}"):
+        state.reset(key)
+    imgui.end_disabled()
+    if modified:
+        imgui.set_item_tooltip(f"reset to {state.base_value(key)!r}" if state.base_value(key) is not None
+                               else "reset to the gait preset's value")
+
+
+def slider(state: ViewerState, pc: PanelContext, key: str, label: str, lo: float, hi: float,
+           fmt: str = "%.3f", setter=None) -> None:
+    """A float row: label, slider (Ctrl+click to type), reset."""
+    _label(label, _doc(key))
+    value = float(state.get(key))
+    changed, new = imgui.slider_float(f"##{key}", value, lo, hi, fmt)
+    _remember(state, key)
+    if changed:
+        if setter is None:
+            state.set(key, float(new))
+        else:
+            setter(float(new))
+    _reset(state, key, pc)
+
+
+def int_slider(state: ViewerState, pc: PanelContext, key: str, label: str, lo: int, hi: int) -> None:
+    _label(label, _doc(key))
+    changed, new = imgui.slider_int(f"##{key}", int(state.get(key)), lo, hi)
+    _remember(state, key)
+    if changed:
+        state.set(key, int(new))
+    _reset(state, key, pc)
+
+
+def choice(state: ViewerState, pc: PanelContext, key: str, label: str, options: tuple[str, ...] | list[str],
+           setter=None) -> None:
+    _label(label, _doc(key))
+    current = str(state.get(key))
+    items = list(options)
+    changed, index = imgui.combo(f"##{key}", items.index(current) if current in items else 0, items)
+    _remember(state, key)
+    if changed:
+        (setter or (lambda v: state.set(key, v)))(items[index])
+    _reset(state, key, pc)
+
+
+# -- panels -------------------------------------------------------------------------------
+
+
+def creature_panel(state: ViewerState, pc: PanelContext) -> None:
+    presets = pc.presets
+    name = state.spec.name
+    imgui.set_next_item_width(-1)
+    changed, index = imgui.combo("##creature", presets.index(name) if name in presets else 0, presets)
+    _remember(state, "creature")
+    if changed:
+        state.load_preset(presets[index])
+    imgui.text_disabled(state.spec.description or state.spec.source)
+    for pair in ("fore", "hind"):
+        imgui.separator_text(f"{pair.capitalize()} legs")
+        current = state.leg_type(pair)
+        width = (imgui.get_content_region_avail().x - 8 * pc.scale) / 3
+        for i, kind in enumerate(LEG_TYPES):
+            if i:
+                imgui.same_line()
+            active = kind == current
+            if active:
+                imgui.push_style_color(imgui.Col_.button, imgui.get_color_u32(_ACCENT))
+            if imgui.button(f"{kind}##{pair}", imgui.ImVec2(width, 0)):
+                state.set_leg_type(pair, kind)  # type: ignore[arg-type]
+            _remember(state, f"leg_type.{pair}.{kind}")
+            if active:
+                imgui.pop_style_color()
+        if _begin_rows(f"legs-{pair}", pc):
+            p = f"legs.{pair}"
+            slider(state, pc, f"{p}.ankle_lift", "ankle lift", 0.0, 90.0, "%.1f deg")
+            slider(state, pc, f"{p}.toe", "toe", 0.0, 0.3, "%.3f m")
+            slider(state, pc, f"{p}.femur", "femur", 0.02, 1.0, "%.3f m")
+            slider(state, pc, f"{p}.tibia", "tibia", 0.02, 1.0, "%.3f m")
+            slider(state, pc, f"{p}.metatarsus", "metatarsus", 0.01, 0.6, "%.3f m")
+            slider(state, pc, f"{p}.natural_bend", "natural bend", 0.0, 0.6, "%.2f")
+            choice(state, pc, f"{p}.knee", "knee points", KNEE_DIRECTIONS)
+            imgui.end_table()
+    imgui.separator_text("Body")
+    if _begin_rows("body-size", pc):
+        slider(state, pc, "body.length", "length", 0.1, 2.5, "%.3f m")
+        slider(state, pc, "body.width", "width", 0.03, 1.0, "%.3f m")
+        int_slider(state, pc, "body.segments", "segments", 2, 24)
+        imgui.end_table()
+
+
+def gait_panel(state: ViewerState, pc: PanelContext) -> None:
+    names = list(GAIT_PRESETS)
+    imgui.set_next_item_width(-1)
+    changed, index = imgui.combo("##gait", names.index(state.spec.gait.preset), names)
+    _remember(state, "gait")
+    if changed:
+        state.set_gait(names[index])
+    imgui.text_disabled(GAIT_PRESETS[state.spec.gait.preset].description)
+    if _begin_rows("gait", pc):
+        slider(state, pc, "gait.frequency", "frequency", 0.1, 6.0, "%.2f Hz")
+        if state.gait_is_symmetric:
+            slider(state, pc, "gait.front_back", "front / back", 0.0, 1.0, "%.3f")
+            slider(state, pc, "gait.left_right", "left / right", 0.0, 1.0, "%.3f")
+        bias = float(state.get("gait.bias"))
+        slider(state, pc, "gait.bias", "bias b", -6.0, 6.0, f"%.2f  (duty {state.get('gait.duty_factor'):.3f})",
+               setter=state.set_bias)
+        slider(state, pc, "gait.duty_factor", "duty factor", 0.06, 0.94, f"%.3f  (b = {bias:.2f})",
+               setter=state.set_duty)
+        slider(state, pc, "gait.step_height", "step height", 0.0, 0.6, "%.3f L")
+        slider(state, pc, "gait.stride", "stride", 0.0, 1.5, "%.3f L")
+        choice(state, pc, "gait.wave", "wave shape", WAVE_SHAPES)
+        imgui.end_table()
+    imgui.text("touchdown phase per foot (left hind = 0)")
+    if imgui.begin_table("phases", 4):
+        for foot in TETRAPOD_FEET:
+            imgui.table_next_column()
+            key = f"gait.phases.{foot}"
+            imgui.set_next_item_width(-1)
+            changed, value = imgui.drag_float(f"##{key}", float(state.get(key)), 0.002, 0.0, 1.0, f"{foot} %.3f")
+            _remember(state, key)
+            if changed:
+                state.set(key, float(value) % 1.0)
+        imgui.end_table()
+    if state.spec.gait.phases is not None and imgui.small_button("back to the preset's phases"):
+        state.reset("gait.phases.LF")
+    if state.live.blending:
+        imgui.text_colored(_ACCENT, "blending into the new gait...")
+
+
+def body_panel(state: ViewerState, pc: PanelContext) -> None:
+    if _begin_rows("body-motion", pc):
+        slider(state, pc, "motion.bob", "bob", 0.0, 0.2, "%.3f L")
+        slider(state, pc, "motion.bob_phase", "bob timing", -0.5, 0.5, "%.3f")
+        slider(state, pc, "motion.yaw", "yaw", 0.0, 30.0, "%.1f deg")
+        slider(state, pc, "motion.tail_sway", "tail sway", 0.0, 60.0, "%.1f deg")
+        int_slider(state, pc, "body.segments", "spine segments", 2, 24)
+        slider(state, pc, "body.neck_angle", "neck angle", -60.0, 90.0, "%.0f deg")
+        slider(state, pc, "body.tail_angle", "tail angle", -90.0, 90.0, "%.0f deg")
+        imgui.end_table()
+
+
+def view_panel(state: ViewerState, pc: PanelContext) -> None:
+    width = (imgui.get_content_region_avail().x - 12 * pc.scale) / 4
+    for i, preset in enumerate(CAMERA_PRESETS):
+        if i:
+            imgui.same_line()
+        if imgui.button(preset, imgui.ImVec2(width, 0)):
+            state.frame_view(preset)
+        _remember(state, f"camera.{preset}")
+    if imgui.button("side, orthographic (for animators)", imgui.ImVec2(-1, 0)):
+        state.side_ortho()
+    changed, ortho = imgui.checkbox("orthographic", state.camera.ortho)
+    if changed:
+        state.set_ortho(ortho)
+    imgui.same_line()
+    changed, state.follow = imgui.checkbox("follow", state.follow)
+    from dataclasses import replace
+
+    options = state.options
+    changed_g, grid = imgui.checkbox("grid", options.grid)
+    imgui.same_line()
+    changed_s, shadow = imgui.checkbox("shadow", options.shadow)
+    imgui.same_line()
+    changed_j, joints = imgui.checkbox("joints", options.joints)
+    if changed_g or changed_s or changed_j:
+        state.options = replace(options, grid=grid, shadow=shadow, joints=joints)
+
+
+def playback_panel(state: ViewerState, pc: PanelContext) -> None:
+    label = _icon(pc, ICON_PAUSE, "pause") if state.playing else _icon(pc, ICON_PLAY, "play")
+    if imgui.button(f"{label}##play", imgui.ImVec2(110 * pc.scale, 0)):
+        state.toggle_play()
+    _remember(state, "play")
+    imgui.same_line()
+    if imgui.button(_icon(pc, ICON_STEP, "step"), imgui.ImVec2(90 * pc.scale, 0)):
+        state.step_frame()
+    imgui.same_line()
+    imgui.text(f"t = {state.live.time:.2f} s")
+    imgui.set_next_item_width(-1)
+    changed, scale = imgui.slider_float("##time-scale", state.time_scale, 0.0, 3.0, "time scale %.2fx")
+    if changed:
+        state.time_scale = float(scale)
+    imgui.set_next_item_width(-1)
+    changed, phase = imgui.slider_float("##phase", state.live.phase, 0.0, 0.999, "cycle phase %.3f")
+    _remember(state, "phase")
+    if changed:
+        state.scrub(float(phase))
+
+
+def record_panel(state: ViewerState, pc: PanelContext) -> None:
+    r = state.record
+    if imgui.button(_icon(pc, ICON_CAMERA, "screenshot (F12)"), imgui.ImVec2(-1, 0)):
+        state.screenshot_requested = True
+    imgui.separator_text("clip")
+    for fmt in ("gif", "mp4"):
+        if imgui.radio_button(fmt, r.format == fmt):
+            r.format = fmt  # type: ignore[assignment]
+        imgui.same_line()
+    imgui.set_next_item_width(80 * pc.scale)
+    _, r.length = imgui.input_float("##length", r.length, 0.0, 0.0, "%.2f")
+    imgui.same_line()
+    for unit in ("cycles", "seconds"):
+        if imgui.radio_button(unit, r.unit == unit):
+            r.unit = unit  # type: ignore[assignment]
+        imgui.same_line()
+    imgui.new_line()
+    imgui.set_next_item_width(90 * pc.scale)
+    _, r.width = imgui.input_int("##w", r.width, 0, 0)
+    imgui.same_line()
+    imgui.text("x")
+    imgui.same_line()
+    imgui.set_next_item_width(90 * pc.scale)
+    _, r.height = imgui.input_int("##h", r.height, 0, 0)
+    imgui.same_line()
+    imgui.set_next_item_width(-1)
+    _, r.fps = imgui.input_float("fps##rec", r.fps, 0.0, 0.0, "%.0f fps")
+    imgui.set_next_item_width(-1)
+    cams = list(CAMERA_PRESETS)
+    changed, idx = imgui.combo("##rec-camera", cams.index(r.camera), cams)
+    if changed:
+        r.camera = cams[idx]
+    imgui.set_next_item_width(-1)
+    _, r.folder = imgui.input_text("##folder", r.folder)
+    imgui.set_item_tooltip("folder to write into")
+    imgui.set_next_item_width(-1)
+    _, r.name = imgui.input_text_with_hint("##name", state.spec.name, r.name)
+    imgui.set_item_tooltip("file name without extension (default: the creature's name)")
+    if pc.recording_progress is None:
+        if imgui.button(_icon(pc, ICON_RECORD, f"record {r.path(state.spec.name)}  (G)"), imgui.ImVec2(-1, 0)):
+            state.record_requested = True
+        _remember(state, "record")
+    else:
+        imgui.progress_bar(pc.recording_progress, imgui.ImVec2(-1, 0), pc.recording_label)
+
+
+def file_panel(state: ViewerState, pc: PanelContext) -> None:
+    imgui.set_next_item_width(-1)
+    _, state.file_path = imgui.input_text("##file", state.file_path)
+    _remember(state, "file")
+    width = (imgui.get_content_region_avail().x - 4 * pc.scale) / 2
+    if imgui.button(_icon(pc, ICON_SAVE, "save"), imgui.ImVec2(width, 0)):
+        state.save()
+    imgui.same_line()
+    if imgui.button(_icon(pc, ICON_OPEN, "load"), imgui.ImVec2(width, 0)):
+        state.load(state.file_path)
+    if imgui.button("reset everything to the loaded creature", imgui.ImVec2(-1, 0)):
+        state.reset_all()
+
+
+PANELS = (
+    ("Creature", creature_panel, True),
+    ("Gait", gait_panel, True),
+    ("Body", body_panel, False),
+    ("View", view_panel, False),
+    ("Playback", playback_panel, True),
+    ("Record", record_panel, False),
+    ("File", file_panel, False),
+)
+
+
+def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
+    io = imgui.get_io()
+    width = SIDEBAR_WIDTH * pc.scale
+    imgui.set_next_window_pos(imgui.ImVec2(0, 0))
+    imgui.set_next_window_size(imgui.ImVec2(width, io.display_size.y))
+    flags = (imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize | imgui.WindowFlags_.no_collapse
+             | imgui.WindowFlags_.no_title_bar | imgui.WindowFlags_.no_background)
+    # No ImGui background: the viewer clears the sidebar's rectangle to SIDEBAR_COLOR, which
+    # is much cheaper than a blended full-height quad on a software rasteriser.
+    imgui.begin("Gaitlab", None, flags)
+    imgui.text(f"Gaitlab  -  {state.spec.name}, {state.spec.gait.preset}")
+    imgui.text_disabled("F1 help  -  Tab hide UI")
+    for title, draw, default_open in (*PANELS, *extra_panels):
+        flag = imgui.TreeNodeFlags_.default_open if default_open else 0
+        if imgui.collapsing_header(title, flag):
+            imgui.push_id(title)
+            draw(state, pc)
+            imgui.pop_id()
+    if state.error:
+        imgui.separator()
+        imgui.push_text_wrap_pos(0.0)
+        imgui.text_colored(_ERROR, state.error)
+        imgui.pop_text_wrap_pos()
+    elif state.status:
+        imgui.separator()
+        imgui.push_text_wrap_pos(0.0)
+        imgui.text_colored(_OK, state.status)
+        imgui.pop_text_wrap_pos()
+    imgui.end()
+
+
+def hud(pc: PanelContext) -> None:
+    io = imgui.get_io()
+    s = pc.stats
+    pad = 10 * pc.scale
+    imgui.set_next_window_pos(imgui.ImVec2(io.display_size.x - pad, pad), 0, imgui.ImVec2(1.0, 0.0))
+    imgui.set_next_window_bg_alpha(0.55)
+    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
+             | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
+             | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
+    imgui.begin("##hud", None, flags)
+    imgui.text(f"{s.fps:5.1f} fps   {s.frame_ms:5.1f} ms")
+    imgui.text_disabled(f"simulate {s.simulate_ms:4.1f}  scene {s.scene_ms:4.1f}  ui {s.ui_ms:4.1f} ms")
+    imgui.end()
+
+
+def help_overlay(state: ViewerState, pc: PanelContext) -> None:
+    io = imgui.get_io()
+    imgui.set_next_window_pos(imgui.ImVec2(io.display_size.x * 0.5, io.display_size.y * 0.5), 0,
+                              imgui.ImVec2(0.5, 0.5))
+    imgui.set_next_window_bg_alpha(0.92)
+    flags = imgui.WindowFlags_.always_auto_resize | imgui.WindowFlags_.no_collapse
+    _, still_open = imgui.begin("Keyboard and mouse (F1)", True, flags)
+    if imgui.begin_table("keys", 2, imgui.TableFlags_.row_bg | imgui.TableFlags_.borders_inner_v):
+        for key, what in SHORTCUTS:
+            imgui.table_next_column()
+            imgui.text(key)
+            imgui.table_next_column()
+            imgui.text(what)
+        imgui.end_table()
+    imgui.text_disabled("Sliders: Ctrl+click to type a value; the arrow button resets it.")
+    imgui.end()
+    if not still_open:
+        state.show_help = False
+
+
+def draw_ui(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
+    """All of the viewer's UI for one frame."""
+    if state.show_ui:
+        sidebar(state, pc, extra_panels)
+        hud(pc)
+    if state.show_help:
+        help_overlay(state, pc)

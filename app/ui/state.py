@@ -1,0 +1,294 @@
+"""The viewer's state and everything its controls do — no imgui, no OpenGL.
+
+Panels (``app/ui/panels.py``) only draw widgets and call these methods, so the logic of
+every control is unit-tested without a window. Edits go through
+:meth:`CreatureSpec.with_overrides`, so the UI accepts exactly what a creature file
+accepts; a rejected value leaves the creature unchanged and shows the error.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any, Literal
+
+from ..errors import GaitlabError
+from ..gaits import GAIT_PRESETS, TETRAPOD_FEET
+from ..kinematics.live import LiveMotion
+from ..kinematics.motion import Pose
+from ..recording import RecordRequest
+from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, frame_points
+from ..render.clip import ViewSettings
+from ..render.renderer import RenderOptions, nice_grid_spacing
+from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, LegType, leg_type, load_creature, spec_value,
+                    without_adjustment)
+
+FRAME_DT = 1.0 / 60.0  # the single-step size, and the fixed step of scripted runs
+RecordFormat = Literal["gif", "mp4"]
+LengthUnit = Literal["cycles", "seconds"]
+
+# Gait keys whose value, when not set in the file, comes from the gait preset: the UI shows
+# the resolved number.
+_RESOLVED = {"gait.frequency", "gait.duty_factor", "gait.bias", "gait.step_height", "gait.stride",
+             "gait.front_back", "gait.left_right", "motion.bob"}
+
+
+@dataclass
+class RecordSettings:
+    """The Record panel: what to write and how (same meaning as ``gaitlab render``)."""
+
+    format: RecordFormat = "gif"
+    unit: LengthUnit = "cycles"
+    length: float = 2.0
+    width: int = 480
+    height: int = 360
+    fps: float = 25.0
+    camera: str = DEFAULT_CAMERA
+    folder: str = "."
+    name: str = ""  # default: <creature>.<format>
+
+    def path(self, creature: str) -> Path:
+        return Path(self.folder) / f"{self.name or creature}.{self.format}"
+
+
+@dataclass
+class ViewerState:
+    """Everything the viewer shows and edits."""
+
+    base: CreatureSpec  # the creature as loaded: what "reset" goes back to
+    spec: CreatureSpec = field(init=False)
+    live: LiveMotion = field(init=False)
+    playing: bool = True
+    time_scale: float = 1.0
+    camera: Camera = field(default_factory=Camera)
+    camera_preset: str = DEFAULT_CAMERA
+    follow: bool = True
+    options: RenderOptions = field(default_factory=RenderOptions)
+    show_ui: bool = True
+    show_help: bool = False
+    error: str | None = None
+    status: str = ""
+    file_path: str = ""
+    record: RecordSettings = field(default_factory=RecordSettings)
+    aspect: float = 16.0 / 9.0
+    quit_requested: bool = False
+    screenshot_requested: bool = False
+    record_requested: bool = False
+    widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.spec = self.base
+        self.live = LiveMotion(self.base)
+        self.file_path = self.base.source if self.base.source.endswith(".toml") else f"{self.base.name}.toml"
+        self.frame_view()
+
+    # -- reading values ---------------------------------------------------------------
+
+    def get(self, key: str) -> Any:
+        """The value a control shows: the file's value, or the number the gait preset
+        gives when the file leaves it open (e.g. the duty factor of a preset gait)."""
+        gait = self.live.rig.gait
+        if key in _RESOLVED or key.startswith("gait.phases."):
+            if key.startswith("gait.phases."):
+                return float(gait.offsets[TETRAPOD_FEET.index(key.rsplit(".", 1)[1])])
+            if key in ("gait.front_back", "gait.left_right"):
+                value = spec_value(self.spec, key)
+                if value is not None:
+                    return value
+                preset = self.spec.gait.preset_spec
+                return getattr(preset, key.split(".")[1]) if preset.symmetric else 0.0
+            return {"gait.frequency": gait.frequency, "gait.duty_factor": gait.duty_factor, "gait.bias": gait.bias,
+                    "gait.step_height": gait.step_height, "gait.stride": gait.stride, "motion.bob": gait.bob}[key]
+        return spec_value(self.spec, key)
+
+    def base_value(self, key: str) -> Any:
+        return spec_value(self.base, key)
+
+    def is_modified(self, key: str) -> bool:
+        """True when ``key`` differs from the loaded creature (the reset button is live)."""
+        return spec_value(self.spec, key) != spec_value(self.base, key)
+
+    @property
+    def gait_is_symmetric(self) -> bool:
+        return self.spec.gait.preset_spec.symmetric and self.spec.gait.phases is None
+
+    # -- editing ----------------------------------------------------------------------
+
+    def _apply(self, spec: CreatureSpec, blend: bool = True) -> None:
+        self.spec = spec
+        self.live.set_spec(spec, blend=blend)
+        self.error = None
+
+    def set(self, key: str, value: Any) -> bool:
+        """Set a creature key; on a rejected value keep the creature and show why."""
+        return self.set_many({key: value})
+
+    def set_many(self, overrides: dict[str, Any]) -> bool:
+        try:
+            spec = self.spec.with_overrides(overrides, origin="")
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        self._apply(spec)
+        return True
+
+    def reset(self, key: str) -> bool:
+        """Give ``key`` its value from the loaded creature."""
+        value = self.base_value(key)
+        if value is not None:
+            return self.set(key, value)
+        try:
+            spec = without_adjustment(self.spec, key)
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        self._apply(spec)
+        return True
+
+    def reset_all(self) -> None:
+        """Back to the loaded creature, blending the gait."""
+        self._apply(self.base)
+
+    def set_gait(self, name: str) -> bool:
+        """Switch gait preset (its adjustments reset to the new preset's values)."""
+        if name not in GAIT_PRESETS:
+            self.error = f"unknown gait {name!r}"
+            return False
+        return self.set("gait.preset", name)
+
+    def set_duty(self, duty: float) -> bool:
+        """Set the duty factor; the bias b shown beside it follows (closed form)."""
+        return self.set("gait.duty_factor", float(duty))
+
+    def set_bias(self, bias: float) -> bool:
+        """Set the seed's swing/stance bias b; the duty factor follows (closed form)."""
+        return self.set("gait.bias", float(bias))
+
+    def set_leg_type(self, pair: str, kind: LegType) -> bool:
+        """Make a leg pair plantigrade, digitigrade or unguligrade: typical ankle lift and
+        toe length for that type (both stay editable)."""
+        lift, toe_ratio = LEG_TYPE_SHAPES[kind]
+        meta = self.spec.leg(pair).metatarsus
+        return self.set_many({f"legs.{pair}.ankle_lift": lift, f"legs.{pair}.toe": round(meta * toe_ratio, 4)})
+
+    def leg_type(self, pair: str) -> LegType:
+        return leg_type(self.spec.leg(pair).ankle_lift)
+
+    def load_preset(self, name: str) -> bool:
+        return self.load(name)
+
+    def load(self, name_or_path: str) -> bool:
+        """Load a preset or a creature file. A file that fails to load leaves the current
+        creature untouched and shows its error."""
+        try:
+            spec = load_creature(name_or_path)
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        self.base = spec
+        self._apply(spec, blend=False)
+        self.file_path = spec.source if str(name_or_path).endswith(".toml") else f"{spec.name}.toml"
+        self.status = f"loaded {spec.name}"
+        self.frame_view()
+        return True
+
+    def save(self, path: str | None = None) -> bool:
+        """Save the current creature as TOML (atomically)."""
+        target = path or self.file_path
+        try:
+            written = self.spec.save(target)
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        except OSError as exc:
+            self.error = f"{target}: cannot write: {exc.strerror or exc}"
+            return False
+        self.file_path = str(written)
+        self.status = f"saved {written}"
+        self.error = None
+        return True
+
+    # -- playback ---------------------------------------------------------------------
+
+    def toggle_play(self) -> None:
+        self.playing = not self.playing
+
+    def advance(self, dt: float) -> None:
+        """Move the animation on by ``dt`` seconds of wall time (if playing)."""
+        if self.playing:
+            self.live.step(dt * self.time_scale)
+
+    def step_frame(self) -> None:
+        """One frame forward (pauses playback)."""
+        self.playing = False
+        self.live.step(FRAME_DT * max(self.time_scale, 1e-3))
+
+    def scrub(self, phase: float) -> None:
+        """Put the gait clock at ``phase`` of the current cycle (pauses playback)."""
+        self.playing = False
+        self.live.set_phase(phase)
+
+    def pose(self) -> Pose:
+        return self.live.pose()
+
+    # -- view -------------------------------------------------------------------------
+
+    def frame_view(self, preset: str | None = None, ortho: bool | None = None) -> None:
+        """Point a camera preset at the creature, framing a whole gait cycle."""
+        from ..recording import clip_motion
+
+        preset = preset or self.camera_preset
+        if preset not in CAMERA_PRESETS:
+            self.error = f"unknown camera {preset!r}"
+            return
+        self.camera_preset = preset
+        motion, _ = clip_motion(self.live.rig, 30.0, cycles=1.0)
+        from ..render.scene import motion_bounds
+
+        cam = frame_points(motion_bounds(motion), preset, aspect=self.aspect)
+        self.camera = replace(cam, ortho=self.camera.ortho if ortho is None else ortho)
+        self.options = replace(self.options, grid_spacing=nice_grid_spacing(self.live.rig.hip_height * 1.6))
+
+    def side_ortho(self) -> None:
+        """The animator's view: orthographic, from the side."""
+        self.frame_view("side", ortho=True)
+
+    def set_ortho(self, ortho: bool) -> None:
+        self.camera = replace(self.camera, ortho=ortho)
+
+    def orbit(self, dx_pixels: float, dy_pixels: float) -> None:
+        self.camera = self.camera.orbit(-0.3 * dx_pixels, 0.3 * dy_pixels)
+
+    def pan(self, dx_pixels: float, dy_pixels: float, view_height: float) -> None:
+        self.camera = self.camera.pan(dx_pixels / max(view_height, 1.0), dy_pixels / max(view_height, 1.0))
+
+    def zoom(self, wheel: float) -> None:
+        self.camera = self.camera.zoom(0.88 ** wheel)
+
+    def focus(self, point: tuple[float, float, float] | None) -> None:
+        """Aim at ``point`` (world), or at the creature when it is ``None``."""
+        if point is None:
+            root = self.pose().root[:3, 3]
+            point = (float(root[0]), float(root[1]), float(root[2]))
+        self.camera = replace(self.camera, target=tuple(float(v) for v in point))
+
+    def follow_creature(self, pose: Pose | None = None) -> None:
+        """Keep the camera target over the creature's root (horizontally)."""
+        if not self.follow:
+            return
+        root = (pose or self.pose()).root[:3, 3]
+        tx, ty, tz = self.camera.target
+        self.camera = replace(self.camera, target=(float(root[0]), ty, float(root[2])))
+
+    # -- recording --------------------------------------------------------------------
+
+    def record_request(self) -> RecordRequest:
+        """The request the Record panel describes (what ``gaitlab render`` would get)."""
+        r = self.record
+        seconds = r.length if r.unit == "seconds" else None
+        cycles = r.length if r.unit == "cycles" else None
+        view = ViewSettings(size=(int(r.width), int(r.height)), camera=r.camera,  # type: ignore[arg-type]
+                            options=replace(RenderOptions(), grid=self.options.grid, shadow=self.options.shadow,
+                                            joints=self.options.joints))
+        return RecordRequest(spec=self.spec, output=r.path(self.spec.name), fps=float(r.fps), seconds=seconds,
+                             cycles=cycles, view=view)

@@ -1,0 +1,355 @@
+"""The interactive viewer's main loop: window, scene, UI, input, screenshots, recording.
+
+``gaitlab view`` calls :func:`run_viewer`. A scripted run (``frames=N``) steps the
+animation by a fixed 1/60 s per frame, so its screenshot is reproducible.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import statistics
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .window import GlfwWindow  # noqa: I001  (imports glfw before imgui_bundle)
+
+import moderngl
+import numpy as np
+from imgui_bundle import imgui, implot
+
+from ..errors import GaitlabError
+from ..output import write_png
+from ..recording import Recording
+from ..render.renderer import SceneRenderer
+from ..spec import CreatureSpec
+from .imgui_renderer import ImguiRenderer
+from .panels import SIDEBAR_COLOR, SIDEBAR_WIDTH, FrameStats, PanelContext, draw_ui
+from .state import FRAME_DT, ViewerState
+
+import imgui_bundle  # noqa: E402
+
+_ASSETS = Path(imgui_bundle.__file__).resolve().parent / "assets" / "fonts"
+
+
+@dataclass
+class ViewerOptions:
+    """How to run the viewer (``gaitlab view`` options)."""
+
+    size: tuple[int, int] = (1280, 720)
+    vsync: bool = True
+    samples: int = 0
+    frames: int | None = None  # run this many frames, then exit (fixed 1/60 s steps)
+    screenshot: Path | None = None  # save the window (with UI) after the last frame
+    hide_ui: bool = False
+    report_fps: bool = False
+    dump_state: Path | None = None  # write the viewer state as JSON (automation, tests)
+    presets: list[str] = field(default_factory=list)
+
+
+def _setup_style(scale: float) -> bool:
+    """Fonts (Roboto with Font Awesome icons merged in) and a calm dark style. Returns
+    whether the icon font is available."""
+    io = imgui.get_io()
+    icons = False
+    regular = _ASSETS / "Roboto" / "Roboto-Regular.ttf"
+    awesome = _ASSETS / "Font_Awesome_6_Free-Solid-900.otf"
+    if regular.exists():
+        font = io.fonts.add_font_from_file_ttf(str(regular), 15.0 * scale)
+        if awesome.exists():
+            config = imgui.ImFontConfig()
+            config.merge_mode = True
+            io.fonts.add_font_from_file_ttf(str(awesome), 12.0 * scale, config)
+            icons = True
+        io.font_default = font
+    imgui.style_colors_dark()
+    style = imgui.get_style()
+    style.window_rounding = 0.0
+    style.frame_rounding = 3.0
+    style.grab_rounding = 3.0
+    style.window_border_size = 0.0
+    style.item_spacing = imgui.ImVec2(6, 5)
+    style.scale_all_sizes(scale)
+    return icons
+
+
+def _ema(old: float, new: float, k: float = 0.1) -> float:
+    return new if old == 0.0 else old + (new - old) * k
+
+
+class Viewer:
+    """One viewer window and its GL/ImGui resources."""
+
+    def __init__(self, spec: CreatureSpec, options: ViewerOptions) -> None:
+        self.options = options
+        self.imgui_ctx = imgui.create_context()
+        imgui.get_io().set_ini_filename("")
+        self.implot_ctx = implot.create_context()
+        self.window = GlfwWindow(options.size, f"Gaitlab - {spec.name}", vsync=options.vsync,
+                                 samples=options.samples)
+        self.ctx = moderngl.create_context(require=330)
+        self.scale = self.window.content_scale
+        icons = _setup_style(self.scale)
+        self.scene = SceneRenderer(self.ctx)
+        self.ui = ImguiRenderer(self.ctx, self.scene.shaders)
+        self.state = ViewerState(spec)
+        self.state.show_ui = not options.hide_ui
+        self.panel = PanelContext(presets=options.presets, scale=self.scale, icons=icons)
+        self.recording: Recording | None = None
+        self._pick: tuple[float, float] | None = None
+        self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
+        self.extra_panels: tuple = ()
+
+    # -- input ------------------------------------------------------------------------
+
+    def _shortcuts(self) -> None:
+        state, io = self.state, imgui.get_io()
+        if io.want_text_input:
+            return
+        pressed = lambda key, repeat=False: imgui.is_key_pressed(key, repeat)  # noqa: E731
+        if pressed(imgui.Key.space):
+            state.toggle_play()
+        if pressed(imgui.Key.right_arrow, True):
+            state.step_frame()
+        if pressed(imgui.Key.r) and not io.key_ctrl:
+            state.frame_view()
+        if pressed(imgui.Key.f12):
+            state.screenshot_requested = True
+        if pressed(imgui.Key.g):
+            state.record_requested = True
+        if pressed(imgui.Key.tab):
+            state.show_ui = not state.show_ui
+        if pressed(imgui.Key.f1):
+            state.show_help = not state.show_help
+        if pressed(imgui.Key.escape):
+            state.show_help = False
+        if io.key_ctrl and pressed(imgui.Key.q):
+            state.quit_requested = True
+
+    def _mouse(self, view_height: float) -> None:
+        state, io = self.state, imgui.get_io()
+        if io.want_capture_mouse:
+            return
+        dx, dy = io.mouse_delta.x, io.mouse_delta.y
+        if imgui.is_mouse_double_clicked(0):
+            self._pick = (io.mouse_pos.x, io.mouse_pos.y)
+        elif imgui.is_mouse_down(0) and (dx or dy):
+            state.orbit(dx, dy)
+        if (imgui.is_mouse_down(1) or imgui.is_mouse_down(2)) and (dx or dy):
+            state.pan(dx, dy, view_height)
+        if io.mouse_wheel:
+            state.zoom(io.mouse_wheel)
+
+    def _scene_viewport(self) -> tuple[int, int, int, int]:
+        fb_w, fb_h = self.window.framebuffer_size
+        if not self.state.show_ui:
+            return (0, 0, fb_w, fb_h)
+        win_w = max(self.window.window_size[0], 1)
+        left = int(round(SIDEBAR_WIDTH * self.scale * fb_w / win_w))
+        left = min(left, max(fb_w - 1, 0))
+        return (left, 0, fb_w - left, fb_h)
+
+    def _resolve_pick(self, viewport: tuple[int, int, int, int]) -> None:
+        """Focus on the scene point under a double-click (depth read back), or the creature."""
+        if self._pick is None:
+            return
+        fb_w, fb_h = self.window.framebuffer_size
+        win_w, win_h = self.window.window_size
+        x = int(self._pick[0] * fb_w / max(win_w, 1))
+        y = int(fb_h - 1 - self._pick[1] * fb_h / max(win_h, 1))
+        self._pick = None
+        vx, vy, vw, vh = viewport
+        if not (vx <= x < vx + vw and vy <= y < vy + vh):
+            return
+        depth = np.frombuffer(self.ctx.screen.read(viewport=(x, y, 1, 1), components=1, attachment=-1, dtype="f4"),
+                              dtype="f4")[0]
+        if depth >= 1.0:
+            self.state.focus(None)
+            return
+        ndc = np.array([2 * (x - vx) / vw - 1, 2 * (y - vy) / vh - 1, 2 * depth - 1, 1.0])
+        inverse = np.linalg.inv(np.array(self.state.camera.view_proj(vw / vh), dtype=np.float64))
+        world = inverse @ ndc
+        self.state.focus(tuple(float(v) for v in world[:3] / world[3]))
+
+    # -- outputs ----------------------------------------------------------------------
+
+    def _read_window(self) -> np.ndarray:
+        fb_w, fb_h = self.window.framebuffer_size
+        data = self.ctx.screen.read(viewport=(0, 0, fb_w, fb_h), components=3, alignment=1)
+        return np.frombuffer(data, dtype=np.uint8).reshape(fb_h, fb_w, 3)[::-1]
+
+    def _screenshot(self, path: Path | None = None) -> None:
+        state = self.state
+        state.screenshot_requested = False
+        if path is None:
+            stamp = time.strftime("%Y%m%d-%H%M%S")
+            path = Path(state.record.folder) / f"gaitlab-{state.spec.name}-{stamp}.png"
+        fb_w, fb_h = self.window.framebuffer_size
+        if fb_w <= 0 or fb_h <= 0:
+            return
+        try:
+            write_png(path, self._read_window())
+        except GaitlabError as exc:
+            state.error = str(exc)
+            return
+        state.status = f"screenshot saved: {path}"
+
+    def _record_step(self) -> None:
+        state = self.state
+        if state.record_requested and self.recording is None:
+            state.record_requested = False
+            try:
+                self.recording = Recording(state.record_request(), self.ctx)
+            except GaitlabError as exc:
+                state.error = str(exc)
+        if self.recording is None:
+            self.panel.recording_progress = None
+            return
+        job = self.recording
+        try:
+            job.step(2)
+            if job.finished:
+                result = job.finish()
+                self.recording = None
+                state.status = f"wrote {result.path}: {result.frames} frames, {result.seconds:.2f} s"
+                state.error = None
+        except GaitlabError as exc:
+            self.recording = None
+            state.error = str(exc)
+        if self.recording is not None:
+            self.panel.recording_progress = job.progress
+            self.panel.recording_label = f"recording {job.done}/{job.total}"
+        else:
+            self.panel.recording_progress = None
+
+    def _dump(self, path: Path, frame: int) -> None:
+        state = self.state
+        doc = {
+            "frame": frame, "playing": state.playing, "show_ui": state.show_ui, "show_help": state.show_help,
+            "creature": state.spec.to_dict(), "duty_factor": state.get("gait.duty_factor"),
+            "gait": state.spec.gait.preset, "clock": state.live.clock, "time": state.live.time,
+            "camera": {"target": list(state.camera.target), "azimuth": state.camera.azimuth,
+                       "elevation": state.camera.elevation, "distance": state.camera.distance,
+                       "ortho": state.camera.ortho},
+            "error": state.error, "status": state.status,
+            "window": {"size": list(self.window.window_size), "framebuffer": list(self.window.framebuffer_size)},
+            "widgets": {k: list(v) for k, v in state.widget_rects.items()},
+        }
+        tmp = path.with_name(f".{path.name}.tmp")
+        tmp.write_text(json.dumps(doc, indent=1))
+        os.replace(tmp, path)
+
+    # -- loop -------------------------------------------------------------------------
+
+    def run(self) -> int:
+        opts, state, window = self.options, self.state, self.window
+        frame = 0
+        scripted = opts.frames is not None
+        clock = time.perf_counter
+        while not window.should_close and not state.quit_requested:
+            if scripted and frame >= opts.frames:
+                break
+            start = clock()
+            dt = window.begin_frame(FRAME_DT if scripted else None)
+            fb_w, fb_h = window.framebuffer_size
+            minimized = fb_w <= 0 or fb_h <= 0
+            imgui.new_frame()
+            self._shortcuts()
+            viewport = self._scene_viewport()
+            self._mouse(max(viewport[3], 1))
+
+            # --report-fps: every 8th frame waits for the GPU after each stage to time it;
+            # the other frames run freely and give the frame rate.
+            sync = opts.report_fps and frame % 8 == 0
+            t0 = clock()
+            state.advance(dt)
+            pose = state.pose()
+            state.follow_creature(pose)
+            t1 = clock()
+            if not minimized and viewport[2] > 0:
+                state.aspect = viewport[2] / max(viewport[3], 1)
+                self.ctx.screen.use()
+                if viewport[0] > 0:  # the sidebar's background (the panels draw none)
+                    self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
+                self.scene.render(pose, state.live.rig, state.camera, self.ctx.screen, state.options, viewport)
+                self._resolve_pick(viewport)
+                if sync:
+                    self.ctx.finish()
+            t2 = clock()
+            draw_ui(state, self.panel, self.extra_panels)
+            imgui.render()
+            if not minimized:
+                self.ui.render(imgui.get_draw_data(), self.ctx.screen)
+                if sync:
+                    self.ctx.finish()
+            t3 = clock()
+            if state.screenshot_requested and not minimized:
+                self._screenshot()
+            last = scripted and frame == opts.frames - 1
+            if last and opts.screenshot is not None and not minimized:
+                self._screenshot(opts.screenshot)
+            self._record_step()
+            if opts.dump_state is not None and (frame % 20 == 0 or last):
+                self._dump(opts.dump_state, frame)
+            if minimized:
+                time.sleep(0.05)  # nothing to draw: do not spin
+            else:
+                window.swap()
+            end = clock()
+            self.frame_times.append((t1 - t0, t2 - t1, t3 - t2, end - start, sync))
+            s = self.panel.stats
+            s.frame_ms = _ema(s.frame_ms, (end - start) * 1000)
+            s.fps = 1000.0 / max(s.frame_ms, 1e-3)
+            s.simulate_ms = _ema(s.simulate_ms, (t1 - t0) * 1000)
+            s.scene_ms = _ema(s.scene_ms, (t2 - t1) * 1000)
+            s.ui_ms = _ema(s.ui_ms, (t3 - t2) * 1000)
+            frame += 1
+        if opts.dump_state is not None:
+            self._dump(opts.dump_state, frame)
+        if self.recording is not None:
+            self.recording.cancel()
+        if opts.report_fps:
+            self.report()
+        return 0
+
+    def report(self) -> None:
+        """Print the frame rate (median over free-running frames) and the time split
+        (medians over the frames that waited for the GPU after each stage)."""
+        times = self.frame_times[10:] or self.frame_times
+        free = [t for t in times if not t[4]] or times
+        synced = [t for t in times if t[4]] or times
+        if not times:
+            return
+        frame_ms = statistics.median(t[3] for t in free) * 1000
+        split = [statistics.median(t[i] for t in synced) * 1000 for i in range(4)]
+        fb_w, fb_h = self.window.framebuffer_size
+        print(f"viewer {fb_w}x{fb_h}, UI {'shown' if self.state.show_ui else 'hidden'}: {1000 / frame_ms:.1f} fps "
+              f"(median frame {frame_ms:.2f} ms over {len(free)} frames); split over {len(synced)} synced frames: "
+              f"simulate {split[0]:.2f}, draw scene {split[1]:.2f}, draw UI {split[2]:.2f}, "
+              f"swap and rest {split[3] - split[0] - split[1] - split[2]:.2f} ms")
+
+    def close(self) -> None:
+        if self.recording is not None:
+            self.recording.cancel()
+        self.ui.release()
+        self.scene.release()
+        implot.destroy_context(self.implot_ctx)
+        imgui.destroy_context(self.imgui_ctx)
+        self.window.close()
+
+
+def run_viewer(spec: CreatureSpec, options: ViewerOptions) -> int:
+    """Open the viewer on ``spec``; returns the exit status."""
+    viewer = Viewer(spec, options)
+    try:
+        return viewer.run()
+    finally:
+        viewer.close()
+
+
+if __name__ == "__main__":  # pragma: no cover
+    from ..spec import load_creature
+
+    sys.exit(run_viewer(load_creature("dog"), ViewerOptions()))

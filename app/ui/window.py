@@ -1,0 +1,163 @@
+"""The glfw window: an OpenGL 3.3 core context, vsync, HiDPI, and input forwarded to ImGui.
+
+glfw is imported here (before imgui_bundle, which bundles its own glfw library) and
+nowhere on the headless path.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import glfw  # noqa: I001  (must come before imgui_bundle)
+from imgui_bundle import imgui
+
+from ..errors import GaitlabError
+
+NO_DISPLAY_HINT = ("no display to open a window on (DISPLAY is not set); run it under a virtual display with "
+                   "'xvfb-run gaitlab view', or render headless with 'gaitlab render'")
+
+
+def _key_map() -> dict[int, "imgui.Key"]:
+    keys: dict[int, imgui.Key] = {}
+    for i in range(26):
+        keys[glfw.KEY_A + i] = getattr(imgui.Key, chr(ord("a") + i))
+    for i in range(10):
+        keys[glfw.KEY_0 + i] = getattr(imgui.Key, f"_{i}")
+        keys[glfw.KEY_KP_0 + i] = getattr(imgui.Key, f"keypad{i}")
+    for i in range(12):
+        keys[glfw.KEY_F1 + i] = getattr(imgui.Key, f"f{i + 1}")
+    named = {
+        "TAB": "tab", "LEFT": "left_arrow", "RIGHT": "right_arrow", "UP": "up_arrow", "DOWN": "down_arrow",
+        "PAGE_UP": "page_up", "PAGE_DOWN": "page_down", "HOME": "home", "END": "end", "INSERT": "insert",
+        "DELETE": "delete", "BACKSPACE": "backspace", "SPACE": "space", "ENTER": "enter", "ESCAPE": "escape",
+        "KP_ENTER": "keypad_enter", "KP_DECIMAL": "keypad_decimal", "KP_SUBTRACT": "keypad_subtract",
+        "KP_ADD": "keypad_add", "LEFT_CONTROL": "left_ctrl", "RIGHT_CONTROL": "right_ctrl",
+        "LEFT_SHIFT": "left_shift", "RIGHT_SHIFT": "right_shift", "LEFT_ALT": "left_alt", "RIGHT_ALT": "right_alt",
+        "LEFT_SUPER": "left_super", "RIGHT_SUPER": "right_super", "MINUS": "minus", "EQUAL": "equal",
+        "PERIOD": "period", "COMMA": "comma", "SLASH": "slash", "SEMICOLON": "semicolon",
+        "APOSTROPHE": "apostrophe", "LEFT_BRACKET": "left_bracket", "RIGHT_BRACKET": "right_bracket",
+        "BACKSLASH": "backslash", "GRAVE_ACCENT": "grave_accent",
+    }
+    for glfw_name, imgui_name in named.items():
+        keys[getattr(glfw, f"KEY_{glfw_name}")] = getattr(imgui.Key, imgui_name)
+    return keys
+
+
+_MODIFIERS = {
+    imgui.Key.left_ctrl: imgui.Key.mod_ctrl, imgui.Key.right_ctrl: imgui.Key.mod_ctrl,
+    imgui.Key.left_shift: imgui.Key.mod_shift, imgui.Key.right_shift: imgui.Key.mod_shift,
+    imgui.Key.left_alt: imgui.Key.mod_alt, imgui.Key.right_alt: imgui.Key.mod_alt,
+    imgui.Key.left_super: imgui.Key.mod_super, imgui.Key.right_super: imgui.Key.mod_super,
+}
+
+
+class GlfwWindow:
+    """A resizable window with a current OpenGL 3.3 core context.
+
+    Input events go to the current ImGui context's IO (create it before the window).
+    Raises :class:`GaitlabError` with a hint when there is no display.
+    """
+
+    def __init__(self, size: tuple[int, int], title: str = "Gaitlab", vsync: bool = True, samples: int = 0) -> None:
+        if sys.platform.startswith("linux") and not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+            raise GaitlabError(NO_DISPLAY_HINT)
+        glfw.set_error_callback(lambda code, text: None)  # errors are reported through return values
+        if not glfw.init():
+            raise GaitlabError(f"cannot open a window (glfw could not initialise the display "
+                               f"{os.environ.get('DISPLAY', '')!r}); try 'xvfb-run gaitlab view' or 'gaitlab render'")
+        glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
+        glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
+        glfw.window_hint(glfw.OPENGL_PROFILE, glfw.OPENGL_CORE_PROFILE)
+        glfw.window_hint(glfw.OPENGL_FORWARD_COMPAT, True)
+        glfw.window_hint(glfw.SCALE_TO_MONITOR, True)
+        glfw.window_hint(glfw.SAMPLES, samples)
+        self.handle = glfw.create_window(int(size[0]), int(size[1]), title, None, None)
+        if not self.handle:
+            glfw.terminate()
+            raise GaitlabError("cannot create an OpenGL 3.3 window on this display; install Mesa's OpenGL "
+                               "(apt-get install libgl1-mesa-dri) or use 'gaitlab render'")
+        glfw.make_context_current(self.handle)
+        glfw.swap_interval(1 if vsync else 0)
+        self._keys = _key_map()
+        self._io = imgui.get_io()
+        self._last_time: float | None = None
+        glfw.set_key_callback(self.handle, self._on_key)
+        glfw.set_char_callback(self.handle, self._on_char)
+        glfw.set_cursor_pos_callback(self.handle, self._on_cursor)
+        glfw.set_mouse_button_callback(self.handle, self._on_button)
+        glfw.set_scroll_callback(self.handle, self._on_scroll)
+        glfw.set_window_focus_callback(self.handle, self._on_focus)
+
+    # -- input -> ImGui ---------------------------------------------------------------
+
+    def _on_key(self, window, key, scancode, action, mods) -> None:
+        imgui_key = self._keys.get(key)
+        if imgui_key is None:
+            return
+        down = action != glfw.RELEASE
+        self._io.add_key_event(imgui_key, down)
+        modifier = _MODIFIERS.get(imgui_key)
+        if modifier is not None:
+            self._io.add_key_event(modifier, down)
+
+    def _on_char(self, window, char) -> None:
+        if 0 < char < 0x10000:
+            self._io.add_input_character(char)
+
+    def _on_cursor(self, window, x, y) -> None:
+        self._io.add_mouse_pos_event(x, y)
+
+    def _on_button(self, window, button, action, mods) -> None:
+        if 0 <= button < 5:
+            self._io.add_mouse_button_event(button, action == glfw.PRESS)
+
+    def _on_scroll(self, window, dx, dy) -> None:
+        self._io.add_mouse_wheel_event(dx, dy)
+
+    def _on_focus(self, window, focused) -> None:
+        self._io.add_focus_event(bool(focused))
+
+    # -- frame ------------------------------------------------------------------------
+
+    @property
+    def framebuffer_size(self) -> tuple[int, int]:
+        return tuple(glfw.get_framebuffer_size(self.handle))  # type: ignore[return-value]
+
+    @property
+    def window_size(self) -> tuple[int, int]:
+        return tuple(glfw.get_window_size(self.handle))  # type: ignore[return-value]
+
+    @property
+    def content_scale(self) -> float:
+        """The monitor's UI scale (1 on a plain display, 2 on a typical HiDPI one)."""
+        sx, sy = glfw.get_window_content_scale(self.handle)
+        return float(max(sx, sy, 1.0))
+
+    def begin_frame(self, dt: float | None = None) -> float:
+        """Poll events and prepare ImGui's IO; returns the frame's dt (seconds)."""
+        glfw.poll_events()
+        now = glfw.get_time()
+        if dt is None:
+            dt = (now - self._last_time) if self._last_time is not None else 1.0 / 60.0
+        self._last_time = now
+        win_w, win_h = self.window_size
+        fb_w, fb_h = self.framebuffer_size
+        self._io.display_size = imgui.ImVec2(win_w, win_h)
+        self._io.display_framebuffer_scale = imgui.ImVec2(fb_w / win_w if win_w else 1.0, fb_h / win_h if win_h else 1.0)
+        self._io.delta_time = max(float(dt), 1e-4)
+        return float(dt)
+
+    @property
+    def should_close(self) -> bool:
+        return bool(glfw.window_should_close(self.handle))
+
+    def request_close(self) -> None:
+        glfw.set_window_should_close(self.handle, True)
+
+    def swap(self) -> None:
+        glfw.swap_buffers(self.handle)
+
+    def close(self) -> None:
+        glfw.destroy_window(self.handle)
+        glfw.terminate()
