@@ -325,7 +325,7 @@ def record_panel(state: ViewerState, pc: PanelContext) -> None:
     _, r.height = imgui.input_int("##h", r.height, 0, 0)
     imgui.same_line()
     imgui.set_next_item_width(-1)
-    _, r.fps = imgui.input_float("fps##rec", r.fps, 0.0, 0.0, "%.0f fps")
+    _, r.fps = imgui.input_float("##fps", r.fps, 0.0, 0.0, "%.0f fps")
     imgui.set_next_item_width(-1)
     cams = list(CAMERA_PRESETS)
     changed, idx = imgui.combo("##rec-camera", cams.index(r.camera), cams)
@@ -406,13 +406,13 @@ def hud(pc: PanelContext) -> None:
     s = pc.stats
     pad = 10 * pc.scale
     imgui.set_next_window_pos(imgui.ImVec2(io.display_size.x - pad, pad), 0, imgui.ImVec2(1.0, 0.0))
-    imgui.set_next_window_bg_alpha(0.55)
+    imgui.set_next_window_bg_alpha(0.72)
     flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
              | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
              | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
     imgui.begin("##hud", None, flags)
     imgui.text(f"{s.fps:5.1f} fps   {s.frame_ms:5.1f} ms")
-    imgui.text_disabled(f"simulate {s.simulate_ms:4.1f}  scene {s.scene_ms:4.1f}  ui {s.ui_ms:4.1f} ms")
+    imgui.text(f"simulate {s.simulate_ms:4.1f}  scene {s.scene_ms:4.1f}  ui {s.ui_ms:4.1f} ms")
     imgui.end()
 
 

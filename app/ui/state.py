@@ -71,7 +71,6 @@ class ViewerState:
     file_path: str = ""
     record: RecordSettings = field(default_factory=RecordSettings)
     aspect: float = 16.0 / 9.0
-    quit_requested: bool = False
     screenshot_requested: bool = False
     record_requested: bool = False
     widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)

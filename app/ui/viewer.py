@@ -96,6 +96,10 @@ class Viewer:
         self.ui = ImguiRenderer(self.ctx, self.scene.shaders)
         self.state = ViewerState(spec)
         self.state.show_ui = not options.hide_ui
+        _, _, vw, vh = self._scene_viewport()
+        if vw > 0 and vh > 0:  # frame the creature for the part of the window the scene gets
+            self.state.aspect = vw / vh
+            self.state.frame_view()
         self.panel = PanelContext(presets=options.presets, scale=self.scale, icons=icons)
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
@@ -125,8 +129,6 @@ class Viewer:
             state.show_help = not state.show_help
         if pressed(imgui.Key.escape):
             state.show_help = False
-        if io.key_ctrl and pressed(imgui.Key.q):
-            state.quit_requested = True
 
     def _mouse(self, view_height: float) -> None:
         state, io = self.state, imgui.get_io()
@@ -248,7 +250,7 @@ class Viewer:
         frame = 0
         scripted = opts.frames is not None
         clock = time.perf_counter
-        while not window.should_close and not state.quit_requested:
+        while not window.should_close:
             if scripted and frame >= opts.frames:
                 break
             start = clock()

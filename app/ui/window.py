@@ -92,6 +92,9 @@ class GlfwWindow:
     # -- input -> ImGui ---------------------------------------------------------------
 
     def _on_key(self, window, key, scancode, action, mods) -> None:
+        if key == glfw.KEY_Q and action == glfw.PRESS and mods & glfw.MOD_CONTROL:
+            glfw.set_window_should_close(self.handle, True)  # Ctrl+Q quits, whatever ImGui is doing
+            return
         imgui_key = self._keys.get(key)
         if imgui_key is None:
             return

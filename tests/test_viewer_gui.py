@@ -1,0 +1,209 @@
+"""The interactive viewer, end to end: a real window on Xvfb driven by real input events
+(xdotool), screenshots, recording from the UI, and the no-display message."""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from app import load_creature
+from app.render.scene import srgb_to_linear
+
+pytestmark = pytest.mark.gui
+GAITLAB = [sys.executable, "-m", "app"]
+
+
+@pytest.fixture(scope="module")
+def display():
+    """A private Xvfb display (started with -displayfd so it picks a free number)."""
+    for tool in ("Xvfb", "xdotool"):
+        if shutil.which(tool) is None:
+            pytest.fail(f"{tool} is missing; run 'bash .ci/setup --test' (it installs xvfb and xdotool)")
+    read_fd, write_fd = os.pipe()
+    proc = subprocess.Popen(["Xvfb", "-displayfd", str(write_fd), "-screen", "0", "1600x900x24", "-nolisten", "tcp"],
+                            pass_fds=(write_fd,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    os.close(write_fd)
+    with os.fdopen(read_fd) as pipe:
+        number = pipe.readline().strip()
+    if not number:
+        proc.kill()
+        pytest.fail("Xvfb did not start")
+    yield f":{number}"
+    proc.terminate()
+    proc.wait(timeout=10)
+
+
+def env_for(display: str) -> dict:
+    return {**os.environ, "DISPLAY": display}
+
+
+def read_state(path: Path, timeout: float = 30.0, until=None) -> dict:
+    """The viewer's state dump, once it exists (and satisfies ``until``)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if path.exists():
+            try:
+                state = json.loads(path.read_text())
+            except (OSError, json.JSONDecodeError):
+                state = None
+            if state is not None and (until is None or until(state)):
+                return state
+        time.sleep(0.1)
+    raise AssertionError(f"viewer state {path} not reached in {timeout} s")
+
+
+def xdotool(display: str, *args: str) -> str:
+    out = subprocess.run(["xdotool", *args], env=env_for(display), capture_output=True, text=True, timeout=30)
+    assert out.returncode == 0, out.stderr
+    return out.stdout.strip()
+
+
+def centre(rect) -> tuple[str, str]:
+    x0, y0, x1, y1 = rect
+    return str(int((x0 + x1) / 2)), str(int((y0 + y1) / 2))
+
+
+def creature_pixels(image: np.ndarray, hex_color: str, tolerance: float = 14.0) -> int:
+    """Pixels whose colour is a shade of ``hex_color`` (shading scales brightness)."""
+    rgb = np.sqrt(srgb_to_linear(hex_color)) * 255
+    img = image.astype(np.float64)
+    scale = (img @ rgb) / (rgb @ rgb)
+    return int((np.abs(img - scale[..., None] * rgb).max(axis=-1) < tolerance).sum())
+
+
+def test_window_opens_with_the_dog_walking_and_the_panels(display: str, tmp_path: Path) -> None:
+    shot = tmp_path / "shot.png"
+    out = subprocess.run([*GAITLAB, "view", "--frames", "45", "--screenshot", str(shot), "--size", "1024x640"],
+                         env=env_for(display), capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    image = np.asarray(Image.open(shot).convert("RGB"))
+    assert image.shape == (640, 1024, 3)
+    sidebar, scene = image[:, :300], image[:, 420:]
+    # The panels: a dark sidebar with light text on it.
+    assert np.median(sidebar) < 60 and (sidebar.min(axis=-1) > 180).mean() > 0.01
+    # The creature: body and both legs' colours in the scene part.
+    look = load_creature("dog").look
+    assert creature_pixels(scene, look.body_color) > 5000
+    assert creature_pixels(scene, look.left_color) > 200 and creature_pixels(scene, look.right_color) > 200
+
+
+def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path) -> None:
+    dump = tmp_path / "state.json"
+    proc = subprocess.Popen([*GAITLAB, "view", "--size", "1024x640", "--dump-state", str(dump)],
+                            env=env_for(display), cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        state = read_state(dump, until=lambda s: s["frame"] >= 20 and "leg_type.hind.unguligrade" in s["widgets"])
+        window = xdotool(display, "search", "--sync", "--name", "Gaitlab").splitlines()[0]
+        assert state["playing"] and state["creature"]["legs"]["hind"]["ankle_lift"] == 62
+
+        # Click the hind legs' "unguligrade" button.
+        x, y = centre(state["widgets"]["leg_type.hind.unguligrade"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+        state = read_state(dump, until=lambda s: s["creature"]["legs"]["hind"]["ankle_lift"] > 75)
+
+        # Drag the fore femur slider to the right.
+        x0, y0, x1, y1 = state["widgets"]["legs.fore.femur"]
+        ym = str(int((y0 + y1) / 2))
+        start = state["creature"]["legs"]["fore"]["femur"]
+        xdotool(display, "mousemove", "--window", window, str(int(x0 + 10)), ym, "mousedown", "1",
+                "mousemove", "--window", window, str(int(x0 + 60)), ym, "sleep", "0.2",
+                "mousemove", "--window", window, str(int(x1 - 30)), ym, "sleep", "0.2", "mouseup", "1")
+        state = read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] > start + 0.1)
+
+        # Space pauses: the clock stops.
+        xdotool(display, "mousemove", "--window", window, "700", "300")
+        xdotool(display, "key", "space")
+        paused = read_state(dump, until=lambda s: not s["playing"])
+        later = read_state(dump, until=lambda s: s["frame"] >= paused["frame"] + 40)
+        assert later["clock"] == paused["clock"] and not later["playing"]
+
+        # F1 opens the help, Ctrl+Q quits.
+        xdotool(display, "key", "F1")
+        read_state(dump, until=lambda s: s["show_help"])
+        xdotool(display, "key", "ctrl+q")
+        assert proc.wait(timeout=30) == 0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+
+
+def gif_frames(path: Path) -> list[np.ndarray]:
+    frames = []
+    with Image.open(path) as gif:
+        for i in range(gif.n_frames):
+            gif.seek(i)
+            frames.append(np.asarray(gif.convert("RGB")))
+    return frames
+
+
+def test_recording_from_the_ui_matches_the_cli(display: str, tmp_path: Path) -> None:
+    ui_dir, cli_dir = tmp_path / "ui", tmp_path / "cli"
+    ui_dir.mkdir()
+    cli_dir.mkdir()
+    dump = ui_dir / "state.json"
+    proc = subprocess.Popen([*GAITLAB, "view", "cat", "--size", "900x600", "--dump-state", str(dump)],
+                            env=env_for(display), cwd=ui_dir, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        read_state(dump, until=lambda s: s["frame"] >= 10)
+        window = xdotool(display, "search", "--sync", "--name", "Gaitlab").splitlines()[0]
+        xdotool(display, "mousemove", "--window", window, "700", "300")
+        xdotool(display, "key", "g")  # record with the Record panel's defaults: cat.gif, 2 cycles, 480x360
+        state = read_state(dump, timeout=120, until=lambda s: s["status"].startswith("wrote"))
+        assert "cat.gif" in state["status"]
+        xdotool(display, "key", "ctrl+q")
+        assert proc.wait(timeout=30) == 0
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+    out = subprocess.run([*GAITLAB, "render", "cat", "-o", "cat.gif"], cwd=cli_dir, capture_output=True, text=True,
+                         timeout=120)
+    assert out.returncode == 0, out.stderr
+    ui, cli = gif_frames(ui_dir / "cat.gif"), gif_frames(cli_dir / "cat.gif")
+    assert len(ui) == len(cli) > 10
+    for a, b in zip(ui, cli):
+        assert np.array_equal(a, b)
+
+
+def test_no_display_gives_one_line_and_exit_2(tmp_path: Path) -> None:
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    out = subprocess.run([*GAITLAB, "view"], env=env, capture_output=True, text=True, timeout=60, cwd=tmp_path)
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+    line, = out.stderr.strip().splitlines()
+    assert "no display" in line and "xvfb-run gaitlab view" in line and "gaitlab render" in line
+
+
+def test_window_survives_resizing(display: str, tmp_path: Path) -> None:
+    dump = tmp_path / "state.json"
+    proc = subprocess.Popen([*GAITLAB, "view", "--size", "800x500", "--dump-state", str(dump)],
+                            env=env_for(display), cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        read_state(dump, until=lambda s: s["frame"] >= 10)
+        window = xdotool(display, "search", "--sync", "--name", "Gaitlab").splitlines()[0]
+        for w, h in (("1200", "700"), ("200", "120"), ("1", "1"), ("640", "400")):
+            xdotool(display, "windowsize", window, w, h)
+            time.sleep(0.3)
+        state = read_state(dump, until=lambda s: s["window"]["size"] == [640, 400])
+        before = state["frame"]
+        read_state(dump, until=lambda s: s["frame"] > before + 20)  # still drawing
+        assert proc.poll() is None
+        xdotool(display, "mousemove", "--window", window, "400", "200")
+        xdotool(display, "key", "ctrl+q")
+        assert proc.wait(timeout=30) == 0
+    finally:
+        if proc.poll() is None:
+            proc.terminate()
+            proc.wait(timeout=30)
+    assert "Traceback" not in proc.stderr.read()

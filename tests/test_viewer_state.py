@@ -1,0 +1,133 @@
+"""What every viewer control does to the creature and the view — no window needed."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app import load_creature
+from app.gaits import GAIT_PRESETS
+from app.kinematics.oscillator import duty_from_bias
+from app.ui.state import ViewerState
+
+
+@pytest.fixture
+def state() -> ViewerState:
+    return ViewerState(load_creature("dog"))
+
+
+def test_slider_sets_the_key_and_reset_restores_it(state: ViewerState) -> None:
+    assert state.set("legs.hind.femur", 0.3)
+    assert state.spec.leg("hind").femur == 0.3 and state.is_modified("legs.hind.femur")
+    assert state.live.rig.femur[2] == pytest.approx(0.3)  # the motion uses it at once
+    assert state.reset("legs.hind.femur")
+    assert state.spec.leg("hind").femur == 0.21 and not state.is_modified("legs.hind.femur")
+
+
+def test_rejected_value_keeps_the_creature_and_shows_the_error(state: ViewerState) -> None:
+    before = state.spec
+    assert not state.set("gait.duty_factor", 0.99)
+    assert state.spec == before
+    assert "gait.duty_factor" in state.error and "(0.05, 0.95)" in state.error
+    assert state.set("gait.duty_factor", 0.6) and state.error is None
+
+
+def test_gait_values_show_the_preset_numbers_until_edited(state: ViewerState) -> None:
+    assert state.get("gait.duty_factor") == pytest.approx(GAIT_PRESETS["walk"].duty_factor)
+    assert state.get("gait.front_back") == 0.25 and state.get("gait.left_right") == 0.5
+    assert state.get("gait.phases.RF") == pytest.approx(0.75)
+    assert not state.is_modified("gait.duty_factor")
+
+
+def test_duty_and_bias_are_linked(state: ViewerState) -> None:
+    state.set_bias(1.0)
+    assert state.get("gait.duty_factor") == pytest.approx(float(duty_from_bias(1.0)))
+    state.set_duty(0.75)
+    assert float(duty_from_bias(state.get("gait.bias"))) == pytest.approx(0.75, abs=1e-9)
+    assert state.spec.gait.bias is None  # setting one clears the other
+
+
+def test_gait_preset_switch_blends(state: ViewerState) -> None:
+    state.set("gait.step_height", 0.3)
+    assert state.set_gait("gallop")
+    assert state.spec.gait.preset == "gallop" and state.spec.gait.step_height is None
+    assert state.live.blending
+    assert not state.set_gait("moonwalk") and "unknown gait" in state.error
+
+
+def test_per_foot_phase_edit_makes_explicit_phases_and_reset_returns(state: ViewerState) -> None:
+    state.set("gait.phases.LF", 0.4)
+    assert state.spec.gait.phases is not None and not state.gait_is_symmetric
+    assert state.get("gait.phases.LF") == pytest.approx(0.4)
+    state.reset("gait.phases.LF")
+    assert state.spec.gait.phases is None and state.gait_is_symmetric
+
+
+@pytest.mark.parametrize("kind, lo, hi", [("plantigrade", 0, 25), ("digitigrade", 25, 75), ("unguligrade", 75, 90)])
+def test_leg_type_buttons(state: ViewerState, kind: str, lo: float, hi: float) -> None:
+    assert state.set_leg_type("fore", kind)
+    assert lo <= state.spec.leg("fore").ankle_lift < hi and state.leg_type("fore") == kind
+    assert state.spec.leg("hind").ankle_lift == 62  # the other pair is untouched
+
+
+def test_playback_controls(state: ViewerState) -> None:
+    clock = state.live.clock
+    state.advance(0.5)
+    assert state.live.clock > clock
+    state.toggle_play()
+    paused = state.live.clock
+    state.advance(0.5)
+    assert state.live.clock == paused and not state.playing
+    state.step_frame()
+    assert state.live.clock > paused
+    state.scrub(0.3)
+    assert state.live.phase == pytest.approx(0.3)
+    state.playing, state.time_scale = True, 0.0
+    frozen = state.live.clock
+    state.advance(1.0)
+    assert state.live.clock == frozen  # time scale 0 freezes
+
+
+def test_camera_controls(state: ViewerState) -> None:
+    start = state.camera
+    state.orbit(100, 0)
+    assert state.camera.azimuth != start.azimuth
+    state.zoom(2)
+    assert state.camera.distance < start.distance
+    state.pan(50, 0, 500)
+    assert state.camera.target != start.target
+    state.frame_view("side")
+    assert state.camera_preset == "side" and state.camera.azimuth == 0
+    state.side_ortho()
+    assert state.camera.ortho and state.camera_preset == "side"
+    state.focus((1.0, 0.0, 2.0))
+    assert state.camera.target == (1.0, 0.0, 2.0)
+    state.focus(None)
+    assert np.allclose(state.camera.target, state.pose().root[:3, 3])
+
+
+def test_creature_preset_and_files(state: ViewerState, tmp_path: Path) -> None:
+    assert state.load_preset("horse") and state.spec.name == "horse" and state.base.name == "horse"
+    state.set("body.length", 1.2)
+    target = tmp_path / "my_horse.toml"
+    assert state.save(str(target)) and target.exists()
+    assert state.load("cat") and state.spec.name == "cat"
+    assert state.load(str(target)) and state.spec.body.length == 1.2
+    broken = tmp_path / "broken.toml"
+    broken.write_text("[body\nlength = 1")
+    before = state.spec
+    assert not state.load(str(broken))
+    assert state.spec == before and "TOML syntax error" in state.error
+    assert not state.save(str(tmp_path / "missing" / "x.toml")) and "does not exist" in state.error
+
+
+def test_record_request_matches_the_cli_defaults(state: ViewerState, tmp_path: Path) -> None:
+    state.record.folder = str(tmp_path)
+    request = state.record_request()
+    assert request.output == tmp_path / "dog.gif" and request.cycles == 2.0 and request.seconds is None
+    assert request.view.size == (480, 360) and request.view.camera == "three-quarter" and request.fps == 25.0
+    state.record.format, state.record.unit, state.record.length = "mp4", "seconds", 3.0
+    request = state.record_request()
+    assert request.output.suffix == ".mp4" and request.seconds == 3.0
