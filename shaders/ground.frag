@@ -7,6 +7,7 @@
 // ground_shadow.frag over the shadow's footprint only.
 
 in vec3 v_world;
+in float v_focus_distance;
 
 uniform vec3 u_ground_color;   // linear
 uniform vec3 u_line_color;     // linear
@@ -15,7 +16,6 @@ uniform vec3 u_floor_light;    // ambient + sun reaching the floor (linear)
 uniform vec2 u_grid_offset;    // metres the ground has moved (added to world xz)
 uniform float u_grid_spacing;  // metres between minor lines
 uniform float u_grid_on;       // 0 or 1
-uniform vec2 u_focus;          // world xz the fog is centred on
 uniform vec2 u_fog_range;      // fog starts, ends (metres from u_focus)
 
 out vec4 frag_color;
@@ -31,6 +31,6 @@ void main() {
     float major = (1.0 - min(min(major_d.x, major_d.y), 1.0)) * (1.0 - smoothstep(1.25, 3.0, spread));
     float line = u_grid_on * max(minor * 0.45, major * 0.8);
     vec3 color = mix(u_ground_color, u_line_color, line) * u_floor_light;
-    float fog = smoothstep(u_fog_range.x, u_fog_range.y, length(v_world.xz - u_focus));
+    float fog = smoothstep(u_fog_range.x, u_fog_range.y, v_focus_distance);
     frag_color = vec4(to_display(mix(color, u_horizon_color, fog)), 1.0);
 }

@@ -147,7 +147,10 @@ class GlfwWindow:
         win_w, win_h = self.window_size
         fb_w, fb_h = self.framebuffer_size
         self._io.display_size = imgui.ImVec2(win_w, win_h)
-        self._io.display_framebuffer_scale = imgui.ImVec2(fb_w / win_w if win_w else 1.0, fb_h / win_h if win_h else 1.0)
+        # A minimised window has an empty framebuffer: keep a valid scale (ImGui needs > 0).
+        scale_x = fb_w / win_w if fb_w > 0 and win_w > 0 else 1.0
+        scale_y = fb_h / win_h if fb_h > 0 and win_h > 0 else 1.0
+        self._io.display_framebuffer_scale = imgui.ImVec2(scale_x, scale_y)
         self._io.delta_time = max(float(dt), 1e-4)
         return float(dt)
 
