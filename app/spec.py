@@ -452,6 +452,9 @@ def _check_geometry(spec: CreatureSpec, where: str) -> None:
         l_rest = l_max * min(1.0, max(0.2, 1.0 - leg.natural_bend))
         ankle_at_rest = math.hypot(flat, l_rest - leg.metatarsus * math.sin(lift))
         fold = abs(leg.femur - leg.tibia)
+        if leg.metatarsus - reach > 0.8 * l_rest:
+            raise SpecError(f"{_at(where)}legs.{leg.name}: unreachable geometry: metatarsus {leg.metatarsus:g} "
+                            f"is too long for femur + tibia {reach:g} at the rest length {l_rest:.3g} m")
         if ankle_at_rest < fold * 1.02:
             raise SpecError(f"{_at(where)}legs.{leg.name}: unreachable geometry: femur {leg.femur:g} and tibia "
                             f"{leg.tibia:g} cannot fold to the rest pose (hip to ankle {ankle_at_rest:.3g} m < "

@@ -192,11 +192,12 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, m
         pn = np.maximum(_norm3(pf, pu, pl), 1e-300)
     kf, ku, kl = along * ef + off * pf / pn, along * eu + off * pu / pn, along * el + off * pl / pn
 
-    # 5. Toe: flat on the ground while planted, dropping by the ankle lift in the air,
-    #    never below the ground.
+    # 5. Toe: flat on the ground while planted, dropping by the ankle lift in the air, its
+    #    tip never lower than half the ball's height (so it never touches down before
+    #    the ball: it lands and lifts off flat, together with the ball).
     hip_height = hip @ upv if shared_frame else np.einsum("...i,...i->...", hip, upv)
     height = hip_height + hu - ground_height
-    room = np.arcsin(np.clip(height / np.maximum(toe, 1e-12), 0.0, 1.0))
+    room = np.arcsin(np.clip(0.5 * height / np.maximum(toe, 1e-12), 0.0, 1.0))
     drop = np.minimum(ankle_lift * np.clip(toe_curl, 0.0, 1.0), room)
     tf, tu = hf + toe * np.cos(drop), hu - toe * np.sin(drop)
 

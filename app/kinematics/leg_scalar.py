@@ -89,7 +89,7 @@ def solve_leg(hip: Vec, target: Vec, fwd: Vec, up: Vec, toe_curl: float, femur: 
     knee = _add(_add(hip, e, along), _unit(perp, fallback), off)
 
     height = _dot(ball, up)
-    room = math.asin(min(max(height / max(toe, 1e-12), 0.0), 1.0))
+    room = math.asin(min(max(0.5 * height / max(toe, 1e-12), 0.0), 1.0))
     drop = min(ankle_lift * min(max(toe_curl, 0.0), 1.0), room)
     toe_tip = _add(ball, _add(_scale(fwd, math.cos(drop)), up, -math.sin(drop)), toe)
     return [hip, knee, ankle, ball, toe_tip]

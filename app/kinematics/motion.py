@@ -26,6 +26,8 @@ UP = np.array([0.0, 1.0, 0.0])
 FORWARD = np.array([0.0, 0.0, 1.0])
 TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
+REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
+MIN_CROUCH = 0.6  # ... by lowering the body, but never below this fraction of its rest height
 
 
 @dataclass(frozen=True)
@@ -156,7 +158,14 @@ def solve_motion(rig: Rig, clock: ArrayLike, *, offsets: ArrayLike | None = None
     # Body: bob and yaw per pair (fore, hind) from the feet of that pair.
     pairs = np.array([[0, 1], [2, 3]])
     pair_lift = bob_wave.lift[:, pairs].max(axis=-1)  # (T, 2)
-    pair_height = rig.pair_rest_height + bob_t * rig.pair_rest_height * (pair_lift - 0.5)
+    # Long strides lower the body: each pair stands no higher than lets its feet reach both
+    # ends of the stride within REACH_MARGIN of full extension (bob included), so planted
+    # feet never get pulled off the ground.
+    reach = np.sqrt(np.maximum((REACH_MARGIN * rig.l_max) ** 2 - (0.5 * stride_m) ** 2, 0.0))  # (T, L)
+    bob_room = 0.5 * bob_t * rig.pair_rest_height  # (T, 2)
+    lowest = np.maximum(MIN_CROUCH * rig.pair_rest_height, 1.05 * rig.l_min[pairs].max(axis=-1))
+    stand = np.clip(reach[:, pairs].min(axis=-1) - bob_room, lowest, rig.pair_rest_height)
+    pair_height = stand + bob_t * rig.pair_rest_height * (pair_lift - 0.5)
     pair_yaw = -np.radians(spec.motion.yaw) * (wave.forward[:, pairs[:, 0]] - wave.forward[:, pairs[:, 1]])
 
     # Spine: a cubic Bezier from the body's hind end (position 0) to its fore end (1);

@@ -25,14 +25,15 @@ def leg_lengths(femur: NDArray, tibia: NDArray, metatarsus: NDArray, ankle_lift:
 
     ``L_max = sqrt((f+t)^2 - (m cos A)^2) + m sin A`` (ball straight below the hip at the
     rest ankle lift), ``L_rest = L_max * clamp(1 - bend, 0.2, 1)``, and ``L_min`` is the
-    larger of ``0.2 L_max`` and the distance below which the knee cannot fold
-    (``|f - t| - m``), with a small margin.
+    largest of ``0.2 L_max``, the distance below which the knee cannot fold
+    (``|f - t| - m``) and, for a metatarsus longer than femur and tibia together, the
+    distance below which the ankle cannot reach (``m - f - t``), with a small margin.
     """
     reach = femur + tibia
     flat = metatarsus * np.cos(ankle_lift)
     l_max = np.sqrt(np.maximum(reach ** 2 - flat ** 2, 0.0)) + metatarsus * np.sin(ankle_lift)
     l_rest = l_max * np.clip(1.0 - natural_bend, 0.2, 1.0)
-    l_min = np.maximum(0.2 * l_max, np.abs(femur - tibia) - metatarsus) * 1.001
+    l_min = np.maximum.reduce([0.2 * l_max, np.abs(femur - tibia) - metatarsus, metatarsus - reach]) * 1.001
     return l_max, l_rest, l_min
 
 

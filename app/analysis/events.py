@@ -1,0 +1,205 @@
+"""Foot events from heel and toe trajectories, after "Walk and Run Cycle Analysis".
+
+For every ground contact of a foot:
+
+- **stance**: where the foot stands most firmly — lowest and slowest;
+- **lift** / **liftoff**: when the foot begins to lift / is fully off the ground;
+- **strike** / **landing**: when it first touches / is fully down again.
+
+Lift and landing points are found on the heel and the toe height curves separately, by
+the seed's rules: starting at the stance time, follow the curve forwards (backwards) until
+it reaches 10% of its maximum height; inside that span take the point of maximum
+curvature (second derivative), ignoring points below the ground and points sloping the
+wrong way. The earlier of heel and toe is *lift* (*strike*), the later *liftoff*
+(*landing*). Then the forward-speed check: from the stance time, the first moment the
+foot's speed along the direction of travel (relative to the body) differs from its speed
+at the stance time by more than 50% — the foot no longer follows the ground — replaces
+the lift (landing) time when it comes sooner. This keeps feet that drag along the ground
+or sink into it from fooling the height rules.
+
+The ground level of each curve is a rolling low percentile of the curve itself, so a
+sloping floor or an ankle that never reaches y = 0 (a digitigrade heel) is handled.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.ndimage import percentile_filter
+from scipy.signal import find_peaks, savgol_filter
+
+from .tracks import FootTracks
+
+EventKind = Literal["lift", "liftoff", "strike", "landing", "stance"]
+EVENT_KINDS: tuple[str, ...] = ("strike", "landing", "stance", "lift", "liftoff")
+LIFT_LEVEL = 0.10  # the search span ends at 10% of the curve's maximum height
+SPEED_CHANGE = 0.50  # the forward-speed check: more than 50% away from the stance speed
+
+
+class AnalysisError(ValueError):
+    """The trajectories cannot be analysed (too short, no steps found, ...)."""
+
+
+@dataclass(frozen=True)
+class Step:
+    """One ground contact of a foot, as frame indices (strike <= landing <= stance <=
+    lift <= liftoff). ``complete`` is False when the contact runs off either end of the
+    clip (its strike or liftoff is then the clip's edge)."""
+
+    strike: int
+    landing: int
+    stance: int
+    lift: int
+    liftoff: int
+    complete: bool = True
+
+
+@dataclass(frozen=True)
+class FootEvents:
+    """The steps of one foot, plus the curves they were found on (for plots)."""
+
+    name: str
+    steps: tuple[Step, ...]
+    heel_height: NDArray[np.float64]  # (T,) above the curve's own ground level, metres
+    toe_height: NDArray[np.float64]
+
+    def times(self, kind: str, times: NDArray[np.float64], complete_only: bool = False) -> NDArray[np.float64]:
+        steps = [s for s in self.steps if s.complete or not complete_only]
+        return np.array([times[getattr(s, kind)] for s in steps])
+
+
+def _odd(n: int) -> int:
+    n = max(int(n), 5)
+    return n if n % 2 else n + 1
+
+
+def clip_period(tracks: FootTracks, min_seconds: float = 0.15) -> float:
+    """The stride period (s): the first strong peak of the feet's height autocorrelation."""
+    heights = 0.5 * (tracks.heel[..., 1] + tracks.toe[..., 1])  # (T, F)
+    x = heights - heights.mean(axis=0)
+    n = x.shape[0]
+    if n < 8:
+        raise AnalysisError(f"the clip has only {n} frames; at least one whole step is needed")
+    spectrum = np.fft.rfft(x, n=2 * n, axis=0)
+    acf = np.fft.irfft(np.abs(spectrum) ** 2, axis=0)[:n].sum(axis=1)
+    if acf[0] <= 0:
+        raise AnalysisError("the feet never move up and down: no steps to analyse")
+    acf /= acf[0]
+    acf /= (n - np.arange(n)) / n  # unbiased: long lags have fewer overlapping samples
+    start = max(1, int(min_seconds * tracks.fps))
+    peaks, props = find_peaks(acf[start: int(0.75 * n)], height=0.2)
+    if len(peaks) == 0:
+        raise AnalysisError(f"no repeating step found in {tracks.duration:.2f} s; the clip must hold at least "
+                            "one full stride of every foot (about two steps)")
+    heights = props["peak_heights"]
+    best = int(peaks[np.nonzero(heights >= 0.8 * heights.max())[0][0]])  # the first strong peak, not a multiple
+    return float((start + best) / tracks.fps)
+
+
+def _search_end(a: NDArray, start: int, level: float, step: int) -> int | None:
+    """First index from ``start`` (going by ``step``) where ``a`` reaches ``level``."""
+    seg = a[start:] if step > 0 else a[start::-1]
+    hits = np.nonzero(seg >= level)[0]
+    if len(hits) == 0:
+        return None
+    return start + step * int(hits[0])
+
+
+def _curve_event(a: NDArray, d1: NDArray, d2: NDArray, start: int, level: float, step: int) -> tuple[int, bool]:
+    """The lift (step=+1) or touchdown (step=-1) point of one height curve: maximum
+    curvature between the stance frame and where the curve reaches ``level``, skipping
+    points below the ground and points sloping the wrong way. Returns (index, found)."""
+    end = _search_end(a, start, level, step)
+    if end is None:
+        return (len(a) - 1 if step > 0 else 0), False
+    lo, hi = (start, end) if step > 0 else (end, start)
+    idx = np.arange(lo, hi + 1)
+    ok = (a[idx] >= 0.0) & ((d1[idx] >= 0.0) if step > 0 else (d1[idx] <= 0.0))
+    if not ok.any():
+        return end, True
+    candidates = idx[ok]
+    return int(candidates[np.argmax(d2[candidates])]), True
+
+
+def _speed_check(rel: NDArray, start: int, threshold: float, step: int) -> int | None:
+    """First index from the stance frame where the forward speed relative to the body has
+    moved more than ``threshold`` away from its value at the stance frame."""
+    seg = rel[start:] if step > 0 else rel[start::-1]
+    hits = np.nonzero(np.abs(seg - rel[start]) > threshold)[0]
+    return None if len(hits) == 0 else start + step * int(hits[0])
+
+
+def _one_per_contact(steps: list[Step], score: NDArray) -> list[Step]:
+    """A long flat stance can hold two score minima: keep one step per ground contact
+    (same strike and liftoff), at its firmest frame."""
+    unique: dict[tuple[int, int], Step] = {}
+    for step in steps:
+        key = (step.strike, step.liftoff)
+        if key not in unique or score[step.stance] < score[unique[key].stance]:
+            unique[key] = step
+    return sorted(unique.values(), key=lambda s: s.stance)
+
+
+def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootEvents]:
+    """Steps of every foot of ``tracks``; ``period`` (s) defaults to :func:`clip_period`."""
+    period = clip_period(tracks) if period is None else period
+    fps = tracks.fps
+    frames = max(3, int(round(period * fps)))
+    if tracks.frame_count < 1.2 * frames:
+        raise AnalysisError(f"the clip is {tracks.duration:.2f} s long but one stride takes {period:.2f} s; "
+                            "give at least one full stride (about two steps)")
+    smooth = _odd(min(frames * 0.06, frames // 3))
+    heights = {"heel": tracks.heel[..., 1], "toe": tracks.toe[..., 1]}
+    ground_window = _odd(min(1.5 * frames, tracks.frame_count))
+    rel = tracks.forward_velocity(tracks.heel) - tracks.forward_velocity(tracks.body[:, None, :])[:, :1]
+    rel = savgol_filter(rel, smooth, 2, axis=0, mode="interp")
+    horizontal = np.gradient(tracks.heel, tracks.times, axis=0)
+    foot_speed = np.hypot(horizontal[..., 0], horizontal[..., 2])
+    result = []
+    for f, name in enumerate(tracks.names):
+        curves = {}
+        for part, h in heights.items():
+            hs = savgol_filter(h[:, f], smooth, 3, mode="interp")
+            ground = percentile_filter(hs, 10, size=ground_window, mode="nearest")
+            a = hs - ground
+            d1 = savgol_filter(h[:, f], smooth, 3, deriv=1, mode="interp")
+            d2 = savgol_filter(h[:, f], smooth, 3, deriv=2, mode="interp")
+            top = float(np.percentile(a, 99))
+            curves[part] = (a, d1, d2, max(top, 1e-9))
+        a_heel, a_toe = curves["heel"][0], curves["toe"][0]
+        speed_n = foot_speed[:, f] / max(float(np.percentile(foot_speed[:, f], 95)), 1e-9)
+        score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
+        score = savgol_filter(score, smooth, 2, mode="interp")
+        low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
+        peaks, _ = find_peaks(-score, distance=max(1, int(0.6 * frames)))
+        stances = [int(p) for p in peaks if low[p] < 0.25]
+        floor = 0.1 * float(np.percentile(np.abs(rel[:, f]), 95))
+        steps = []
+        for k in stances:
+            threshold = SPEED_CHANGE * max(abs(float(rel[k, f])), floor)
+            ups, downs, found = [], [], True
+            for part in ("heel", "toe"):
+                a, d1, d2, top = curves[part]
+                up, ok_up = _curve_event(a, d1, d2, k, LIFT_LEVEL * top, +1)
+                down, ok_down = _curve_event(a, d1, d2, k, LIFT_LEVEL * top, -1)
+                ups.append(up)
+                downs.append(down)
+                found &= ok_up and ok_down
+            lift, liftoff = min(ups), max(ups)
+            strike, landing = min(downs), max(downs)
+            z_up = _speed_check(rel[:, f], k, threshold, +1)
+            z_down = _speed_check(rel[:, f], k, threshold, -1)
+            if z_up is not None and z_up < lift:
+                lift = max(z_up, k)
+            if z_down is not None and z_down > landing:
+                landing = min(z_down, k)
+            steps.append(Step(strike=strike, landing=landing, stance=k, lift=lift, liftoff=liftoff, complete=found))
+        steps = _one_per_contact(steps, score)
+        result.append(FootEvents(name=name, steps=tuple(steps), heel_height=a_heel, toe_height=a_toe))
+    if not any(len(fe.steps) >= 2 for fe in result):
+        raise AnalysisError(f"fewer than two steps found for every foot in {tracks.duration:.2f} s; "
+                            "give a longer clip (at least one full stride)")
+    return result

@@ -1,0 +1,219 @@
+"""From foot events to gait numbers: duty factor, phase, stride, slip, skating, limb phase,
+and the named gait the pattern most resembles."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..gaits import GAIT_PRESETS, TETRAPOD_FEET
+from ..kinematics.gait import resolve_phases
+from ..spec import GaitSpec
+from .events import AnalysisError, FootEvents, detect_events, clip_period
+from .tracks import FootTracks
+
+# Biped gaits, for two-footed clips: left/right phase and a typical duty factor.
+BIPED_GAITS: dict[str, tuple[float, float]] = {"walk": (0.5, 0.62), "run": (0.5, 0.35), "hop": (0.0, 0.4)}
+SKATE_HEIGHT = 0.05  # m, for a 0.9 m hip height (scaled with the creature when known)
+SKATE_SPEED = 0.5  # m/s, for a 0.9 m hip height (scaled with sqrt of the size: Froude)
+
+
+def cyclic_distance(a: float, b: float) -> float:
+    """Distance between two phases on the unit circle, in [0, 0.5]."""
+    d = (a - b) % 1.0
+    return min(d, 1.0 - d)
+
+
+def circular_mean(phases) -> float:
+    """Mean of phases (cycle fractions) on the circle, in [0, 1)."""
+    angles = 2 * np.pi * np.asarray(phases, dtype=np.float64)
+    if angles.size == 0:
+        return math.nan
+    return float(np.arctan2(np.sin(angles).mean(), np.cos(angles).mean()) / (2 * np.pi) % 1.0)
+
+
+@dataclass
+class FootReport:
+    name: str
+    duty_factor: float
+    phase: float
+    stride_length: float
+    max_stance_slip: float
+    skating_ratio: float
+    events: list[tuple[str, float]] = field(default_factory=list)
+
+
+@dataclass
+class GaitSpan:
+    start: float
+    end: float
+    gait: str
+
+
+@dataclass
+class GaitReport:
+    """Everything ``gaitlab analyze`` prints (see :meth:`to_json`)."""
+
+    source: str
+    gait: str | None
+    cycle_seconds: float
+    speed: float
+    limb_phase: float | None
+    gait_match: str
+    feet: list[FootReport]
+    spans: list[GaitSpan]
+    foot_events: list[FootEvents] = field(repr=False, default_factory=list)
+    tracks: FootTracks | None = field(repr=False, default=None)
+
+    def foot(self, name: str) -> FootReport:
+        for f in self.feet:
+            if f.name == name:
+                return f
+        raise KeyError(name)
+
+    def to_json(self) -> dict:
+        def num(x: float | None, digits: int = 4):
+            return None if x is None or not math.isfinite(x) else round(float(x), digits)
+
+        return {
+            "source": self.source,
+            "gait": self.gait,
+            "cycle_seconds": num(self.cycle_seconds),
+            "speed": num(self.speed),
+            "limb_phase": num(self.limb_phase),
+            "gait_match": self.gait_match,
+            "feet": [{"name": f.name, "duty_factor": num(f.duty_factor), "phase": num(f.phase),
+                      "stride_length": num(f.stride_length), "max_stance_slip": num(f.max_stance_slip, 5),
+                      "skating_ratio": num(f.skating_ratio), "events": [{"kind": k, "time": num(t)} for k, t in f.events]}
+                     for f in self.feet],
+            "spans": [{"start": num(s.start), "end": num(s.end), "gait": s.gait} for s in self.spans],
+        }
+
+
+def reference_foot(names: tuple[str, ...]) -> str:
+    """The foot whose touchdown is phase 0: left hind (Hildebrand), or left for bipeds."""
+    for name in ("LH", "L", "L1"):
+        if name in names:
+            return name
+    return names[0]
+
+
+def _preset_phases() -> dict[str, np.ndarray]:
+    return {name: resolve_phases(GaitSpec(preset=name)) for name in GAIT_PRESETS}
+
+
+def _mirror(phases: dict[str, float]) -> dict[str, float]:
+    """The same gait on the other lead: left and right swapped, left hind back at 0."""
+    swapped = {"LF": phases["RF"], "RF": phases["LF"], "LH": phases["RH"], "RH": phases["LH"]}
+    return {k: (v - swapped["LH"]) % 1.0 for k, v in swapped.items()}
+
+
+def match_gait(phases: dict[str, float], duty: float) -> str:
+    """The named gait closest to measured phases (relative to the reference foot) and a
+    duty factor: mean cyclic phase error plus the duty-factor difference; asymmetric
+    gaits are tried on both leads."""
+    feet = set(phases)
+    if feet >= set(TETRAPOD_FEET):
+        best, best_d = "", math.inf
+        measured = [{k: phases[k] for k in TETRAPOD_FEET}]
+        measured.append(_mirror(measured[0]))
+        for name, preset_phases in _preset_phases().items():
+            expected = dict(zip(TETRAPOD_FEET, preset_phases))
+            for m in measured:
+                d = np.mean([cyclic_distance(m[k], expected[k]) for k in TETRAPOD_FEET])
+                d += abs(duty - GAIT_PRESETS[name].duty_factor)
+                if d < best_d:
+                    best, best_d = name, d
+        return best
+    if {"L", "R"} <= feet:
+        lr = phases["R"] - phases["L"]
+        return min(BIPED_GAITS, key=lambda g: cyclic_distance(lr, BIPED_GAITS[g][0]) + abs(duty - BIPED_GAITS[g][1]))
+    return "unknown"
+
+
+def _step_phases(times: np.ndarray, strikes: dict[str, np.ndarray], ref: str) -> dict[str, list[float]]:
+    """Per foot, the phase of each touchdown within the reference foot's cycle around it."""
+    ref_strikes = strikes[ref]
+    out: dict[str, list[float]] = {}
+    for name, ts in strikes.items():
+        values = []
+        for t in ts:
+            i = np.searchsorted(ref_strikes, t, side="right") - 1
+            if i < 0 or i + 1 >= len(ref_strikes):
+                continue
+            values.append((t - ref_strikes[i]) / (ref_strikes[i + 1] - ref_strikes[i]))
+        out[name] = values
+    return out
+
+
+def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> GaitReport:
+    """Events and gait numbers for foot trajectories. Raises :class:`AnalysisError`."""
+    period = clip_period(tracks)
+    events = detect_events(tracks, period)
+    times = tracks.times
+    ref = reference_foot(tracks.names)
+    strikes = {fe.name: np.array([times[s.strike] for s in fe.steps if s.complete]) for fe in events}
+    if len(strikes.get(ref, [])) < 2:
+        raise AnalysisError(f"the reference foot {ref} touches down fewer than twice; give a longer clip "
+                            "(at least one full stride)")
+    cycle = float(np.median(np.diff(strikes[ref])))
+    phases = {k: circular_mean(v) for k, v in _step_phases(times, strikes, ref).items()}
+    scale = (tracks.hip_height / 0.9) if tracks.hip_height else 1.0
+
+    feet = []
+    for f, fe in enumerate(events):
+        complete = [s for s in fe.steps if s.complete]
+        duties = []
+        for a, b in zip(complete, complete[1:]):
+            duties.append((times[a.liftoff] - times[a.strike]) / max(times[b.strike] - times[a.strike], 1e-9))
+        heel = tracks.heel[:, f]
+        stance_points = np.array([heel[s.stance][[0, 2]] for s in complete])
+        strides = np.linalg.norm(np.diff(stance_points, axis=0), axis=1) if len(stance_points) > 1 else np.array([])
+        slips = [float(np.max(np.linalg.norm(heel[s.landing:s.lift + 1][:, [0, 2]] - heel[s.landing][[0, 2]],
+                                                   axis=1))) for s in complete if s.lift >= s.landing]
+        low = np.minimum(fe.heel_height, fe.toe_height)
+        velocity = np.gradient(heel, times, axis=0)
+        speed = np.hypot(velocity[:, 0], velocity[:, 2])
+        near = (low[:-1] < SKATE_HEIGHT * scale) & (low[1:] < SKATE_HEIGHT * scale)
+        skating = float(np.mean(near & (speed[:-1] > SKATE_SPEED * math.sqrt(scale))))
+        evts = sorted(((kind, float(times[getattr(s, kind)])) for s in fe.steps for kind in
+                       ("strike", "landing", "stance", "lift", "liftoff")), key=lambda e: e[1])
+        feet.append(FootReport(name=fe.name, duty_factor=float(np.median(duties)) if duties else math.nan,
+                               phase=phases.get(fe.name, math.nan),
+                               stride_length=float(np.median(strides)) if len(strides) else math.nan,
+                               max_stance_slip=max(slips) if slips else math.nan, skating_ratio=skating,
+                               events=evts))
+
+    duty = float(np.nanmean([f.duty_factor for f in feet]))
+    limb_phase = None
+    if set(TETRAPOD_FEET) <= set(phases):
+        limb_phase = circular_mean([(phases["LF"] - phases["LH"]) % 1.0, (phases["RF"] - phases["RH"]) % 1.0])
+    gait_match = match_gait(phases, duty)
+    spans = gait_spans(times, events, strikes, ref)
+    return GaitReport(source=tracks.source, gait=requested_gait, cycle_seconds=cycle, speed=tracks.speed(),
+                      limb_phase=limb_phase, gait_match=gait_match, feet=feet, spans=spans, foot_events=events,
+                      tracks=tracks)
+
+
+def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, np.ndarray], ref: str) -> list[GaitSpan]:
+    """The gait of each reference-foot cycle, merged into spans of the same gait."""
+    ref_strikes = strikes[ref]
+    spans: list[GaitSpan] = []
+    for t0, t1 in zip(ref_strikes, ref_strikes[1:]):
+        phases, duties = {}, []
+        for fe in events:
+            steps = [s for s in fe.steps if s.complete and t0 <= times[s.strike] < t1]
+            if not steps:
+                break
+            s = steps[0]
+            phases[fe.name] = (times[s.strike] - t0) / (t1 - t0)
+            duties.append((times[s.liftoff] - times[s.strike]) / (t1 - t0))
+        else:
+            name = match_gait(phases, float(np.mean(duties)))
+            if spans and spans[-1].gait == name and abs(spans[-1].end - t0) < 1e-9:
+                spans[-1].end = float(t1)
+            else:
+                spans.append(GaitSpan(float(t0), float(t1), name))
+    return spans

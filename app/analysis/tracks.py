@@ -1,0 +1,83 @@
+"""Foot trajectories in world space: what every analysis input becomes.
+
+Gaitlab's own motion, BVH files and CSV files all turn into a :class:`FootTracks`:
+metres, seconds, Y up, one heel and one toe point per foot (the heel is the back of the
+contact, e.g. the ankle of a BVH skeleton or the ball of a digitigrade Gaitlab leg),
+and the body's position for the direction and speed of travel.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..kinematics.motion import Motion
+
+
+@dataclass(frozen=True)
+class FootTracks:
+    """times (T,) s; names (F,) feet (e.g. LF RF LH RH, or L R); heel, toe (T, F, 3) m;
+    body (T, 3) m; hip_height (m) when known (scales the skating thresholds); source text."""
+
+    times: NDArray[np.float64]
+    names: tuple[str, ...]
+    heel: NDArray[np.float64]
+    toe: NDArray[np.float64]
+    body: NDArray[np.float64]
+    source: str
+    hip_height: float | None = None
+
+    @property
+    def frame_count(self) -> int:
+        return int(self.times.shape[0])
+
+    @property
+    def fps(self) -> float:
+        return float(1.0 / np.median(np.diff(self.times))) if self.frame_count > 1 else 0.0
+
+    @property
+    def duration(self) -> float:
+        return float(self.times[-1] - self.times[0]) if self.frame_count > 1 else 0.0
+
+    def travel_direction(self, smoothing_seconds: float = 0.5) -> NDArray[np.float64]:
+        """Unit horizontal direction of travel per frame (T, 3), from the body's velocity
+        averaged over ``smoothing_seconds``; +Z where the body hardly moves."""
+        from scipy.ndimage import uniform_filter1d
+
+        velocity = np.gradient(self.body, self.times, axis=0) * np.array([1.0, 0.0, 1.0])
+        window = max(1, int(round(smoothing_seconds * self.fps)))
+        smooth = uniform_filter1d(velocity, size=window, axis=0, mode="nearest")
+        norm = np.linalg.norm(smooth, axis=1, keepdims=True)
+        fallback = np.array([0.0, 0.0, 1.0])
+        if float(np.median(norm)) < 1e-3:  # in place: use the overall heading of the feet's swings
+            return np.broadcast_to(fallback, smooth.shape).copy()
+        return np.where(norm > 1e-6, smooth / np.maximum(norm, 1e-12), fallback)
+
+    def forward_velocity(self, points: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Velocity (m/s) of points (T, F, 3) along each frame's direction of travel, (T, F);
+        a curving path is followed frame by frame."""
+        direction = self.travel_direction()
+        velocity = np.gradient(points, self.times, axis=0)
+        return np.einsum("tfi,ti->tf", velocity, direction)
+
+    def speed(self) -> float:
+        """Median horizontal speed of the body (m/s)."""
+        velocity = np.gradient(self.body, self.times, axis=0)
+        return float(np.median(np.hypot(velocity[:, 0], velocity[:, 2])))
+
+
+def tracks_from_motion(motion: Motion) -> FootTracks:
+    """Gaitlab's in-place motion put on the ground it walks over: the ground moved back by
+    ``ground_offset``, so in the ground's frame everything moves forward by it. The heel
+    point is the ball (what a digitigrade or unguligrade foot stands on) and the toe point
+    the toe tip."""
+    shift = np.zeros((motion.frame_count, 3))
+    shift[:, 2] = motion.ground_offset
+    heel = motion.joints[:, :, 3] + shift[:, None, :]
+    toe = motion.joints[:, :, 4] + shift[:, None, :]
+    body = motion.root[:, :3, 3] + shift
+    spec = motion.rig.spec
+    return FootTracks(times=motion.times - motion.times[0], names=tuple(motion.leg_names), heel=heel, toe=toe,
+                      body=body, source=f"gaitlab:{spec.name}", hip_height=motion.rig.hip_height)
