@@ -31,15 +31,18 @@ from numpy.typing import NDArray
 from scipy.ndimage import percentile_filter
 from scipy.signal import find_peaks, savgol_filter
 
+from ..errors import GaitlabError
 from .tracks import FootTracks
 
 EventKind = Literal["lift", "liftoff", "strike", "landing", "stance"]
 EVENT_KINDS: tuple[str, ...] = ("strike", "landing", "stance", "lift", "liftoff")
 LIFT_LEVEL = 0.10  # the search span ends at 10% of the curve's maximum height
 SPEED_CHANGE = 0.50  # the forward-speed check: more than 50% away from the stance speed
+CONTACT_SPEED = 0.5  # a contact point's foot moves at under half its typical speed when it is down
+STATIC_SPEED = 0.25  # a foot slower than this fraction of the body's speed stands still
 
 
-class AnalysisError(ValueError):
+class AnalysisError(GaitlabError):
     """The trajectories cannot be analysed (too short, no steps found, ...)."""
 
 
@@ -156,21 +159,46 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
     ground_window = _odd(min(1.5 * frames, tracks.frame_count))
     rel = tracks.forward_velocity(tracks.heel) - tracks.forward_velocity(tracks.body[:, None, :])[:, :1]
     rel = savgol_filter(rel, smooth, 2, axis=0, mode="interp")
-    horizontal = np.gradient(tracks.heel, tracks.times, axis=0)
-    foot_speed = np.hypot(horizontal[..., 0], horizontal[..., 2])
+    def horizontal_speed(points: NDArray) -> NDArray:
+        velocity = np.gradient(points, tracks.times, axis=0)
+        return savgol_filter(np.hypot(velocity[..., 0], velocity[..., 2]), smooth, 2, axis=0, mode="interp")
+
+    speeds = {"heel": horizontal_speed(tracks.heel), "toe": horizontal_speed(tracks.toe)}
+    body_velocity = np.gradient(tracks.body, tracks.times, axis=0)
+    static_speed = max(STATIC_SPEED * float(np.median(np.hypot(body_velocity[:, 0], body_velocity[:, 2]))), 0.02)
     result = []
     for f, name in enumerate(tracks.names):
         curves = {}
         for part, h in heights.items():
             hs = savgol_filter(h[:, f], smooth, 3, mode="interp")
             ground = percentile_filter(hs, 10, size=ground_window, mode="nearest")
-            a = hs - ground
+            # The ground band: the heights this point takes while it stands still (a rolling
+            # paw's toe rises a little before the foot lifts).
+            static = speeds[part][:, f] < static_speed
+            band = float(np.percentile((hs - ground)[static], 75)) if static.sum() > 3 else 0.0
+            a = hs - ground - max(band, 0.0)
             d1 = savgol_filter(h[:, f], smooth, 3, deriv=1, mode="interp")
             d2 = savgol_filter(h[:, f], smooth, 3, deriv=2, mode="interp")
             top = float(np.percentile(a, 99))
             curves[part] = (a, d1, d2, max(top, 1e-9))
+        # A curve counts as a contact point only if that point is slow when the curve is
+        # near its ground (a digitigrade "ankle" joint can be lowest in mid-swing).
+        contact = {}
+        for part, c in curves.items():
+            down = c[0] < LIFT_LEVEL * c[3]
+            speed_p = speeds[part][:, f]
+            contact[part] = bool(down.any()) and float(np.median(speed_p[down])) < \
+                CONTACT_SPEED * max(float(np.median(speed_p)), 1e-9)
+        if not any(contact.values()):
+            contact = {"heel": True, "toe": True}
+        if not contact["heel"]:
+            curves["heel"] = curves["toe"]
+        elif not contact["toe"]:
+            curves["toe"] = curves["heel"]
+        foot_speed = np.minimum(speeds["heel"][:, f] if contact["heel"] else np.inf,
+                                speeds["toe"][:, f] if contact["toe"] else np.inf)
         a_heel, a_toe = curves["heel"][0], curves["toe"][0]
-        speed_n = foot_speed[:, f] / max(float(np.percentile(foot_speed[:, f], 95)), 1e-9)
+        speed_n = foot_speed / max(float(np.percentile(foot_speed, 95)), 1e-9)
         score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
         score = savgol_filter(score, smooth, 2, mode="interp")
         low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])

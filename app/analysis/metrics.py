@@ -148,6 +148,21 @@ def _step_phases(times: np.ndarray, strikes: dict[str, np.ndarray], ref: str) ->
     return out
 
 
+def skating_ratio(fe: FootEvents, point: np.ndarray, times: np.ndarray, scale: float) -> float:
+    """Share of frames in which the foot is down — between strike and liftoff and within
+    5 cm of the ground, in this and the next frame — and slides faster than 0.5 m/s
+    (both thresholds scaled to the creature: height with its size, speed with the square
+    root of its size). A planted-foot animation scores 0."""
+    down = np.zeros(len(times), dtype=bool)
+    for s in fe.steps:
+        down[s.strike + 1:s.liftoff] = True  # strictly inside: event frames are known to a frame
+    low = np.minimum(fe.heel_height, fe.toe_height) < SKATE_HEIGHT * scale
+    velocity = np.gradient(point, times, axis=0)
+    fast = np.hypot(velocity[:, 0], velocity[:, 2]) > SKATE_SPEED * math.sqrt(scale)
+    both = down[:-1] & down[1:] & low[:-1] & low[1:] & fast[:-1]
+    return float(both.mean())
+
+
 def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> GaitReport:
     """Events and gait numbers for foot trajectories. Raises :class:`AnalysisError`."""
     period = clip_period(tracks)
@@ -171,13 +186,11 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
         heel = tracks.heel[:, f]
         stance_points = np.array([heel[s.stance][[0, 2]] for s in complete])
         strides = np.linalg.norm(np.diff(stance_points, axis=0), axis=1) if len(stance_points) > 1 else np.array([])
-        slips = [float(np.max(np.linalg.norm(heel[s.landing:s.lift + 1][:, [0, 2]] - heel[s.landing][[0, 2]],
-                                                   axis=1))) for s in complete if s.lift >= s.landing]
-        low = np.minimum(fe.heel_height, fe.toe_height)
-        velocity = np.gradient(heel, times, axis=0)
-        speed = np.hypot(velocity[:, 0], velocity[:, 2])
-        near = (low[:-1] < SKATE_HEIGHT * scale) & (low[1:] < SKATE_HEIGHT * scale)
-        skating = float(np.mean(near & (speed[:-1] > SKATE_SPEED * math.sqrt(scale))))
+        # Slip while planted: strictly inside [landing, lift] (the event frames themselves
+        # are only known to within a frame).
+        slips = [float(np.max(np.linalg.norm(heel[s.landing + 1:s.lift][:, [0, 2]] - heel[s.landing + 1][[0, 2]],
+                                                   axis=1))) for s in complete if s.lift - s.landing >= 3]
+        skating = skating_ratio(fe, heel, times, scale)
         evts = sorted(((kind, float(times[getattr(s, kind)])) for s in fe.steps for kind in
                        ("strike", "landing", "stance", "lift", "liftoff")), key=lambda e: e[1])
         feet.append(FootReport(name=fe.name, duty_factor=float(np.median(duties)) if duties else math.nan,

@@ -1,0 +1,236 @@
+"""Reading BVH motion capture and computing joint positions (forward kinematics).
+
+Written here rather than taken from a library because the clips Gaitlab is tested on put
+position channels on every joint (they *replace* the joint's OFFSET), which common BVH
+readers refuse, and because every parse error must name the file and line.
+Forward kinematics is vectorised over frames; it walks only the chain of joints that lead
+to the ones asked for.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import GaitlabError
+
+_AXES = {"X": 0, "Y": 1, "Z": 2}
+
+
+class InputError(GaitlabError):
+    """A motion file that cannot be read (syntax, truncation, missing columns, ...)."""
+
+
+@dataclass
+class BvhJoint:
+    name: str
+    parent: int  # index into BvhClip.joints, -1 for the root
+    offset: NDArray[np.float64]
+    channels: list[str] = field(default_factory=list)
+    first_channel: int = 0  # column of its first channel in the frame data
+
+
+@dataclass
+class BvhClip:
+    """A parsed BVH file: joints in file order, frames (T, channels), frame time (s)."""
+
+    path: str
+    joints: list[BvhJoint]
+    frames: NDArray[np.float64]
+    frame_time: float
+
+    @property
+    def names(self) -> list[str]:
+        return [j.name for j in self.joints]
+
+    def index(self, name: str) -> int:
+        for i, joint in enumerate(self.joints):
+            if joint.name == name:
+                return i
+        raise KeyError(name)
+
+    def positions(self, names: list[str]) -> NDArray[np.float64]:
+        """World positions (T, len(names), 3) of the named joints, in file units and axes."""
+        wanted = [self.index(n) for n in names]
+        needed: set[int] = set()
+        for i in wanted:
+            while i >= 0 and i not in needed:
+                needed.add(i)
+                i = self.joints[i].parent
+        frames = self.frames.shape[0]
+        rotation: dict[int, NDArray] = {}
+        position: dict[int, NDArray] = {}
+        for i in sorted(needed):  # parents come before children in file order
+            joint = self.joints[i]
+            local_r = np.broadcast_to(np.eye(3), (frames, 3, 3))
+            local_t = np.broadcast_to(joint.offset, (frames, 3)).copy()
+            for k, channel in enumerate(joint.channels):
+                values = self.frames[:, joint.first_channel + k]
+                axis = _AXES[channel[0].upper()]
+                if channel[1:].lower() == "position":
+                    local_t[:, axis] = values  # position channels replace the OFFSET
+                else:
+                    local_r = local_r @ _axis_rotation(axis, np.radians(values))
+            if joint.parent < 0:
+                rotation[i], position[i] = local_r, local_t
+            else:
+                parent_r = rotation[joint.parent]
+                position[i] = position[joint.parent] + np.einsum("tij,tj->ti", parent_r, local_t)
+                rotation[i] = parent_r @ local_r
+        return np.stack([position[i] for i in wanted], axis=1)
+
+
+def _axis_rotation(axis: int, angles: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Rotation matrices (T, 3, 3) about one coordinate axis."""
+    c, s = np.cos(angles), np.sin(angles)
+    m = np.zeros(angles.shape + (3, 3))
+    i, j = [(1, 2), (2, 0), (0, 1)][axis]
+    m[:, axis, axis] = 1.0
+    m[:, i, i] = c
+    m[:, j, j] = c
+    m[:, i, j] = -s
+    m[:, j, i] = s
+    return m
+
+
+class _Tokens:
+    """Whitespace tokens with their line numbers."""
+
+    def __init__(self, path: str, lines: list[str]) -> None:
+        self.path = path
+        self.items = [(tok, n + 1) for n, line in enumerate(lines) for tok in line.split()]
+        self.pos = 0
+
+    def error(self, message: str, line: int | None = None) -> InputError:
+        if line is None:
+            line = self.items[min(self.pos, len(self.items) - 1)][1] if self.items else 1
+        return InputError(f"{self.path}:{line}: malformed BVH: {message}")
+
+    def next(self, what: str) -> tuple[str, int]:
+        if self.pos >= len(self.items):
+            last = self.items[-1][1] if self.items else 1
+            raise InputError(f"{self.path}:{last}: truncated BVH: the file ends where {what} was expected")
+        item = self.items[self.pos]
+        self.pos += 1
+        return item
+
+    def expect(self, word: str) -> int:
+        tok, line = self.next(repr(word))
+        if tok.upper() != word.upper():
+            raise self.error(f"expected {word!r}, found {tok!r}", line)
+        return line
+
+    def number(self, what: str) -> float:
+        tok, line = self.next(what)
+        try:
+            return float(tok)
+        except ValueError:
+            raise self.error(f"{what}: {tok!r} is not a number", line) from None
+
+
+def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
+    """Parse a BVH file. Raises :class:`InputError` naming the file and line."""
+    path = os.fspath(path)
+    try:
+        text = open(path, encoding="utf-8", errors="replace").read()
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    lines = text.splitlines()
+    try:
+        motion_at = next(i for i, line in enumerate(lines) if line.strip().upper() == "MOTION")
+    except StopIteration:
+        raise InputError(f"{path}:{len(lines)}: truncated BVH: no MOTION section") from None
+    tokens = _Tokens(path, lines[:motion_at])
+    tokens.expect("HIERARCHY")
+    joints: list[BvhJoint] = []
+    channel_count = 0
+
+    def parse_joint(parent: int, keyword_line: int) -> None:
+        nonlocal channel_count
+        name, _ = tokens.next("a joint name")
+        tokens.expect("{")
+        tokens.expect("OFFSET")
+        offset = np.array([tokens.number("OFFSET x"), tokens.number("OFFSET y"), tokens.number("OFFSET z")])
+        tokens.expect("CHANNELS")
+        count_tok, count_line = tokens.next("the channel count")
+        if not count_tok.isdigit():
+            raise tokens.error(f"channel count {count_tok!r} is not a whole number", count_line)
+        channels = []
+        for _ in range(int(count_tok)):
+            ch, ch_line = tokens.next("a channel name")
+            if len(ch) < 2 or ch[0].upper() not in _AXES or ch[1:].lower() not in ("position", "rotation"):
+                raise tokens.error(f"unknown channel {ch!r} (expected Xposition ... Zrotation)", ch_line)
+            channels.append(ch)
+        index = len(joints)
+        joints.append(BvhJoint(name, parent, offset, channels, channel_count))
+        channel_count += len(channels)
+        while True:
+            tok, line = tokens.next("JOINT, End Site or '}'")
+            if tok.upper() == "JOINT":
+                parse_joint(index, line)
+            elif tok.upper() == "END":
+                tokens.expect("Site")
+                tokens.expect("{")
+                tokens.expect("OFFSET")
+                for axis in "xyz":
+                    tokens.number(f"End Site OFFSET {axis}")
+                tokens.expect("}")
+            elif tok == "}":
+                return
+            else:
+                raise tokens.error(f"expected JOINT, End Site or '}}', found {tok!r}", line)
+
+    tok, line = tokens.next("ROOT")
+    if tok.upper() != "ROOT":
+        raise tokens.error(f"expected ROOT, found {tok!r}", line)
+    parse_joint(-1, line)
+    if tokens.pos < len(tokens.items):
+        tok, line = tokens.items[tokens.pos]
+        raise tokens.error(f"unexpected {tok!r} after the hierarchy", line)
+
+    header = [(n, lines[n].strip()) for n in range(motion_at + 1, min(motion_at + 3, len(lines)))]
+    if len(header) < 2:
+        raise InputError(f"{path}:{len(lines)}: truncated BVH: the MOTION section has no Frames / Frame Time lines")
+    try:
+        frame_count = int(header[0][1].split(":", 1)[1])
+        assert header[0][1].lower().startswith("frames")
+    except (IndexError, ValueError, AssertionError):
+        raise InputError(f"{path}:{header[0][0] + 1}: malformed BVH: expected 'Frames: N', found "
+                         f"{header[0][1]!r}") from None
+    try:
+        frame_time = float(header[1][1].split(":", 1)[1])
+        assert header[1][1].lower().startswith("frame time") and frame_time > 0
+    except (IndexError, ValueError, AssertionError):
+        raise InputError(f"{path}:{header[1][0] + 1}: malformed BVH: expected 'Frame Time: seconds' (> 0), found "
+                         f"{header[1][1]!r}") from None
+    first = motion_at + 3
+    data_lines = [(n, line) for n, line in enumerate(lines[first:], start=first + 1) if line.strip()]
+    if len(data_lines) < frame_count:
+        end = data_lines[-1][0] if data_lines else first
+        raise InputError(f"{path}:{end}: truncated BVH: 'Frames: {frame_count}' but only {len(data_lines)} frame "
+                         "lines follow")
+    data_lines = data_lines[:frame_count]
+    try:
+        values = np.array(" ".join(line for _, line in data_lines).split(), dtype=np.float64)
+    except ValueError:
+        values = None
+    if values is None or values.size != frame_count * channel_count:
+        for number, line in data_lines:  # find the first bad line, for the message
+            parts = line.split()
+            if len(parts) != channel_count:
+                raise InputError(f"{path}:{number}: malformed BVH: frame has {len(parts)} values, the hierarchy "
+                                 f"has {channel_count} channels")
+            for k, part in enumerate(parts):
+                try:
+                    float(part)
+                except ValueError:
+                    raise InputError(f"{path}:{number}: malformed BVH: value {k + 1} ({part!r}) is not a "
+                                     "number") from None
+    frames = values.reshape(frame_count, channel_count)
+    if not np.isfinite(frames).all():
+        bad = int(np.nonzero(~np.isfinite(frames).all(axis=1))[0][0])
+        raise InputError(f"{path}:{data_lines[bad][0]}: malformed BVH: frame holds a NaN or infinite value")
+    return BvhClip(path=path, joints=joints, frames=frames, frame_time=frame_time)

@@ -1,0 +1,224 @@
+"""Turning motion files into :class:`FootTracks`: BVH (with a foot-joint mapping) and CSV
+(per-foot positions over time), with units and the up axis given or detected."""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import re
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from ..spec import did_you_mean
+from .bvh import InputError, read_bvh
+from .tracks import FootTracks
+
+Units = Literal["auto", "m", "cm", "mm", "in", "ft", "cmu"]
+UNIT_SCALE: dict[str, float] = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254, "ft": 0.3048, "cmu": 0.056444}
+UpAxis = Literal["auto", "y", "z"]
+
+# Foot-joint names of common skeletons: foot name -> (ankle/heel joint, toe joint).
+KNOWN_RIGS: tuple[tuple[str, dict[str, tuple[str, tuple[str, ...]]]], ...] = (
+    ("quadruped (Tencent/3ds Max dog)", {
+        "LF": ("b_LeftHand", ("b__LeftFinger", "b_LeftFinger")), "RF": ("b_RightHand", ("b_RightFinger",)),
+        "LH": ("b_LeftAnkle", ("b_LeftToe",)), "RH": ("b_RightAnkle", ("b_RightToe",))}),
+    ("biped (CMU)", {"L": ("LeftFoot", ("LeftToeBase", "LeftToe")), "R": ("RightFoot", ("RightToeBase", "RightToe"))}),
+    ("biped (Mixamo)", {"L": ("mixamorig:LeftFoot", ("mixamorig:LeftToeBase",)),
+                        "R": ("mixamorig:RightFoot", ("mixamorig:RightToeBase",))}),
+    ("biped (generic)", {"L": ("LeftAnkle", ("LeftToe", "LeftToes")), "R": ("RightAnkle", ("RightToe", "RightToes"))}),
+)
+
+
+@dataclass(frozen=True)
+class FootMap:
+    """Which joints stand for each foot: name -> (heel/ankle joint, toe joint or None)."""
+
+    feet: dict[str, tuple[str, str | None]]
+    rig: str
+
+
+def parse_feet(text: str) -> dict[str, tuple[str, str | None]]:
+    """``LH=ANKLE[:TOE],LF=...`` -> {"LH": ("ANKLE", "TOE"), ...}."""
+    feet: dict[str, tuple[str, str | None]] = {}
+    for part in filter(None, (p.strip() for p in text.split(","))):
+        if "=" not in part:
+            raise InputError(f"--feet {text!r}: expected NAME=ANKLE[:TOE] items separated by commas, "
+                             f"e.g. L=LeftFoot:LeftToeBase,R=RightFoot:RightToeBase")
+        name, joints = (s.strip() for s in part.split("=", 1))
+        ankle, _, toe = joints.partition(":")
+        if not name or not ankle:
+            raise InputError(f"--feet: {part!r}: give a foot name and its ankle joint, e.g. LH=b_LeftAnkle:b_LeftToe")
+        feet[name] = (ankle, toe or None)
+    if not feet:
+        raise InputError("--feet is empty; give NAME=ANKLE[:TOE] items, e.g. L=LeftFoot:LeftToeBase")
+    return feet
+
+
+def find_feet(names: list[str], path: str) -> FootMap:
+    """The feet of a skeleton with one of the known naming schemes (see KNOWN_RIGS)."""
+    present = set(names)
+    for rig, mapping in KNOWN_RIGS:
+        feet = {}
+        for foot, (ankle, toes) in mapping.items():
+            if ankle not in present:
+                break
+            feet[foot] = (ankle, next((t for t in toes if t in present), None))
+        else:
+            return FootMap(feet, rig)
+    ankles = [n for n in names if re.search(r"(foot|ankle|toe|hand|paw|hoof)", n, re.IGNORECASE)]
+    shown = ", ".join(ankles[:12] or names[:12]) + (" ..." if len(ankles or names) > 12 else "")
+    raise InputError(f"{path}: no feet recognised among the joints ({shown}); map them with "
+                     "--feet LH=ANKLE[:TOE],RH=...,LF=...,RF=... (quadruped) or --feet L=LeftFoot:LeftToeBase,"
+                     "R=RightFoot:RightToeBase (biped)")
+
+
+def _to_y_up(points: np.ndarray, up: str) -> np.ndarray:
+    """Re-express (..., 3) points so that ``up`` becomes +Y (right-handed)."""
+    if up == "z":
+        return np.stack([points[..., 0], points[..., 2], -points[..., 1]], axis=-1)
+    return points
+
+
+def detect_up(body: np.ndarray, feet: np.ndarray) -> str:
+    """The axis along which the body is highest above the feet: 'y' or 'z'."""
+    lift = np.median(body[:, None, :] - feet, axis=(0, 1))
+    return "z" if lift[2] > lift[1] else "y"
+
+
+def detect_units(height: float) -> tuple[str, str]:
+    """Units from a hip height in file units: (units, reason)."""
+    if 0.1 <= height <= 3.0:
+        return "m", f"hip height {height:.2f} units reads as metres"
+    if 3.0 < height < 25.0:
+        return "cmu", f"hip height {height:.1f} units reads as CMU mocap units (0.056444 m)"
+    if 25.0 <= height <= 300.0:
+        return "cm", f"hip height {height:.0f} units reads as centimetres"
+    if 300.0 < height <= 3000.0:
+        return "mm", f"hip height {height:.0f} units reads as millimetres"
+    raise InputError(f"cannot tell the units from a hip height of {height:g}; give --units m, cm, mm, in, ft or cmu")
+
+
+def _leading_jumps(points: np.ndarray, limit: int = 5) -> int:
+    """How many leading frames jump to the motion (e.g. a T-pose at frame 0 of a mocap
+    take): frames whose step to the next is far larger than the clip's typical step."""
+    step = np.linalg.norm(np.diff(points, axis=0), axis=-1).max(axis=-1)  # (T-1,)
+    typical = float(np.median(step)) + 1e-12
+    skip = 0
+    while skip < min(limit, len(step) - 2) and step[skip] > 8.0 * typical:
+        skip += 1
+    return skip
+
+
+def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis) -> tuple[FootTracks, str]:
+    skip = _leading_jumps(np.concatenate([heel, toe, body[:, None]], axis=1))
+    times, heel, toe, body = times[skip:] - times[skip], heel[skip:], toe[skip:], body[skip:]
+    up_axis = detect_up(body, heel) if up == "auto" else up
+    heel, toe, body = (_to_y_up(a, up_axis) for a in (heel, toe, body))
+    hip = float(np.median(body[:, 1] - heel[..., 1].min(axis=1)))
+    notes = []
+    if units == "auto":
+        units, reason = detect_units(abs(hip))
+        notes.append(f"units {units} ({reason}; --units to override)")
+    scale = UNIT_SCALE[units]
+    if up == "auto":
+        notes.append(f"up axis {up_axis.upper()}")
+    if skip:
+        notes.append(f"skipped {skip} leading frame{'s' if skip > 1 else ''} that jump into the motion (a rest pose)")
+    tracks = FootTracks(times=np.asarray(times, dtype=np.float64), names=tuple(names), heel=heel * scale,
+                        toe=toe * scale, body=body * scale, source=path, hip_height=hip * scale)
+    return tracks, "; ".join(notes)
+
+
+def tracks_from_bvh(path: str, feet: dict[str, tuple[str, str | None]] | None = None, units: Units = "auto",
+                    up: UpAxis = "auto") -> tuple[FootTracks, str]:
+    """Foot tracks of a BVH clip and a note on what was detected. The ankle joint is the
+    heel proxy; without a toe joint the ankle stands for both."""
+    clip = read_bvh(path)
+    mapping = FootMap(feet, "given with --feet") if feet else find_feet(clip.names, path)
+    for foot, (ankle, toe) in mapping.feet.items():
+        for joint in (ankle, toe):
+            if joint is not None and joint not in clip.names:
+                raise InputError(f"{path}: --feet {foot}: no joint {joint!r}{did_you_mean(joint, clip.names)}; "
+                                 f"joints are {', '.join(clip.names[:20])}{' ...' if len(clip.names) > 20 else ''}")
+    names = list(mapping.feet)
+    ankles = [mapping.feet[n][0] for n in names]
+    toes = [mapping.feet[n][1] or mapping.feet[n][0] for n in names]
+    pos = clip.positions(ankles + toes + [clip.joints[0].name])
+    heel, toe, body = pos[:, :len(names)], pos[:, len(names):2 * len(names)], pos[:, -1]
+    times = np.arange(clip.frames.shape[0]) * clip.frame_time
+    tracks, note = _finish(path, times, names, heel, toe, body, units, up)
+    return tracks, f"{mapping.rig}: " + ", ".join(f"{n}={a}:{t}" for n, (a, t) in mapping.feet.items()) + (
+        f"; {note}" if note else "")
+
+
+def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[FootTracks, str]:
+    """Foot tracks from a CSV with a ``time`` column (s) and, per foot, ``NAME_x``,
+    ``NAME_y``, ``NAME_z`` (heel / ankle) and optionally ``NAME_toe_x`` .. ``NAME_toe_z``;
+    optionally ``body_x`` .. ``body_z`` (default: the mean of the feet)."""
+    try:
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows = list(csv.reader(fh))
+    except OSError as exc:
+        raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    except (csv.Error, UnicodeDecodeError) as exc:
+        raise InputError(f"{path}: malformed CSV: {exc}") from None
+    if not rows:
+        raise InputError(f"{path}:1: empty CSV; expected a header like time,LH_x,LH_y,LH_z,...")
+    header = [h.strip() for h in rows[0]]
+    if "time" not in header:
+        raise InputError(f"{path}:1: missing column 'time' (seconds); the header is {','.join(header)}")
+    feet = list(dict.fromkeys(h[:-2] for h in header if h.endswith(("_x", "_y", "_z"))
+                              and not h[:-2].endswith("_toe") and h[:-2] != "body"))
+    if not feet:
+        raise InputError(f"{path}:1: no foot columns; expected NAME_x,NAME_y,NAME_z for each foot (e.g. LH_x)")
+    missing = [f"{f}_{a}" for f in feet for a in "xyz" if f"{f}_{a}" not in header]
+    missing += [f"{f}_toe_{a}" for f in feet for a in "xyz"
+                if any(f"{f}_toe_{b}" in header for b in "xyz") and f"{f}_toe_{a}" not in header]
+    if missing:
+        raise InputError(f"{path}:1: missing columns {', '.join(missing)}; each foot needs NAME_x, NAME_y, NAME_z "
+                         "(and NAME_toe_x/y/z if any toe column is given)")
+    data = np.empty((len(rows) - 1, len(header)))
+    for r, row in enumerate(rows[1:]):
+        line = r + 2
+        if len(row) != len(header):
+            raise InputError(f"{path}:{line}: malformed CSV: {len(row)} values, the header has {len(header)}")
+        for c, value in enumerate(row):
+            try:
+                data[r, c] = float(value)
+            except ValueError:
+                raise InputError(f"{path}:{line}: malformed CSV: column {header[c]!r} value {value!r} is not a "
+                                 "number") from None
+            if not math.isfinite(data[r, c]):
+                raise InputError(f"{path}:{line}: malformed CSV: column {header[c]!r} is {value}")
+    if data.shape[0] < 2:
+        raise InputError(f"{path}: the CSV holds {data.shape[0]} rows; a clip needs at least one full stride")
+    col = {h: i for i, h in enumerate(header)}
+    times = data[:, col["time"]]
+    if np.any(np.diff(times) <= 0):
+        bad = int(np.nonzero(np.diff(times) <= 0)[0][0]) + 3
+        raise InputError(f"{path}:{bad}: time must increase from row to row")
+    heel = np.stack([data[:, [col[f"{f}_x"], col[f"{f}_y"], col[f"{f}_z"]]] for f in feet], axis=1)
+    has_toe = all(f"{f}_toe_x" in col for f in feet)
+    toe = np.stack([data[:, [col[f"{f}_toe_x"], col[f"{f}_toe_y"], col[f"{f}_toe_z"]]] for f in feet], axis=1) \
+        if has_toe else heel.copy()
+    body = data[:, [col["body_x"], col["body_y"], col["body_z"]]] if "body_x" in col else heel.mean(axis=1)
+    return _finish(path, times - times[0], feet, heel, toe, body, units, up)
+
+
+def load_tracks(source: str, feet: str | None = None, units: Units = "auto", up: UpAxis = "auto") \
+        -> tuple[FootTracks, str]:
+    """Tracks from a .bvh or .csv file (by suffix)."""
+    suffix = os.path.splitext(source)[1].lower()
+    if not os.path.isfile(source):
+        raise InputError(f"{source}: no such file")
+    if suffix == ".bvh":
+        return tracks_from_bvh(source, parse_feet(feet) if feet else None, units, up)
+    if suffix == ".csv":
+        if feet:
+            raise InputError("--feet applies to BVH files; a CSV names its feet in the header (NAME_x, NAME_y, NAME_z)")
+        return tracks_from_csv(source, "m" if units == "auto" else units, "y" if up == "auto" else up)
+    raise InputError(f"{source}: unknown motion file type {suffix!r}; analyze reads .bvh and .csv files, or a "
+                     "creature (preset name or .toml)")
