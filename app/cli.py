@@ -63,6 +63,18 @@ def _non_negative(text: str) -> float:
     return value
 
 
+def _speed(text: str) -> tuple[float, float]:
+    parts = text.split(":")
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a speed in m/s (e.g. 1.5) or a ramp V0:V1 "
+                                         "(e.g. 0.5:6)") from None
+    if len(values) not in (1, 2) or any(not math.isfinite(v) or v <= 0 or v > 30 for v in values):
+        raise argparse.ArgumentTypeError(f"{text!r}: speeds must be in (0, 30] m/s, as V or V0:V1")
+    return (values[0], values[-1])
+
+
 def _samples(text: str) -> int:
     if text not in ("0", "2", "4", "8"):
         raise argparse.ArgumentTypeError(f"{text!r}: expected 0 (off), 2, 4 or 8 samples")
@@ -99,6 +111,18 @@ keys: Space play/pause, Right step, R reset view, F12 screenshot, G record,
 """
 
 
+ANALYZE_EPILOG = """\
+examples:
+  gaitlab analyze dog --gait trot                 Gaitlab's own trot: measured vs requested
+  gaitlab analyze horse --speed 0.5:8 --seconds 10     walk -> trot -> gallop, gait per time span
+  gaitlab analyze walk.bvh --plot walk.png        motion capture (feet found by joint names)
+  gaitlab analyze dog.bvh --feet LH=b_LeftAnkle:b_LeftToe,RH=b_RightAnkle:b_RightToe,...
+  gaitlab analyze feet.csv --json                 CSV columns: time, NAME_x, NAME_y, NAME_z [, NAME_toe_x ...]
+
+Phases follow Hildebrand: the left hind foot (or the left foot) touches down at 0.
+"""
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="gaitlab", description="Procedural tetrapod locomotion: parametric legs driven by "
                      "gait oscillators and analytic IK, rendered headless or live.",
@@ -132,12 +156,44 @@ def build_parser() -> argparse.ArgumentParser:
                         help="time in seconds of the PNG frame, or of a clip's first frame (default: 0)")
     render.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                         help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
+    render.add_argument("--speed", metavar="V[:V1]", type=_speed,
+                        help="speed in m/s, or a ramp V0:V1 over the clip: the gait follows the speed "
+                             "(walk, trot, gallop by Froude number); default length 4 s")
     render.add_argument("--msaa", metavar="N", type=_samples, default=4,
                         help="antialiasing samples: 0 (off), 2, 4 or 8 (default: 4)")
     render.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
     render.add_argument("--no-shadow", action="store_true", help="no shadow")
     render.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
     render.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
+
+    analyze = sub.add_parser("analyze", help="measure a gait: foot events, duty factor, phase, slip, gait name",
+                             description="Find each foot's stance, lift, liftoff, strike and landing times, then "
+                                         "duty factor, phase (Hildebrand: left hind = 0), stride, slip and skating, "
+                                         "and name the gait the pattern most resembles. SOURCE is a creature "
+                                         "(preset or .toml: Gaitlab's own motion), a BVH file or a CSV of foot "
+                                         "positions.", epilog=ANALYZE_EPILOG,
+                             formatter_class=argparse.RawDescriptionHelpFormatter)
+    analyze.add_argument("creature", nargs="?", default="dog", metavar="SOURCE",
+                         help="creature name or .toml, or a .bvh / .csv motion file (default: dog)")
+    analyze.add_argument("--json", action="store_true", help="print the report as JSON")
+    analyze.add_argument("--csv", metavar="OUT", type=Path, help="write the events as CSV (foot, kind, time)")
+    analyze.add_argument("--plot", metavar="OUT", type=Path,
+                         help="write a PNG: each foot's height with its events, and the gait diagram")
+    creature = analyze.add_argument_group("for a creature")
+    creature.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
+    creature.add_argument("--cycles", metavar="N", type=_positive("cycles", 200), help="cycles to simulate (default 4)")
+    creature.add_argument("--seconds", metavar="S", type=_positive("seconds", 600),
+                          help="seconds to simulate (default with --speed: 4)")
+    creature.add_argument("--speed", metavar="V[:V1]", type=_speed,
+                          help="speed-driven gait: m/s, or a ramp V0:V1 (the report lists the gait per time span)")
+    creature.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                          help="override a creature key (repeatable)")
+    files = analyze.add_argument_group("for a BVH or CSV file")
+    files.add_argument("--feet", metavar="MAP", help="BVH foot joints: NAME=ANKLE[:TOE],... e.g. "
+                                                     "L=LeftFoot:LeftToeBase,R=RightFoot:RightToeBase")
+    files.add_argument("--units", choices=("auto", "m", "cm", "mm", "in", "ft", "cmu"), default="auto",
+                       help="length units of the file (default: detected from the hip height; CSV: m)")
+    files.add_argument("--up", choices=("auto", "y", "z"), default="auto", help="up axis (default: detected; CSV: y)")
 
     view = sub.add_parser("view", help="open the interactive viewer (needs a display; try xvfb-run)",
                           description="Open a window in which the creature walks and every parameter is a live "
@@ -208,7 +264,7 @@ def cmd_render(args: argparse.Namespace) -> int:
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
                                               joints=not args.no_joints))
     request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,
-                            start=args.time, view=view)
+                            start=args.time, view=view, speed=args.speed)
     if fmt == "gif" and (warning := gif_fps_warning(args.fps)) and not args.quiet:
         print(warning, file=sys.stderr)
 
@@ -236,9 +292,9 @@ def cmd_render(args: argparse.Namespace) -> int:
             print(f"wrote {result.path} ({w}x{h}, {spec.name} {spec.gait.preset} at t = {args.time:g} s, "
                   f"{size / 1024:.0f} KiB)")
         else:
+            gaits = " -> ".join(result.gaits) if result.gaits else spec.gait.preset
             print(f"wrote {result.path}: {result.frames} frames, {result.seconds:.2f} s at {args.fps:g} fps "
-                  f"({result.cycles:.2f} cycles of {spec.name} {spec.gait.preset}), {w}x{h}, "
-                  f"{size / 1024:.0f} KiB")
+                  f"({result.cycles:.2f} cycles of {spec.name} {gaits}), {w}x{h}, {size / 1024:.0f} KiB")
     return 0
 
 
@@ -281,7 +337,72 @@ def cmd_view(args: argparse.Namespace) -> int:
     return run_viewer(spec, options)
 
 
-COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "view": cmd_view}
+def cmd_analyze(args: argparse.Namespace) -> int:
+    import json
+    import math as _math
+
+    from .analysis import analyze_tracks, tracks_from_motion
+    from .analysis.plot import write_plot
+    from .analysis.report import format_table, write_events_csv
+    from .analysis.sources import load_tracks
+    from .kinematics.rig import build_rig
+    from .output import check_output_dir
+    from .recording import clip_motion
+
+    for option, suffix in ((args.plot, ".png"), (args.csv, ".csv")):
+        if option is not None:
+            if option.suffix.lower() != suffix:
+                raise GaitlabError(f"{option}: use a {suffix} file name")
+            check_output_dir(option)
+    is_file = Path(args.creature).suffix.lower() in (".bvh", ".csv")
+    requested = None
+    if is_file:
+        given = [name for name, value in (("--gait", args.gait), ("--cycles", args.cycles), ("--seconds", args.seconds),
+                                          ("--speed", args.speed), ("--set", args.overrides)) if value]
+        if given:
+            raise GaitlabError(f"{', '.join(given)}: for creatures; a motion file has its own gait")
+        tracks, notes = load_tracks(args.creature, feet=args.feet, units=args.units, up=args.up)
+        gait = None
+    else:
+        given = [name for name, value in (("--feet", args.feet), ("--units", args.units != "auto"),
+                                          ("--up", args.up != "auto")) if value]
+        if given:
+            raise GaitlabError(f"{', '.join(given)}: for BVH or CSV files, not creatures")
+        if args.cycles is not None and args.seconds is not None:
+            raise GaitlabError("give --cycles or --seconds, not both")
+        spec = _load_with_overrides(args)
+        rig = build_rig(spec)
+        frequency = rig.gait.frequency
+        if args.speed is not None:
+            from .kinematics.speed import gait_at_speed
+
+            frequency = max(gait_at_speed(spec, v).gait.frequency for v in args.speed)
+        fps = float(max(120, _math.ceil(200 * frequency)))  # ~200 frames per stride: sub-percent timing
+        seconds = args.seconds
+        if args.speed is None and seconds is None:
+            cycles = args.cycles or 4.0
+            motion, _ = clip_motion(rig, fps, cycles=cycles)
+        else:
+            motion, _ = clip_motion(rig, fps, seconds=seconds, cycles=args.cycles, speed=args.speed)
+        tracks = tracks_from_motion(motion)
+        gait = None if args.speed is not None else spec.gait.preset
+        notes = f"{motion.frame_count} frames at {fps:g} fps"
+        if args.speed is None:
+            requested = {name: (rig.gait.duty_factor, float(phase)) for name, phase in zip(rig.leg_names,
+                                                                                           rig.gait.offsets)}
+    report = analyze_tracks(tracks, requested_gait=gait)
+    if args.csv is not None:
+        write_events_csv(report, args.csv)
+    if args.plot is not None:
+        write_plot(report, args.plot)
+    if args.json:
+        print(json.dumps(report.to_json(), indent=2))
+    else:
+        print(format_table(report, requested, notes))
+    return 0
+
+
+COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "analyze": cmd_analyze, "view": cmd_view}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

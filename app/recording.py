@@ -5,7 +5,7 @@ and by the viewer's Record panel, so equal settings give equal pixels.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
 
@@ -24,6 +24,8 @@ from .spec import CreatureSpec
 DEFAULT_CYCLES = 2.0
 MAX_FPS = 240.0
 MAX_SECONDS = 600.0
+MAX_SPEED = 30.0
+DEFAULT_SPEED_SECONDS = 4.0
 
 Progress = Callable[[int, int], None]
 
@@ -41,6 +43,7 @@ class RecordRequest:
     cycles: float | None = None
     start: float = 0.0
     view: ViewSettings = field(default_factory=ViewSettings)
+    speed: tuple[float, float] | None = None  # m/s at the first and last frame: speed-driven gaits
 
     def __post_init__(self) -> None:
         w, h = self.view.size
@@ -56,6 +59,11 @@ class RecordRequest:
                 raise GaitlabError(f"{name} {value:g}: must be greater than 0 and at most {MAX_SECONDS:g}")
         if not math.isfinite(self.start) or self.start < 0:
             raise GaitlabError(f"time {self.start:g}: must be a finite number of seconds >= 0")
+        if self.speed is not None:
+            if any(not (0 < v <= MAX_SPEED and math.isfinite(v)) for v in self.speed):
+                raise GaitlabError(f"speed {self.speed[0]:g}:{self.speed[1]:g}: speeds must be in (0, {MAX_SPEED:g}] m/s")
+            if self.cycles is not None and self.speed[0] != self.speed[1]:
+                raise GaitlabError("with a changing --speed give the length in --seconds (cycles vary in length)")
 
 
 @dataclass(frozen=True)
@@ -64,16 +72,21 @@ class RecordResult:
     frames: int
     seconds: float
     cycles: float
+    gaits: tuple[str, ...] = ()  # the gaits a speed-driven clip went through, in order
 
 
 def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: float | None = None,
-                start: float = 0.0) -> tuple[Motion, float | None]:
+                start: float = 0.0, speed: tuple[float, float] | None = None) -> tuple[Motion, float | None]:
     """The motion of a clip and, for whole-cycle clips, its cycle count.
 
     With ``cycles`` the frame count is ``round(cycles * fps / frequency)`` and the clock
     steps by exactly ``cycles / frames`` per frame (the frequency nudged by under half a
-    frame per clip) so the last frame leads seamlessly into the first.
+    frame per clip) so the last frame leads seamlessly into the first. With ``speed``
+    (m/s at the first and last frame, linear in between) the gait follows the speed
+    (:mod:`app.kinematics.speed`).
     """
+    if speed is not None:
+        return _speed_clip(rig, fps, seconds, cycles, speed)
     f = rig.gait.frequency
     start_clock = f * start
     if seconds is None:
@@ -115,7 +128,8 @@ class Recording:
             self.options = _with_grid(view.options, loop_grid_spacing(cycle, None))
             self.cycles: float | None = None
         else:
-            self.motion, self.cycles = clip_motion(rig, request.fps, request.seconds, request.cycles, request.start)
+            self.motion, self.cycles = clip_motion(rig, request.fps, request.seconds, request.cycles, request.start,
+                                                   request.speed)
             self.camera = clip_camera(self.motion, view)
             self.options = _with_grid(view.options, loop_grid_spacing(self.motion, self.cycles))
         self.total = self.motion.frame_count
@@ -181,8 +195,12 @@ class Recording:
         if self.format == "png":
             return RecordResult(Path(request.output), 1, 0.0, 0.0)
         seconds = self.total / request.fps
-        cycles = self.cycles if self.cycles is not None else seconds * self.frequency
-        return RecordResult(Path(request.output), self.total, seconds, cycles)
+        gaits = tuple(dict.fromkeys(self.motion.gaits))
+        if gaits:
+            cycles = float(self.motion.clock[-1] - self.motion.clock[0]) + float(np.diff(self.motion.clock[:2]).sum())
+        else:
+            cycles = self.cycles if self.cycles is not None else seconds * self.frequency
+        return RecordResult(Path(request.output), self.total, seconds, cycles, gaits)
 
     def cancel(self) -> None:
         """Stop without writing anything (a partial MP4 is deleted)."""
@@ -198,6 +216,20 @@ class Recording:
         if self._renderer is not None:
             self._renderer.release()
             self._renderer = None  # type: ignore[assignment]
+
+
+def _speed_clip(rig: Rig, fps: float, seconds: float | None, cycles: float | None,
+                speed: tuple[float, float]) -> tuple[Motion, float | None]:
+    from .kinematics.speed import gait_at_speed, simulate_speed
+
+    if seconds is None:
+        if cycles is not None:  # a constant speed: its frequency turns cycles into seconds
+            seconds = cycles / gait_at_speed(rig.spec, speed[0]).gait.frequency
+        else:
+            seconds = DEFAULT_SPEED_SECONDS
+    frames = frame_count(seconds, fps)
+    motion, gaits = simulate_speed(rig.spec, np.linspace(speed[0], speed[1], frames), fps)
+    return replace(motion, gaits=tuple(gaits)), None
 
 
 def record(request: RecordRequest, progress: Progress | None = None,
@@ -219,8 +251,6 @@ def record(request: RecordRequest, progress: Progress | None = None,
 
 
 def _with_grid(options: RenderOptions, spacing: float) -> RenderOptions:
-    from dataclasses import replace
-
     return replace(options, grid_spacing=spacing)
 
 

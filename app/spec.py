@@ -136,6 +136,13 @@ MOTION_RULES: dict[str, Rule] = {
     "tail_sway": _num(0, 60, unit="deg", doc="side-to-side tail swing"),
 }
 
+SPEED_RULES: dict[str, Rule] = {
+    "walk_trot": _num(0.05, 5.0, doc="Froude number v^2/(g h) at which a speed-driven walk becomes a trot"),
+    "trot_gallop": _num(0.1, 20.0, doc="Froude number at which a speed-driven trot becomes a gallop"),
+    "hysteresis": _num(0.0, 0.5, doc="fraction above (below) a threshold at which the gait changes up (down)"),
+    "gallop": Rule("choice", choices=("gallop", "rotary-gallop"), doc="which gallop fast speeds use"),
+}
+
 LOOK_RULES: dict[str, Rule] = {
     "body_color": Rule("color", doc="body, neck, head and tail colour"),
     "left_color": Rule("color", doc="colour of the left legs"),
@@ -151,6 +158,7 @@ TABLES: dict[str, dict[str, Rule]] = {
     "body": BODY_RULES,
     "gait": GAIT_RULES,
     "motion": MOTION_RULES,
+    "speed": SPEED_RULES,
     "look": LOOK_RULES,
 }
 _COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}$")
@@ -228,6 +236,17 @@ class MotionSpec:
 
 
 @dataclass(frozen=True)
+class SpeedSpec:
+    """How speed picks the gait (``--speed``): Froude thresholds (walk -> trot at 0.5 and
+    trot -> gallop at 2.5 by default, Alexander 1976) and their hysteresis."""
+
+    walk_trot: float = 0.5
+    trot_gallop: float = 2.5
+    hysteresis: float = 0.15
+    gallop: str = "gallop"
+
+
+@dataclass(frozen=True)
 class LookSpec:
     """Colours, as ``#rrggbb`` strings."""
 
@@ -245,6 +264,7 @@ class CreatureSpec:
     legs: tuple[LegSpec, ...]
     gait: GaitSpec = GaitSpec()
     motion: MotionSpec = MotionSpec()
+    speed: SpeedSpec = SpeedSpec()
     look: LookSpec = LookSpec()
     description: str = ""
     source: str = field(default="", compare=False)
@@ -277,6 +297,7 @@ class CreatureSpec:
             gait["phases"] = dict(self.gait.phases)
         doc["gait"] = gait
         doc["motion"] = _table(self.motion)
+        doc["speed"] = _table(self.speed)
         doc["look"] = _table(self.look)
         return doc
 
@@ -363,8 +384,8 @@ def load_creature(name_or_path: str | os.PathLike[str]) -> CreatureSpec:
 def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: str | None = None) -> CreatureSpec:
     """Build and validate a creature from a TOML-shaped dict. Raises :class:`SpecError`."""
     where = origin or source
-    _check_keys(data, {**TOP_RULES, "body": None, "legs": None, "gait": None, "motion": None, "look": None},
-                "", where, tables=("body", "legs", "gait", "motion", "look"))
+    _check_keys(data, {**TOP_RULES, "body": None, "legs": None, "gait": None, "motion": None, "speed": None,
+                       "look": None}, "", where, tables=("body", "legs", "gait", "motion", "speed", "look"))
     name = _value(data, "name", TOP_RULES["name"], where, required=False, default=Path(source).stem)
     description = _value(data, "description", TOP_RULES["description"], where, required=False, default="")
 
@@ -391,10 +412,14 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
 
     gait = _read_gait(_subtable(data, "gait", where, required=False), where)
     motion = MotionSpec(**_read_table(_subtable(data, "motion", where, required=False), MOTION_RULES, "motion", where))
+    speed = SpeedSpec(**_read_table(_subtable(data, "speed", where, required=False), SPEED_RULES, "speed", where))
+    if speed.trot_gallop <= speed.walk_trot:
+        raise SpecError(f"{_at(where)}speed.trot_gallop = {speed.trot_gallop:g} must be above speed.walk_trot = "
+                        f"{speed.walk_trot:g}")
     look = LookSpec(**_read_table(_subtable(data, "look", where, required=False), LOOK_RULES, "look", where))
 
     spec = CreatureSpec(name=name, description=description, body=body, legs=tuple(legs),
-                        gait=gait, motion=motion, look=look, source=source)
+                        gait=gait, motion=motion, speed=speed, look=look, source=source)
     _check_geometry(spec, where)
     return spec
 

@@ -202,7 +202,9 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
         score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
         score = savgol_filter(score, smooth, 2, mode="interp")
         low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
-        peaks, _ = find_peaks(-score, distance=max(1, int(0.6 * frames)))
+        # Candidate stance frames at least a third of a stride apart (cadence may change
+        # over the clip); two minima in one long stance are merged below.
+        peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
         stances = [int(p) for p in peaks if low[p] < 0.25]
         floor = 0.1 * float(np.percentile(np.abs(rel[:, f]), 95))
         steps = []

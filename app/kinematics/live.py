@@ -6,8 +6,11 @@ shape) reaches each foot without a jump and without dragging a planted foot:
 
 - each foot takes the new duty factor and step height at its next touchdown, the one
   instant where the oscillator's position does not depend on them;
-- each foot takes the new stride at its next lift-off, and its swing eases from the old
-  stride to the new one, so it lands exactly where the new stance begins;
+- with the planted wave, a foot on the ground is locked to the ground (it moves back
+  exactly as far as the ground moves, whatever the speed is doing) and its swing eases
+  from wherever it lifted off to where the new stride lands it: no slip, no jump;
+- each foot takes the new stride at its next lift-off, and (with the seed's skewed-sine
+  waves) its swing eases from the old stride to the new one;
 - each foot moves its phase offset towards the new one only while it is in the air,
   at most :data:`SWING_RETIME` of the clock's rate (its swing runs up to that much faster
   or slower), taking the shorter way round the cycle;
@@ -32,6 +35,7 @@ from .rig import Rig, build_rig
 
 BLEND_CYCLES = 0.35
 SWING_RETIME = 0.6
+SMALL_CHANGE = 0.03  # relative frequency (and absolute bob) change applied at once
 
 
 def _smoothstep(x: float) -> float:
@@ -69,6 +73,13 @@ class LiveMotion:
         self.stride = np.full(n, g.stride)
         self.stride_lift = self.stride.copy()
         self.step_height = np.full(n, g.step_height)
+        # Ground locking (planted wave): where each planted foot touched down (metres ahead
+        # of its hip) and the ground's travel then; where each swinging foot lifted off.
+        reach = self.stride * float(self.rig.l_rest.mean())
+        phase = self.foot_phase()
+        self.touch_pos = 0.5 * reach
+        self.touch_ground = self.ground - np.where(phase < self.duty, phase / self.duty, 0.0) * reach
+        self.lift_pos = -0.5 * reach
         self._freq_from = self._freq_to = g.frequency
         self._bob_from = self._bob_to = g.bob
         self._wave_from = self._wave_to = g.wave
@@ -82,30 +93,44 @@ class LiveMotion:
     _DFWD = 30.0 * _S ** 2 * (_S - 1.0) ** 2
     _DLIFT = np.pi * np.cos(np.pi * _S)
 
-    def _swing_terms(self, duty, stride_travel, step_height):
+    def _swing_terms(self, duty, travel_m, step_height):
         """Per foot and swing sample (L, 41): fore-aft and vertical speed (m/s) per unit of
-        phase speed (cycles/s)."""
+        phase speed (cycles/s), for swings covering ``travel_m`` metres."""
         duty = np.asarray(duty, dtype=np.float64)[..., None]
-        a = self._DFWD * (np.asarray(stride_travel)[..., None] * float(self.rig.l_rest.mean())) / (1.0 - duty)
+        a = self._DFWD * np.asarray(travel_m, dtype=np.float64)[..., None] / (1.0 - duty)
         b = self._DLIFT * (np.asarray(step_height)[..., None] * self.rig.l_rest[:, None]) / (1.0 - duty)
         return a, b
 
-    def _swing_speed(self, phase_speed, duty, stride_travel, step_height, ground_speed) -> np.ndarray:
+    def _swing_speed(self, phase_speed, duty, travel_m, step_height, ground_speed) -> np.ndarray:
         """Peak speed over the ground (m/s) of each foot's swing at ``phase_speed``."""
-        a, b = self._swing_terms(np.broadcast_to(duty, (self.rig.leg_count,)), stride_travel, step_height)
+        a, b = self._swing_terms(np.broadcast_to(duty, (self.rig.leg_count,)), travel_m, step_height)
         return np.hypot(ground_speed + phase_speed * a, phase_speed * b).max(axis=-1)
 
     def _steady_swing_speed(self) -> float:
         g = self.rig.gait
         ground = g.stride * float(self.rig.l_rest.mean()) / g.duty_factor * g.frequency
-        return float(self._swing_speed(g.frequency, g.duty_factor, g.stride, g.step_height, ground).max())
+        travel = g.stride * float(self.rig.l_rest.mean())
+        return float(self._swing_speed(g.frequency, g.duty_factor, travel, g.step_height, ground).max())
+
+    def _swing_travel(self) -> np.ndarray:
+        """Metres each foot's current (or, while planted, next) swing covers: from its
+        lift-off point to its landing point."""
+        lm = float(self.rig.l_rest.mean())
+        phase = self.foot_phase()
+        airborne = phase >= self.duty
+        landing_now = 0.5 * self.stride * lm
+        landing_next = 0.5 * self.rig.gait.stride * lm  # the stride a planted foot will take at lift-off
+        lift_next = self.touch_pos - (self.ground - self.touch_ground) - (self.duty - phase) * self._ground_speed()
+        travel = np.where(airborne, landing_now - self.lift_pos, landing_next - lift_next)
+        fallback = 0.5 * (self.stride + self.stride_lift) * lm  # the skewed-sine waves: nominal strides
+        return np.where(self._wave_now() == "planted", np.maximum(travel, 0.0), fallback)
 
     def _phase_speed_cap(self) -> np.ndarray:
         """Per foot, the fastest phase speed (cycles/s) that keeps its swing's peak speed
         over the ground under the cap: the smallest root over the swing samples of
         |(G + w a, w b)| = cap."""
         ground = self._ground_speed() * self.frequency
-        a, b = self._swing_terms(self.duty, 0.5 * (self.stride + self.stride_lift), self.step_height)
+        a, b = self._swing_terms(self.duty, self._swing_travel(), self.step_height)
         cap = self._speed_cap * 0.98  # margin for what the model leaves out (hip sway, stride easing)
         q = a * a + b * b
         disc = np.maximum(ground * ground * a * a - q * (ground * ground - cap * cap), 0.0)
@@ -126,16 +151,17 @@ class LiveMotion:
     def _update_settled(self) -> None:
         g = self.rig.gait
         offset_error = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max()
+        nominal = g.stride * float(self.rig.l_rest.mean())
         self._feet_settled = bool(
             offset_error <= 1e-12 and np.all(self.duty == g.duty_factor) and np.all(self.stride == g.stride)
-            and np.all(self.stride_lift == g.stride) and np.all(self.step_height == g.step_height))
+            and np.all(self.stride_lift == g.stride) and np.all(self.step_height == g.step_height)
+            and np.allclose(self._swing_travel(), nominal, rtol=1e-3, atol=1e-6))
 
     def set_spec(self, spec: CreatureSpec, blend: bool = True) -> None:
         """Switch to a new creature spec; gait changes blend unless ``blend`` is False."""
         frequency, bob, wave = self.frequency, self.bob, self._wave_now()
         speed_now = max(self._speed_cap, float(np.max(self._swing_speed(
-            frequency, self.duty, 0.5 * (self.stride + self.stride_lift), self.step_height,
-            self._ground_speed() * frequency))))
+            frequency, self.duty, self._swing_travel(), self.step_height, self._ground_speed() * frequency))))
         self.rig = build_rig(spec)
         g = self.rig.gait
         if not blend:
@@ -143,7 +169,19 @@ class LiveMotion:
             return
         self._update_settled()
         self._speed_cap = max(speed_now, self._steady_swing_speed())
-        if (g.frequency, g.bob, g.wave) != (self._freq_to, self._bob_to, self._wave_to):
+        if (g.frequency, g.bob, g.wave) == (self._freq_to, self._bob_to, self._wave_to):
+            return
+        small = (abs(g.frequency - frequency) <= SMALL_CHANGE * frequency and abs(g.bob - bob) <= SMALL_CHANGE
+                 and g.wave == wave)
+        if small and self._blend >= 1.0:
+            # A gradual change (e.g. a speed ramp, one frame at a time) applies directly: the
+            # clock integrates the frequency, so nothing jumps.
+            self._freq_from = self._freq_to = g.frequency
+            self._bob_from = self._bob_to = g.bob
+        elif self._blend < 1.0 and g.wave == self._wave_to:
+            # A blend is under way: aim it at the new values instead of starting over.
+            self._freq_to, self._bob_to = g.frequency, g.bob
+        else:
             self._freq_from, self._bob_from, self._wave_from = frequency, bob, wave
             self._freq_to, self._bob_to, self._wave_to = g.frequency, g.bob, g.wave
             self._blend = 0.0
@@ -186,6 +224,14 @@ class LiveMotion:
         after = self.foot_phase()
         landed = after < before
         lifted = ~landed & (before < self.duty) & (after >= self.duty)
+        lm = float(self.rig.l_rest.mean())
+        ground_per_cycle = self._ground_speed()
+        # Ground locking: a landing foot fixes its spot (touched down `after` cycles ago);
+        # a lifting foot remembers where it left the ground.
+        self.touch_pos = np.where(landed, 0.5 * self.stride * lm, self.touch_pos)
+        self.touch_ground = np.where(landed, self.ground - after * ground_per_cycle, self.touch_ground)
+        left_at = self.touch_pos - (self.ground - (after - self.duty) * ground_per_cycle - self.touch_ground)
+        self.lift_pos = np.where(lifted, left_at, self.lift_pos)
         self.stride_lift = np.where(lifted, self.stride, self.stride_lift)
         self.stride = np.where(lifted, g.stride, self.stride)
         self.duty = np.where(landed, g.duty_factor, self.duty)
@@ -201,8 +247,10 @@ class LiveMotion:
             fastest = self._phase_speed_cap() * dt  # phase advance this step may not exceed it
             room = np.maximum(cycles - fastest, -limit)  # lowest allowed change (< 0: room to speed up)
             need = np.where((need < 0) & (room >= 0), need + 1.0, need)
+            nominal = g.stride * float(self.rig.l_rest.mean())
             settled = (np.isclose(self.duty, g.duty_factor) & np.isclose(self.stride, g.stride)
-                       & np.isclose(self.stride_lift, g.stride) & np.isclose(self.step_height, g.step_height))
+                       & np.isclose(self.stride_lift, g.stride) & np.isclose(self.step_height, g.step_height)
+                       & np.isclose(self._swing_travel(), nominal, rtol=1e-3))
             # A foot still in its old stride is slowed if its swing would be too fast; a
             # settled foot is never forced slower than its own gait.
             low = np.where(settled, np.minimum(room, 0.0), room)
@@ -214,8 +262,7 @@ class LiveMotion:
         # the stance it has just left (phase = duty).
         change = np.clip(change, after - 1.0 + 1e-9, after - self.duty)
         self.offsets = np.mod(self.offsets + np.where(airborne, change, 0.0), 1.0)
-        if not self._feet_settled:
-            self._update_settled()
+        self._update_settled()
         if not self.blending:
             self._speed_cap = self._steady_swing_speed()
 
@@ -238,9 +285,29 @@ class LiveMotion:
 
     # -- output -----------------------------------------------------------------------
 
+    def frame_inputs(self) -> dict[str, np.ndarray | float | str]:
+        """This frame's oscillator inputs for :func:`solve_motion`: clock, offsets (L,),
+        duty (L,), stride (L,) (in the air, eased from the stride the foot left to the one
+        it will land in), step height (L,), bob, ground offset, time, wave shape."""
+        phase = self.foot_phase()
+        airborne = phase >= self.duty
+        swing = np.where(airborne, (phase - self.duty) / (1.0 - self.duty), 0.0)
+        ease = swing * swing * (3.0 - 2.0 * swing)
+        stride = np.where(airborne, self.stride_lift + (self.stride - self.stride_lift) * ease, self.stride)
+        forward_m = None
+        if self._wave_now() == "planted" and not (self._blend < 1.0 and self._wave_from != self._wave_to):
+            landing = 0.5 * self.stride * float(self.rig.l_rest.mean())
+            glide = swing * swing * swing * (swing * (6.0 * swing - 15.0) + 10.0)  # the planted wave's swing
+            forward_m = np.where(airborne, self.lift_pos + (landing - self.lift_pos) * glide,
+                                 self.touch_pos - (self.ground - self.touch_ground))
+        return {"clock": self.clock, "offsets": self.offsets.copy(), "duty": self.duty.copy(), "stride": stride,
+                "step_height": self.step_height.copy(), "bob": self.bob, "ground": self.ground, "time": self.time,
+                "wave": self._wave_now(), "forward_m": forward_m}
+
     def pose(self) -> Pose:
         """The pose now."""
         rig = self.rig
+        inputs = self.frame_inputs()
         clock = np.array([self.clock])
         duty = self.duty[None, :]
         waves = None
@@ -249,13 +316,9 @@ class LiveMotion:
             old = foot_waves(rig, clock, self.offsets, duty, self._wave_from)
             new = foot_waves(rig, clock, self.offsets, duty, self._wave_to)
             waves = (new[0], _mix_waves(old[1], new[1], w), _mix_waves(old[2], new[2], w))
-        # In the air the stride eases from the one the foot left to the one it will land in.
-        phase = self.foot_phase()
-        airborne = phase >= self.duty
-        swing = np.where(airborne, (phase - self.duty) / (1.0 - self.duty), 0.0)
-        ease = swing * swing * (3.0 - 2.0 * swing)
-        stride = np.where(airborne, self.stride_lift + (self.stride - self.stride_lift) * ease, self.stride)
-        motion = solve_motion(rig, clock, offsets=self.offsets, duty=duty, stride=stride[None, :],
+        forward_m = None if inputs["forward_m"] is None else inputs["forward_m"][None, :]
+        motion = solve_motion(rig, clock, offsets=self.offsets, duty=duty, stride=inputs["stride"][None, :],
                               step_height=self.step_height[None, :], bob=self.bob,
-                              ground_offset=np.array([self.ground]), times=np.array([self.time]), waves=waves)
+                              ground_offset=np.array([self.ground]), times=np.array([self.time]), waves=waves,
+                              forward_m=forward_m)
         return motion.pose(0)

@@ -78,6 +78,7 @@ class Motion:
     leg_names: tuple[str, ...]
     fps: float
     rig: Rig
+    gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
 
     @property
     def frame_count(self) -> int:
@@ -129,7 +130,8 @@ def solve_motion(rig: Rig, clock: ArrayLike, *, offsets: ArrayLike | None = None
                  step_height: ArrayLike | None = None, bob: ArrayLike | None = None,
                  ground_offset: ArrayLike | None = None, times: ArrayLike | None = None,
                  fps: float = 60.0,
-                 waves: tuple[NDArray[np.float64], FootWave, FootWave] | None = None) -> Motion:
+                 waves: tuple[NDArray[np.float64], FootWave, FootWave] | None = None,
+                 forward_m: ArrayLike | None = None) -> Motion:
     """Poses for gait clock values.
 
     clock: (T,) cycles. Optional gait values (default: the rig's gait): offsets
@@ -138,7 +140,9 @@ def solve_motion(rig: Rig, clock: ArrayLike, *, offsets: ArrayLike | None = None
     (T,). ground_offset (T,) metres of ground travel (default: the planted feet's mean
     stride / duty times the clock, i.e. how far they have been carried since clock 0).
     ``waves`` replaces the oscillators (phase, wave, bob wave as from
-    :func:`foot_waves`), e.g. a cross-fade of two wave shapes.
+    :func:`foot_waves`), e.g. a cross-fade of two wave shapes. ``forward_m`` (T, L) gives
+    each foot's fore-aft offset from its hip in metres directly (feet locked to the ground
+    while planted, see LiveMotion) instead of the oscillator's offset times the stride.
     """
     gait = rig.gait
     clock = np.atleast_1d(np.asarray(clock, dtype=np.float64))
@@ -189,7 +193,9 @@ def solve_motion(rig: Rig, clock: ArrayLike, *, offsets: ArrayLike | None = None
 
     rest_z = (rig.pair_position[rig.pair_index] - 0.5) * rig.body_length
     neutral = np.stack([rig.hip_side * rig.half_width, np.zeros(rig.leg_count), rest_z], axis=-1)  # (L, 3)
-    targets = neutral + np.stack([np.zeros_like(wave.lift), wave.lift * lift_m, wave.forward * stride_m], axis=-1)
+    forward = wave.forward * stride_m if forward_m is None else np.broadcast_to(
+        np.asarray(forward_m, dtype=np.float64), wave.lift.shape)
+    targets = neutral + np.stack([np.zeros_like(wave.lift), wave.lift * lift_m, forward], axis=-1)
     joints = solve_legs(
         hips, targets, FORWARD, UP, np.sin(np.pi * wave.swing),
         femur=rig.femur, tibia=rig.tibia, metatarsus=rig.metatarsus, toe=rig.toe,
