@@ -354,7 +354,11 @@ def cmd_analyze(args: argparse.Namespace) -> int:
             if option.suffix.lower() != suffix:
                 raise GaitlabError(f"{option}: use a {suffix} file name")
             check_output_dir(option)
-    is_file = Path(args.creature).suffix.lower() in (".bvh", ".csv")
+    suffix = Path(args.creature).suffix.lower()
+    if suffix not in ("", ".toml", ".bvh", ".csv"):
+        raise GaitlabError(f"{args.creature}: unknown file type {suffix!r}; analyze reads a creature (preset name "
+                           "or .toml), a .bvh or a .csv file")
+    is_file = suffix in (".bvh", ".csv")
     requested = None
     if is_file:
         given = [name for name, value in (("--gait", args.gait), ("--cycles", args.cycles), ("--seconds", args.seconds),

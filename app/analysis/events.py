@@ -135,6 +135,18 @@ def _speed_check(rel: NDArray, start: int, threshold: float, step: int) -> int |
     return None if len(hits) == 0 else start + step * int(hits[0])
 
 
+def _plateau_centre(score: NDArray, peak: int, tolerance: float = 0.02) -> int:
+    """The middle of the stretch around ``peak`` where ``score`` stays within ``tolerance``
+    (of its range) of the minimum: a flat stance's firmest frame is its centre, not an edge."""
+    limit = score[peak] + tolerance * max(float(np.ptp(score)), 1e-12)
+    lo = hi = peak
+    while lo > 0 and score[lo - 1] <= limit:
+        lo -= 1
+    while hi < len(score) - 1 and score[hi + 1] <= limit:
+        hi += 1
+    return (lo + hi) // 2
+
+
 def _one_per_contact(steps: list[Step], score: NDArray) -> list[Step]:
     """A long flat stance can hold two score minima: keep one step per ground contact
     (same strike and liftoff), at its firmest frame."""
@@ -205,7 +217,7 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
         # Candidate stance frames at least a third of a stride apart (cadence may change
         # over the clip); two minima in one long stance are merged below.
         peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
-        stances = [int(p) for p in peaks if low[p] < 0.25]
+        stances = [_plateau_centre(score, int(p)) for p in peaks if low[p] < 0.25]
         floor = 0.1 * float(np.percentile(np.abs(rel[:, f]), 95))
         steps = []
         for k in stances:

@@ -16,6 +16,7 @@ from .tracks import FootTracks
 
 # Biped gaits, for two-footed clips: left/right phase and a typical duty factor.
 BIPED_GAITS: dict[str, tuple[float, float]] = {"walk": (0.5, 0.62), "run": (0.5, 0.35), "hop": (0.0, 0.4)}
+TRANSITION_DISTANCE = 0.12  # a cycle further than this from every gait is a change between gaits
 SKATE_HEIGHT = 0.05  # m, for a 0.9 m hip height (scaled with the creature when known)
 SKATE_SPEED = 0.5  # m/s, for a 0.9 m hip height (scaled with sqrt of the size: Froude)
 
@@ -114,6 +115,11 @@ def match_gait(phases: dict[str, float], duty: float) -> str:
     """The named gait closest to measured phases (relative to the reference foot) and a
     duty factor: mean cyclic phase error plus the duty-factor difference; asymmetric
     gaits are tried on both leads."""
+    return gait_distance(phases, duty)[0]
+
+
+def gait_distance(phases: dict[str, float], duty: float) -> tuple[str, float]:
+    """(closest gait, its distance) — see :func:`match_gait`."""
     feet = set(phases)
     if feet >= set(TETRAPOD_FEET):
         best, best_d = "", math.inf
@@ -126,11 +132,13 @@ def match_gait(phases: dict[str, float], duty: float) -> str:
                 d += abs(duty - GAIT_PRESETS[name].duty_factor)
                 if d < best_d:
                     best, best_d = name, d
-        return best
+        return best, float(best_d)
     if {"L", "R"} <= feet:
         lr = phases["R"] - phases["L"]
-        return min(BIPED_GAITS, key=lambda g: cyclic_distance(lr, BIPED_GAITS[g][0]) + abs(duty - BIPED_GAITS[g][1]))
-    return "unknown"
+        scores = {g: cyclic_distance(lr, p) + abs(duty - d) for g, (p, d) in BIPED_GAITS.items()}
+        best = min(scores, key=scores.get)
+        return best, scores[best]
+    return "unknown", math.inf
 
 
 def _step_phases(times: np.ndarray, strikes: dict[str, np.ndarray], ref: str) -> dict[str, list[float]]:
@@ -224,7 +232,9 @@ def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, n
             phases[fe.name] = (times[s.strike] - t0) / (t1 - t0)
             duties.append((times[s.liftoff] - times[s.strike]) / (t1 - t0))
         else:
-            name = match_gait(phases, float(np.mean(duties)))
+            name, distance = gait_distance(phases, float(np.mean(duties)))
+            if distance > TRANSITION_DISTANCE:
+                name = "transition"
             if spans and spans[-1].gait == name and abs(spans[-1].end - t0) < 1e-9:
                 spans[-1].end = float(t1)
             else:

@@ -86,6 +86,9 @@ class LiveMotion:
         self._blend = 1.0  # progress of the frequency / bob / wave blend, 0..1
         self._feet_settled = True
         self._speed_cap = self._steady_swing_speed()  # m/s no swinging foot may exceed
+        self._guard = False  # a gait switch is under way: the speed cap applies
+        self._stepped = np.ones(self.rig.leg_count, dtype=bool)  # foot took a full step since the switch
+        self._landed = np.ones(self.rig.leg_count, dtype=bool)
 
     # The planted wave's swing, sampled: d(forward)/ds (smootherstep, per stride) and
     # d(lift)/ds (per step height) at swing progress s.
@@ -168,7 +171,18 @@ class LiveMotion:
             self._adopt_all()
             return
         self._update_settled()
-        self._speed_cap = max(speed_now, self._steady_swing_speed())
+        offsets_change = not np.allclose(np.mod(g.offsets - self.offsets + 0.5, 1.0) - 0.5, 0.0, atol=1e-9)
+        big_change = (abs(g.frequency - frequency) > SMALL_CHANGE * frequency or g.wave != wave
+                      or not np.allclose(self.duty, g.duty_factor, rtol=0, atol=SMALL_CHANGE)
+                      or not np.allclose(self.stride, g.stride, rtol=SMALL_CHANGE, atol=0))
+        if offsets_change or big_change:
+            # A gait switch: the speed cap guards it until every foot has reached the new
+            # phase and taken a full step in the new gait. (Gradual changes, like a speed
+            # ramp frame by frame, need no guard.)
+            self._speed_cap = max(speed_now, self._steady_swing_speed())
+            self._guard = True
+            self._stepped = np.zeros(self.rig.leg_count, dtype=bool)
+            self._landed = np.zeros(self.rig.leg_count, dtype=bool)
         if (g.frequency, g.bob, g.wave) == (self._freq_to, self._bob_to, self._wave_to):
             return
         small = (abs(g.frequency - frequency) <= SMALL_CHANGE * frequency and abs(g.bob - bob) <= SMALL_CHANGE
@@ -236,6 +250,8 @@ class LiveMotion:
         self.stride = np.where(lifted, g.stride, self.stride)
         self.duty = np.where(landed, g.duty_factor, self.duty)
         self.step_height = np.where(landed, g.step_height, self.step_height)
+        self._stepped |= self._landed & lifted
+        self._landed |= landed
 
         # Feet in the air move their phase offset towards the new one. Slowing a swing
         # (offset up) is always safe; speeding it up (offset down) only while the speed cap
@@ -243,7 +259,7 @@ class LiveMotion:
         airborne = ~landed & (after >= self.duty)
         need = np.mod(g.offsets - self.offsets + 0.5, 1.0) - 0.5
         limit = SWING_RETIME * cycles
-        if self.blending:
+        if self._guard:
             fastest = self._phase_speed_cap() * dt  # phase advance this step may not exceed it
             room = np.maximum(cycles - fastest, -limit)  # lowest allowed change (< 0: room to speed up)
             need = np.where((need < 0) & (room >= 0), need + 1.0, need)
@@ -263,7 +279,11 @@ class LiveMotion:
         change = np.clip(change, after - 1.0 + 1e-9, after - self.duty)
         self.offsets = np.mod(self.offsets + np.where(airborne, change, 0.0), 1.0)
         self._update_settled()
-        if not self.blending:
+        offsets_done = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max() <= 1e-9
+        travel_done = np.allclose(self._swing_travel(), g.stride * float(self.rig.l_rest.mean()), rtol=0.03)
+        if self._guard and offsets_done and self._stepped.all() and travel_done:
+            self._guard = False
+        if not self._guard:
             self._speed_cap = self._steady_swing_speed()
 
     def _ground_speed(self) -> float:

@@ -57,10 +57,15 @@ def gait_at_speed(spec: CreatureSpec, speed: float, current: str | None = None) 
     """``spec`` with the gait for ``speed`` (m/s): preset, frequency, duty factor and stride."""
     if not math.isfinite(speed) or speed <= 0:
         raise ValueError(f"speed must be a positive number of m/s, got {speed}")
+    gait = choose_gait(froude(speed, build_rig(spec).hip_height), current, spec)
+    return gait_with_speed(spec, speed, gait)
+
+
+def gait_with_speed(spec: CreatureSpec, speed: float, gait: str) -> CreatureSpec:
+    """``spec`` doing ``gait`` at ``speed`` (m/s), whatever the thresholds say."""
     rig = build_rig(spec)
     h = rig.hip_height
     fr = froude(speed, h)
-    gait = choose_gait(fr, current, spec)
     intercept, slope, lo, hi = _DUTY["gallop" if "gallop" in gait else gait]
     duty = float(np.clip(intercept - slope * math.sqrt(fr), lo, hi))
     length = stride_length(speed, h)

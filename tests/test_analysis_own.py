@@ -1,0 +1,62 @@
+"""Analysing Gaitlab's own motion: the measured gait is the requested one."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from app import build_rig, load_creature
+from app.analysis import analyze_tracks, tracks_from_motion
+from app.analysis.metrics import cyclic_distance
+from app.gaits import GAIT_PRESETS
+from app.recording import clip_motion
+
+
+def analyse(creature: str, gait: str, wave: str = "planted"):
+    rig = build_rig(load_creature(creature).with_overrides({"gait.preset": gait, "gait.wave": wave}))
+    fps = max(120.0, math.ceil(200 * rig.gait.frequency))
+    motion, _ = clip_motion(rig, fps, cycles=4.0)
+    return rig, analyze_tracks(tracks_from_motion(motion), gait)
+
+
+CASES = [("dog", g, "planted") for g in GAIT_PRESETS] + [("horse", g, "skewed-sine") for g in GAIT_PRESETS]
+
+
+@pytest.mark.parametrize("creature, gait, wave", CASES)
+def test_measured_duty_and_phase_match_the_request(creature: str, gait: str, wave: str) -> None:
+    rig, report = analyse(creature, gait, wave)
+    requested = dict(zip(rig.leg_names, rig.gait.offsets))
+    for foot in report.feet:
+        assert foot.duty_factor == pytest.approx(rig.gait.duty_factor, abs=0.02), foot.name
+        assert cyclic_distance(foot.phase, requested[foot.name]) <= 0.02, foot.name
+    assert report.gait_match == gait
+    assert report.cycle_seconds == pytest.approx(1.0 / rig.gait.frequency, rel=0.01)
+
+
+def test_walk_limb_phase_and_trot_diagonals() -> None:
+    _, walk = analyse("dog", "walk")
+    assert 0.2 <= walk.limb_phase <= 0.3
+    _, trot = analyse("dog", "trot")
+    assert cyclic_distance(trot.foot("LH").phase, trot.foot("RF").phase) <= 0.02
+    assert cyclic_distance(trot.foot("RH").phase, trot.foot("LF").phase) <= 0.02
+
+
+def test_planted_feet_do_not_slip_or_skate() -> None:
+    _, report = analyse("cat", "gallop")
+    for foot in report.feet:
+        assert foot.max_stance_slip == pytest.approx(0.0, abs=1e-6)
+        assert foot.skating_ratio == 0.0
+
+
+def test_report_json_has_the_documented_shape() -> None:
+    _, report = analyse("dog", "canter")
+    doc = report.to_json()
+    assert set(doc) >= {"source", "gait", "cycle_seconds", "speed", "limb_phase", "gait_match", "feet"}
+    foot = doc["feet"][0]
+    assert set(foot) == {"name", "duty_factor", "phase", "stride_length", "max_stance_slip", "skating_ratio", "events"}
+    kinds = {e["kind"] for e in foot["events"]}
+    assert kinds == {"lift", "liftoff", "strike", "landing", "stance"}
+    times = [e["time"] for e in foot["events"]]
+    assert times == sorted(times)

@@ -1,0 +1,51 @@
+"""The analysis on real motion capture nobody here wrote (see tests/data/README.md)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from app.analysis import analyze_tracks
+from app.analysis.metrics import cyclic_distance
+from app.analysis.sources import load_tracks
+
+DATA = Path(__file__).parent / "data"
+
+
+def test_cmu_human_walk() -> None:
+    tracks, notes = load_tracks(str(DATA / "human_walk_cmu_12_01.bvh"))
+    assert tracks.names == ("L", "R") and "cmu" in notes and "rest pose" in notes
+    assert tracks.hip_height == pytest.approx(0.85, abs=0.1)  # metres, after detecting CMU units
+    report = analyze_tracks(tracks)
+    for foot in report.feet:
+        assert 0.55 <= foot.duty_factor <= 0.70, foot  # human walking: stance ~60% of the stride
+    assert cyclic_distance(report.foot("R").phase, 0.5) <= 0.05
+    assert report.gait_match == "walk"
+    assert 1.0 <= report.cycle_seconds <= 1.4 and 0.6 <= report.speed <= 1.3
+
+
+def test_dog_walk_reads_as_a_lateral_sequence_walk() -> None:
+    tracks, notes = load_tracks(str(DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"))
+    assert set(tracks.names) == {"LF", "RF", "LH", "RH"} and "centimetres" in notes
+    report = analyze_tracks(tracks)
+    assert 0.05 <= report.foot("LF").phase <= 0.45  # LF touches down a fraction of a cycle after LH
+    assert cyclic_distance(report.foot("RH").phase, 0.5) <= 0.12  # RH about half a cycle after LH
+    assert report.gait_match == "walk"
+    assert all(f.duty_factor > 0.5 for f in report.feet)  # a walk: always more than half on the ground
+
+
+def test_dog_trot() -> None:
+    report = analyze_tracks(load_tracks(str(DATA / "dog_trot_tencent_walkrun001_f960-1156.bvh"))[0])
+    assert report.gait_match == "trot"
+    assert cyclic_distance(report.foot("RF").phase, 0.0) <= 0.08  # diagonal pairs together
+    assert cyclic_distance(report.foot("LF").phase, report.foot("RH").phase) <= 0.08
+
+
+def test_feet_mapping_by_hand_gives_the_same_result() -> None:
+    from app.analysis.sources import parse_feet, tracks_from_bvh
+
+    feet = parse_feet("LH=b_LeftAnkle:b_LeftToe,RH=b_RightAnkle:b_RightToe,LF=b_LeftHand:b__LeftFinger,"
+                      "RF=b_RightHand:b_RightFinger")
+    tracks, notes = tracks_from_bvh(str(DATA / "dog_trot_tencent_walkrun001_f960-1156.bvh"), feet, units="cm")
+    assert "--feet" in notes and analyze_tracks(tracks).gait_match == "trot"

@@ -1,0 +1,152 @@
+"""gaitlab analyze end to end: outputs, and every kind of bad input (one line, exit 2)."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+DATA = Path(__file__).parent / "data"
+DOG_WALK = DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"
+
+
+def gaitlab(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True, cwd=cwd,
+                          env=os.environ.copy(), timeout=300)
+
+
+def test_table_for_a_creature(tmp_path: Path) -> None:
+    out = gaitlab("analyze", "dog", "--gait", "trot", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert "trot (matches)" in out.stdout and "asked duty" in out.stdout and "LH" in out.stdout
+
+
+def test_json_csv_and_plot(tmp_path: Path) -> None:
+    out = gaitlab("analyze", str(DOG_WALK), "--json", "--csv", "events.csv", "--plot", "plot.png", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    doc = json.loads(out.stdout)
+    assert doc["gait_match"] == "walk" and doc["gait"] is None and len(doc["feet"]) == 4
+    rows = (tmp_path / "events.csv").read_text().splitlines()
+    assert rows[0] == "foot,kind,time" and len(rows) > 40
+    image = np.asarray(Image.open(tmp_path / "plot.png").convert("RGB"))
+    assert image.shape[0] > 400 and image.shape[1] > 800
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["events.csv", "plot.png"]
+
+
+def test_speed_ramp_reports_gait_per_time_span(tmp_path: Path) -> None:
+    out = gaitlab("analyze", "dog", "--speed", "0.4:6", "--seconds", "10", "--json", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    spans = [s["gait"] for s in json.loads(out.stdout)["spans"]]
+    assert spans[0] == "walk" and spans[-1] == "gallop" and "trot" in spans
+
+
+def test_csv_input(tmp_path: Path) -> None:
+    from app import build_rig, load_creature
+    from app.analysis import tracks_from_motion
+    from app.recording import clip_motion
+
+    motion, _ = clip_motion(build_rig(load_creature("cat").with_overrides({"gait.preset": "pace"})), 400.0,
+                            cycles=4.0)
+    tracks = tracks_from_motion(motion)
+    header = ["time"] + [f"{n}_{a}" for n in tracks.names for a in "xyz"] + \
+        [f"{n}_toe_{a}" for n in tracks.names for a in "xyz"]
+    rows = np.column_stack([tracks.times, tracks.heel.reshape(len(tracks.times), -1),
+                            tracks.toe.reshape(len(tracks.times), -1)])
+    path = tmp_path / "cat.csv"
+    path.write_text(",".join(header) + "\n" + "\n".join(",".join(f"{v:.6f}" for v in row) for row in rows))
+    out = gaitlab("analyze", str(path), "--json", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout)["gait_match"] == "pace"
+
+
+def write(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def bvh_lines() -> list[str]:
+    return DOG_WALK.read_text().splitlines()
+
+
+NO_FEET_BVH = """HIERARCHY
+ROOT Hips
+{
+  OFFSET 0 0 0
+  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation
+  JOINT Spine
+  {
+    OFFSET 0 10 0
+    CHANNELS 3 Zrotation Xrotation Yrotation
+    End Site
+    {
+      OFFSET 0 10 0
+    }
+  }
+}
+MOTION
+Frames: 2
+Frame Time: 0.01
+0 90 0 0 0 0 0 0 0
+0 90 1 0 0 0 0 0 0
+"""
+
+
+def bad_cases(tmp_path: Path) -> dict[str, tuple[list[str], str]]:
+    lines = bvh_lines()
+    motion = lines.index("MOTION")
+    truncated = write(tmp_path, "truncated.bvh", "\n".join(lines[:motion + 50]))
+    corrupt = lines.copy()
+    corrupt[motion + 10] = corrupt[motion + 10].replace(corrupt[motion + 10].split()[3], "abc", 1)
+    malformed = write(tmp_path, "malformed.bvh", "\n".join(corrupt))
+    typo = lines.copy()
+    typo[3] = typo[3].replace("OFFSET", "OFSET")
+    hierarchy = write(tmp_path, "hierarchy.bvh", "\n".join(typo))
+    short = write(tmp_path, "short.bvh", "\n".join(lines[:motion + 1] + ["Frames: 20", lines[motion + 2]]
+                                                   + lines[motion + 3:motion + 23]))
+    no_feet = write(tmp_path, "nofeet.bvh", NO_FEET_BVH)
+    csv_missing = write(tmp_path, "missing.csv", "time,LH_x,LH_y\n0,0,0\n0.1,0,0\n")
+    csv_bad = write(tmp_path, "bad.csv", "time,LH_x,LH_y,LH_z\n0,0,0,0\n0.1,0,x,0\n")
+    return {
+        "no feet": (["analyze", str(no_feet)], "no feet recognised among the joints (Hips, Spine)"),
+        "truncated bvh": (["analyze", str(truncated)], f"{truncated}:{motion + 50}: truncated BVH"),
+        "malformed bvh value": (["analyze", str(malformed)], f"{malformed}:{motion + 11}: malformed BVH: value 4"),
+        "malformed hierarchy": (["analyze", str(hierarchy)], f"{hierarchy}:4: malformed BVH: expected 'OFFSET'"),
+        "clip shorter than a step": (["analyze", str(short)], "at least one full stride"),
+        "csv missing columns": (["analyze", str(csv_missing)], "missing columns LH_z"),
+        "csv not a number": (["analyze", str(csv_bad)], f"{csv_bad}:3: malformed CSV: column 'LH_y' value 'x'"),
+        "unknown feet joint": (["analyze", str(DOG_WALK), "--feet", "LH=b_LeftAnkel"], "did you mean 'b_LeftAnkle'"),
+        "bad feet syntax": (["analyze", str(DOG_WALK), "--feet", "LH"], "expected NAME=ANKLE[:TOE]"),
+        "gait for a file": (["analyze", str(DOG_WALK), "--gait", "trot"], "for creatures"),
+        "units for a creature": (["analyze", "dog", "--units", "cm"], "for BVH or CSV files"),
+        "plot suffix": (["analyze", "dog", "--plot", "out.gif"], "use a .png file name"),
+        "missing file": (["analyze", "nothere.bvh"], "no such file"),
+        "unknown file type": (["analyze", str(write(tmp_path, "x.fbx", ""))], "unknown file type '.fbx'"),
+        "bad speed": (["analyze", "dog", "--speed", "fast"], "expected a speed in m/s"),
+    }
+
+
+CASE_NAMES = ["no feet", "truncated bvh", "malformed bvh value", "malformed hierarchy", "clip shorter than a step",
+              "csv missing columns", "csv not a number", "unknown feet joint", "bad feet syntax", "gait for a file",
+              "units for a creature", "plot suffix", "missing file", "unknown file type", "bad speed"]
+
+
+@pytest.mark.parametrize("case", CASE_NAMES)
+def test_bad_input(tmp_path: Path, case: str) -> None:
+    inputs = tmp_path / "inputs"
+    inputs.mkdir()
+    args, expected = bad_cases(inputs)[case]
+    work = tmp_path / "work"
+    work.mkdir()
+    out = gaitlab(*args, cwd=work)
+    assert out.returncode == 2, (out.stdout, out.stderr)
+    assert "Traceback" not in out.stderr
+    line, = out.stderr.strip().splitlines()
+    assert expected in line, line
+    assert list(work.iterdir()) == []

@@ -1,0 +1,71 @@
+"""Speed-driven gaits: Froude scaling, gait thresholds with hysteresis, seamless switches."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from app import build_rig, load_creature
+from app.kinematics.speed import choose_gait, froude, gait_at_speed, gait_with_speed, simulate_speed, stride_length
+
+DOG = load_creature("dog")
+
+
+def test_froude_scaling() -> None:
+    h = build_rig(DOG).hip_height
+    v = 1.5
+    assert froude(v, h) == pytest.approx(v * v / (9.81 * h))
+    assert stride_length(v, h) == pytest.approx(2.3 * froude(v, h) ** 0.3 * h)
+    spec = gait_at_speed(DOG, v)
+    rig = build_rig(spec)
+    assert rig.gait.frequency == pytest.approx(v / stride_length(v, h))
+    assert rig.ground_speed == pytest.approx(v, rel=1e-9)  # the planted feet move at exactly v
+
+
+def test_gait_thresholds_and_hysteresis() -> None:
+    wt, tg, hys = DOG.speed.walk_trot, DOG.speed.trot_gallop, DOG.speed.hysteresis
+    assert choose_gait(wt * 0.9, None, DOG) == "walk" and choose_gait(wt * 1.1, None, DOG) == "trot"
+    assert choose_gait(wt * (1 + hys / 2), "walk", DOG) == "walk"  # not yet
+    assert choose_gait(wt * (1 + hys), "walk", DOG) == "trot"
+    assert choose_gait(wt * (1 - hys / 2), "trot", DOG) == "trot"  # sticky on the way down
+    assert choose_gait(wt * (1 - hys) * 0.99, "trot", DOG) == "walk"
+    assert choose_gait(tg * (1 + hys), "trot", DOG) == "gallop"
+    horse = load_creature("horse")
+    assert horse.speed.walk_trot == 0.35  # configurable per creature
+
+
+def test_duty_factor_falls_with_speed() -> None:
+    duties = [build_rig(gait_at_speed(DOG, v)).gait.duty_factor for v in (0.4, 1.0, 2.0, 4.0, 7.0)]
+    assert duties == sorted(duties, reverse=True)
+    assert duties[0] > 0.6 and duties[-1] < 0.3
+
+
+def test_speed_ramp_walks_trots_gallops_without_foot_jumps() -> None:
+    fps = 120.0
+    speeds = np.linspace(0.3, 6.0, int(12 * fps))
+    motion, gaits = simulate_speed(DOG, speeds, fps)
+    h = build_rig(DOG).hip_height
+    switches = [(i, gaits[i - 1], gaits[i]) for i in range(1, len(gaits)) if gaits[i] != gaits[i - 1]]
+    assert [(a, b) for _, a, b in switches] == [("walk", "trot"), ("trot", "gallop")]
+    hys = DOG.speed.hysteresis
+    assert froude(speeds[switches[0][0]], h) == pytest.approx(DOG.speed.walk_trot * (1 + hys), rel=0.02)
+    assert froude(speeds[switches[1][0]], h) == pytest.approx(DOG.speed.trot_gallop * (1 + hys), rel=0.02)
+    # No jump: around each switch, no foot moves further in a frame than in the faster of the
+    # two gaits' steady motion at the fastest speed of the window.
+    feet = motion.joints[:, :, 3].copy()
+    feet[:, :, 2] += motion.ground_offset[:, None]
+    step = np.linalg.norm(np.diff(feet, axis=0), axis=-1).max(axis=1)
+    for index, old, new in switches:
+        window = slice(max(index - int(fps), 0), min(index + int(2 * fps), len(step)))
+        top = float(speeds[window.stop])
+        reference = max(steady_max_step(gait, top, fps) for gait in (old, new))
+        assert step[window].max() <= reference * 1.02, (old, new)
+
+
+def steady_max_step(gait: str, speed: float, fps: float) -> float:
+    from app.recording import clip_motion
+
+    motion, _ = clip_motion(build_rig(gait_with_speed(DOG, speed, gait)), fps, cycles=2.0)
+    feet = motion.joints[:, :, 3].copy()
+    feet[:, :, 2] += motion.ground_offset[:, None]
+    return float(np.linalg.norm(np.diff(feet, axis=0), axis=-1).max())
