@@ -8,7 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from imgui_bundle import imgui
+import numpy as np
+from imgui_bundle import imgui, implot
 
 from ..gaits import GAIT_PRESETS, TETRAPOD_FEET
 from ..render.camera import CAMERA_PRESETS
@@ -67,6 +68,7 @@ class PanelContext:
     stats: FrameStats = field(default_factory=FrameStats)
     recording_progress: float | None = None  # 0..1 while a recording runs
     recording_label: str = ""
+    monitor: object | None = None  # the live GaitMonitor (app/ui/monitor.py)
 
 
 # -- small helpers ------------------------------------------------------------------------
@@ -359,12 +361,70 @@ def file_panel(state: ViewerState, pc: PanelContext) -> None:
         state.reset_all()
 
 
+def plots_panel(state: ViewerState, pc: PanelContext) -> None:
+    """Live foot heights, the gait diagram, and measured vs requested duty and phase."""
+    monitor = pc.monitor
+    if monitor is None:
+        return
+    monitor.wanted = True  # measure only while someone is looking
+    times = monitor.times
+    names = monitor.names
+    width = -1
+    if len(times) > 1:
+        t = (times - times[-1]).astype(np.float64)
+        heights = monitor.heights() * 100.0
+        if implot.begin_plot("foot heights (cm)", imgui.ImVec2(width, 150 * pc.scale)):
+            implot.setup_axes("seconds", "", implot.AxisFlags_.no_label, 0)
+            implot.setup_axis_limits(implot.ImAxis_.x1, -monitor.seconds, 0.0, implot.Cond_.always)
+            for i, name in enumerate(names):
+                implot.plot_line(name, t, np.ascontiguousarray(heights[:, i]))
+            implot.end_plot()
+        contact = monitor.contact()
+        if implot.begin_plot("gait diagram (stance)", imgui.ImVec2(width, 110 * pc.scale),
+                             implot.Flags_.no_legend | implot.Flags_.no_mouse_text):
+            implot.setup_axes("", "", implot.AxisFlags_.no_label, implot.AxisFlags_.invert)
+            implot.setup_axis_limits(implot.ImAxis_.x1, -monitor.seconds, 0.0, implot.Cond_.always)
+            implot.setup_axis_limits(implot.ImAxis_.y1, -0.6, len(names) - 0.4, implot.Cond_.always)
+            implot.setup_axis_ticks(implot.ImAxis_.y1, 0.0, len(names) - 1.0, len(names), list(names))
+            spec = implot.Spec()
+            spec.line_weight = 7.0 * pc.scale
+            for i, name in enumerate(names):
+                rows = np.where(contact[:, i], float(i), np.nan)
+                implot.plot_line(name, t, rows, spec)
+            implot.end_plot()
+    report = monitor.report
+    gait = state.live.rig.gait
+    requested = dict(zip(state.live.rig.leg_names, gait.offsets))
+    if report is not None:
+        imgui.text(f"measured: {report.gait_match}   cycle {report.cycle_seconds:.3f} s")
+    elif monitor.error:
+        imgui.text_disabled(monitor.error)
+    flags = imgui.TableFlags_.row_bg | imgui.TableFlags_.borders_inner_v | imgui.TableFlags_.sizing_stretch_same
+    if imgui.begin_table("measured", 5, flags):
+        for title in ("foot", "duty asked", "measured", "phase asked", "measured"):
+            imgui.table_setup_column(title)
+        imgui.table_headers_row()
+        for name in names:
+            measured = None
+            if report is not None:
+                measured = next((f for f in report.feet if f.name == name), None)
+            imgui.table_next_row()
+            cells = [name, f"{gait.duty_factor:.3f}",
+                     "-" if measured is None else f"{measured.duty_factor:.3f}",
+                     f"{requested.get(name, 0.0):.3f}", "-" if measured is None else f"{measured.phase:.3f}"]
+            for cell in cells:
+                imgui.table_next_column()
+                imgui.text(cell)
+        imgui.end_table()
+
+
 PANELS = (
     ("Creature", creature_panel, True),
     ("Gait", gait_panel, True),
     ("Body", body_panel, False),
     ("View", view_panel, False),
     ("Playback", playback_panel, True),
+    ("Plots", plots_panel, False),
     ("Record", record_panel, False),
     ("File", file_panel, False),
 )

@@ -26,6 +26,7 @@ from ..recording import Recording
 from ..render.renderer import SceneRenderer
 from ..spec import CreatureSpec
 from .imgui_renderer import ImguiRenderer
+from .monitor import GaitMonitor
 from .panels import SIDEBAR_COLOR, SIDEBAR_WIDTH, FrameStats, PanelContext, draw_ui
 from .state import FRAME_DT, ViewerState
 
@@ -100,7 +101,8 @@ class Viewer:
         if vw > 0 and vh > 0:  # frame the creature for the part of the window the scene gets
             self.state.aspect = vw / vh
             self.state.frame_view()
-        self.panel = PanelContext(presets=options.presets, scale=self.scale, icons=icons)
+        self.monitor = GaitMonitor()
+        self.panel = PanelContext(presets=options.presets, scale=self.scale, icons=icons, monitor=self.monitor)
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
@@ -236,6 +238,7 @@ class Viewer:
                        "elevation": state.camera.elevation, "distance": state.camera.distance,
                        "ortho": state.camera.ortho},
             "error": state.error, "status": state.status,
+            "measured": None if self.monitor.report is None else self.monitor.report.to_json(),
             "window": {"size": list(self.window.window_size), "framebuffer": list(self.window.framebuffer_size)},
             "widgets": {k: list(v) for k, v in state.widget_rects.items()},
         }
@@ -269,6 +272,10 @@ class Viewer:
             state.advance(dt)
             pose = state.pose()
             state.follow_creature(pose)
+            self.monitor.record(pose, state.live.time, state.live.rig.hip_height, state.live.frequency)
+            if self.monitor.wanted or opts.dump_state is not None:
+                self.monitor.measure(state.live.time)
+            self.monitor.wanted = False
             t1 = clock()
             if not minimized and viewport[2] > 0:
                 state.aspect = viewport[2] / max(viewport[3], 1)

@@ -1,0 +1,108 @@
+"""The viewer's live gait monitor: a rolling history of the feet and, every half second,
+the gait measured from it by the same analysis as ``gaitlab analyze`` (no GL, no imgui)."""
+
+from __future__ import annotations
+
+from collections import deque
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..analysis import AnalysisError, FootTracks, analyze_tracks
+from ..analysis.metrics import GaitReport
+from ..kinematics.motion import Pose
+
+ANALYSIS_FPS = 60.0  # the history is resampled to this rate before analysis
+
+
+class GaitMonitor:
+    """Keeps the last ``seconds`` of foot motion (in the ground's frame, so planted feet
+    stand still) and measures the gait from it."""
+
+    def __init__(self, seconds: float = 4.0, every: float = 0.5) -> None:
+        self.seconds = seconds
+        self.every = every
+        self._times: deque[float] = deque()
+        self._heel: deque[NDArray] = deque()
+        self._toe: deque[NDArray] = deque()
+        self._body: deque[NDArray] = deque()
+        self._contact: deque[NDArray] = deque()
+        self.names: tuple[str, ...] = ()
+        self.report: GaitReport | None = None
+        self.error: str | None = None
+        self._last_measure = -np.inf
+        self.hip_height: float | None = None
+        self.wanted = False  # set by the Plots panel each frame it is drawn
+
+    def clear(self) -> None:
+        for buffer in (self._times, self._heel, self._toe, self._body, self._contact):
+            buffer.clear()
+        self.report = None
+        self._last_measure = -np.inf
+
+    def record(self, pose: Pose, time: float, hip_height: float | None = None, frequency: float | None = None) -> None:
+        """Add a frame (animation time ``time`` in seconds); repeated times are ignored.
+        ``frequency`` (Hz) sizes the window to about three strides (1.5 to 6 s)."""
+        if frequency:
+            self.seconds = float(np.clip(3.0 / frequency, 1.5, 6.0))
+        if self.names != pose.leg_names:
+            self.names = pose.leg_names
+            self.clear()
+        if self._times and time <= self._times[-1]:
+            return
+        shift = np.array([0.0, 0.0, pose.ground_offset])
+        self._times.append(time)
+        self._heel.append(pose.joints[:, 3] + shift)
+        self._toe.append(pose.joints[:, 4] + shift)
+        self._body.append(pose.root[:3, 3] + shift)
+        self._contact.append(pose.contact.copy())
+        self.hip_height = hip_height
+        while self._times and self._times[-1] - self._times[0] > self.seconds:
+            for buffer in (self._times, self._heel, self._toe, self._body, self._contact):
+                buffer.popleft()
+
+    @property
+    def times(self) -> NDArray[np.float64]:
+        return np.array(self._times)
+
+    def heights(self) -> NDArray[np.float64]:
+        """Ball heights (T, L), metres."""
+        return np.array(self._heel)[:, :, 1] if self._times else np.zeros((0, len(self.names)))
+
+    def contact(self) -> NDArray[np.bool_]:
+        return np.array(self._contact) if self._times else np.zeros((0, len(self.names)), dtype=bool)
+
+    def tracks(self) -> FootTracks | None:
+        """The history resampled to a uniform rate, as analysis input."""
+        if len(self._times) < 8:
+            return None
+        t = self.times
+        uniform = np.arange(t[0], t[-1], 1.0 / ANALYSIS_FPS)
+        if len(uniform) < 8:
+            return None
+
+        def resample(buffer) -> NDArray:
+            data = np.array(buffer)
+            flat = data.reshape(len(t), -1)
+            out = np.stack([np.interp(uniform, t, flat[:, k]) for k in range(flat.shape[1])], axis=1)
+            return out.reshape((len(uniform),) + data.shape[1:])
+
+        return FootTracks(times=uniform - uniform[0], names=self.names, heel=resample(self._heel),
+                          toe=resample(self._toe), body=resample(self._body), source="live",
+                          hip_height=self.hip_height)
+
+    def measure(self, now: float, force: bool = False) -> GaitReport | None:
+        """Re-measure if ``every`` seconds of animation passed since the last time."""
+        if not force and now - self._last_measure < self.every:
+            return self.report
+        self._last_measure = now
+        tracks = self.tracks()
+        if tracks is None:
+            self.error = "collecting motion..."
+            return self.report
+        try:
+            self.report = analyze_tracks(tracks)
+            self.error = None
+        except AnalysisError as exc:
+            self.error = str(exc)
+        return self.report
