@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -67,6 +68,31 @@ def xdotool(display: str, *args: str) -> str:
     return out.stdout.strip()
 
 
+@contextlib.contextmanager
+def running_viewer(display: str, cwd: Path, *args: str):
+    """Start ``gaitlab view ARGS`` with a state dump; yield (process, dump path, window id)
+    once it is drawing; kill it afterwards if it is still running."""
+    dump = cwd / "state.json"
+    proc = subprocess.Popen([*GAITLAB, "view", *args, "--dump-state", str(dump)], env=env_for(display), cwd=cwd,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        read_state(dump, until=lambda s: s["frame"] >= 10)
+        window = xdotool(display, "search", "--sync", "--name", "Gaitlab").splitlines()[0]
+        yield proc, dump, window
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.wait()
+
+
+def quit_viewer(display: str, proc: subprocess.Popen, window: str) -> None:
+    """Ctrl+Q with the pointer over the window; the viewer must exit cleanly."""
+    xdotool(display, "mousemove", "--window", window, "400", "200")
+    xdotool(display, "key", "ctrl+q")
+    assert proc.wait(timeout=30) == 0
+    assert "Traceback" not in proc.stderr.read()
+
+
 def centre(rect) -> tuple[str, str]:
     x0, y0, x1, y1 = rect
     return str(int((x0 + x1) / 2)), str(int((y0 + y1) / 2))
@@ -97,13 +123,8 @@ def test_window_opens_with_the_dog_walking_and_the_panels(display: str, tmp_path
 
 
 def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path) -> None:
-    dump = tmp_path / "state.json"
-    proc = subprocess.Popen([*GAITLAB, "view", "--size", "1024x640", "--dump-state", str(dump)],
-                            env=env_for(display), cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
-    try:
+    with running_viewer(display, tmp_path, "--size", "1024x640") as (proc, dump, window):
         state = read_state(dump, until=lambda s: s["frame"] >= 20 and "leg_type.hind.unguligrade" in s["widgets"])
-        window = xdotool(display, "search", "--sync", "--name", "Gaitlab").splitlines()[0]
         assert state["playing"] and state["creature"]["legs"]["hind"]["ankle_lift"] == 62
 
         # Click the hind legs' "unguligrade" button.
@@ -118,7 +139,7 @@ def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path
         xdotool(display, "mousemove", "--window", window, str(int(x0 + 10)), ym, "mousedown", "1",
                 "mousemove", "--window", window, str(int(x0 + 60)), ym, "sleep", "0.2",
                 "mousemove", "--window", window, str(int(x1 - 30)), ym, "sleep", "0.2", "mouseup", "1")
-        state = read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] > start + 0.1)
+        read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] > start + 0.1)
 
         # Space pauses: the clock stops.
         xdotool(display, "mousemove", "--window", window, "700", "300")
@@ -130,12 +151,7 @@ def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path
         # F1 opens the help, Ctrl+Q quits.
         xdotool(display, "key", "F1")
         read_state(dump, until=lambda s: s["show_help"])
-        xdotool(display, "key", "ctrl+q")
-        assert proc.wait(timeout=30) == 0
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
+        quit_viewer(display, proc, window)
 
 
 def gif_frames(path: Path) -> list[np.ndarray]:
@@ -151,22 +167,12 @@ def test_recording_from_the_ui_matches_the_cli(display: str, tmp_path: Path) -> 
     ui_dir, cli_dir = tmp_path / "ui", tmp_path / "cli"
     ui_dir.mkdir()
     cli_dir.mkdir()
-    dump = ui_dir / "state.json"
-    proc = subprocess.Popen([*GAITLAB, "view", "cat", "--size", "900x600", "--dump-state", str(dump)],
-                            env=env_for(display), cwd=ui_dir, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        read_state(dump, until=lambda s: s["frame"] >= 10)
-        window = xdotool(display, "search", "--sync", "--name", "Gaitlab").splitlines()[0]
+    with running_viewer(display, ui_dir, "cat", "--size", "900x600") as (proc, dump, window):
         xdotool(display, "mousemove", "--window", window, "700", "300")
         xdotool(display, "key", "g")  # record with the Record panel's defaults: cat.gif, 2 cycles, 480x360
         state = read_state(dump, timeout=120, until=lambda s: s["status"].startswith("wrote"))
         assert "cat.gif" in state["status"]
-        xdotool(display, "key", "ctrl+q")
-        assert proc.wait(timeout=30) == 0
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-            proc.wait()
+        quit_viewer(display, proc, window)
     out = subprocess.run([*GAITLAB, "render", "cat", "-o", "cat.gif"], cwd=cli_dir, capture_output=True, text=True,
                          timeout=120)
     assert out.returncode == 0, out.stderr
@@ -185,28 +191,22 @@ def test_no_display_gives_one_line_and_exit_2(tmp_path: Path) -> None:
 
 
 def test_window_survives_resizing(display: str, tmp_path: Path) -> None:
-    dump = tmp_path / "state.json"
-    proc = subprocess.Popen([*GAITLAB, "view", "--size", "800x500", "--dump-state", str(dump)],
-                            env=env_for(display), cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
-    try:
-        read_state(dump, until=lambda s: s["frame"] >= 10)
-        window = xdotool(display, "search", "--sync", "--name", "Gaitlab").splitlines()[0]
-        for w, h in (("1200", "700"), ("200", "120"), ("1", "1"), ("640", "400")):
+    with running_viewer(display, tmp_path, "--size", "800x500") as (proc, dump, window):
+        for w, h in (("1200", "700"), ("200", "120"), ("1", "1")):
             xdotool(display, "windowsize", window, w, h)
             time.sleep(0.3)
-        state = read_state(dump, until=lambda s: s["window"]["size"] == [640, 400])
+        for _ in range(10):  # the last resize can race the earlier ones: repeat until it shows
+            xdotool(display, "windowsize", window, "640", "400")
+            try:
+                state = read_state(dump, timeout=3.0, until=lambda s: s["window"]["size"] == [640, 400])
+                break
+            except AssertionError:
+                continue
+        else:
+            raise AssertionError("the window never reported its final size 640x400")
         before = state["frame"]
         read_state(dump, until=lambda s: s["frame"] > before + 20)  # still drawing
-        assert proc.poll() is None
-        xdotool(display, "mousemove", "--window", window, "400", "200")
-        xdotool(display, "key", "ctrl+q")
-        assert proc.wait(timeout=30) == 0
-    finally:
-        if proc.poll() is None:
-            proc.terminate()
-            proc.wait(timeout=30)
-    assert "Traceback" not in proc.stderr.read()
+        quit_viewer(display, proc, window)
 
 
 MINIMISED_SCRIPT = """
