@@ -96,13 +96,13 @@ def bench_render(repeats: int) -> list[tuple[str, str]]:
         camera = clip_camera(motion, view)
         with ClipRenderer(size, samples) as renderer:
             options = RenderOptions()
-            t = median_time(lambda: [renderer.frame(motion, i, camera, options) for i in range(n)], repeats)
+            t = median_time(lambda r=renderer, c=camera, o=options: [r.frame(motion, i, c, o) for i in range(n)], repeats)
             rows.append((f"render + readback 640x480, MSAA {samples or 'off'}", f"{n / t:,.0f} frames/s "
                          f"({t / n * 1000:.2f} ms)"))
             if samples == 0:
                 target = renderer.target
 
-                def clear_read() -> None:
+                def clear_read(target=target) -> None:
                     for _ in range(n):
                         target.fbo.use()
                         target.fbo.clear(0.5, 0.5, 0.5, 1.0)

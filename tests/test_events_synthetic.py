@@ -4,7 +4,6 @@ Every event must be found within one frame."""
 from __future__ import annotations
 
 import numpy as np
-import pytest
 
 from app.analysis import FootTracks, detect_events
 
@@ -58,7 +57,7 @@ def make_tracks(drag: float = 0.0, sink: float = 0.0, noise: float = 0.0) -> tup
     t = np.arange(int(5.0 * FPS)) / FPS
     offsets = {"L": 0.5, "R": 1.0}
     heels, toes = [], []
-    for name, off in offsets.items():
+    for off in offsets.values():
         h, to = foot_curves(t, off, drag, sink)
         heels.append(h)
         toes.append(to)

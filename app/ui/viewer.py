@@ -27,7 +27,7 @@ from ..render.renderer import SceneRenderer
 from ..spec import CreatureSpec
 from .imgui_renderer import ImguiRenderer
 from .monitor import GaitMonitor
-from .panels import SIDEBAR_COLOR, SIDEBAR_WIDTH, FrameStats, PanelContext, draw_ui
+from .panels import SIDEBAR_COLOR, SIDEBAR_WIDTH, PanelContext, draw_ui
 from .state import FRAME_DT, ViewerState
 
 import imgui_bundle  # noqa: E402
