@@ -178,19 +178,24 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
     speeds = {"heel": horizontal_speed(tracks.heel), "toe": horizontal_speed(tracks.toe)}
     body_velocity = np.gradient(tracks.body, tracks.times, axis=0)
     static_speed = max(STATIC_SPEED * float(np.median(np.hypot(body_velocity[:, 0], body_velocity[:, 2]))), 0.02)
+    # Every foot's smoothed height above its rolling ground and its derivatives, (T, L) each.
+    above, slope, bend = {}, {}, {}
+    for part, h in heights.items():
+        hs = savgol_filter(h, smooth, 3, axis=0, mode="interp")
+        above[part] = hs - percentile_filter(hs, 10, size=(ground_window, 1), mode="nearest")
+        slope[part] = savgol_filter(h, smooth, 3, deriv=1, axis=0, mode="interp")
+        bend[part] = savgol_filter(h, smooth, 3, deriv=2, axis=0, mode="interp")
     result = []
     for f, name in enumerate(tracks.names):
         curves = {}
-        for part, h in heights.items():
-            hs = savgol_filter(h[:, f], smooth, 3, mode="interp")
-            ground = percentile_filter(hs, 10, size=ground_window, mode="nearest")
+        for part in heights:
             # The ground band: the heights this point takes while it stands still (a rolling
             # paw's toe rises a little before the foot lifts).
+            lifted = above[part][:, f]
             static = speeds[part][:, f] < static_speed
-            band = float(np.percentile((hs - ground)[static], 75)) if static.sum() > 3 else 0.0
-            a = hs - ground - max(band, 0.0)
-            d1 = savgol_filter(h[:, f], smooth, 3, deriv=1, mode="interp")
-            d2 = savgol_filter(h[:, f], smooth, 3, deriv=2, mode="interp")
+            band = float(np.percentile(lifted[static], 75)) if static.sum() > 3 else 0.0
+            a = lifted - max(band, 0.0)
+            d1, d2 = slope[part][:, f], bend[part][:, f]
             top = float(np.percentile(a, 99))
             curves[part] = (a, d1, d2, max(top, 1e-9))
         # A curve counts as a contact point only if that point is slow when the curve is

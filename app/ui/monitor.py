@@ -81,11 +81,15 @@ class GaitMonitor:
         if len(uniform) < 8:
             return None
 
+        # Linear interpolation weights, found once and applied to every buffer.
+        right = np.clip(np.searchsorted(t, uniform, side="right"), 1, len(t) - 1)
+        left = right - 1
+        w = (uniform - t[left]) / (t[right] - t[left])  # times strictly increase (see record)
+
         def resample(buffer) -> NDArray:
             data = np.array(buffer)
-            flat = data.reshape(len(t), -1)
-            out = np.stack([np.interp(uniform, t, flat[:, k]) for k in range(flat.shape[1])], axis=1)
-            return out.reshape((len(uniform),) + data.shape[1:])
+            weight = w.reshape((-1,) + (1,) * (data.ndim - 1))
+            return data[left] * (1.0 - weight) + data[right] * weight
 
         return FootTracks(times=uniform - uniform[0], names=self.names, heel=resample(self._heel),
                           toe=resample(self._toe), body=resample(self._body), source="live",
