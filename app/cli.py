@@ -83,14 +83,27 @@ def _samples(text: str) -> int:
 
 RENDER_EPILOG = """\
 examples:
-  gaitlab render                                   dog.gif: the dog walking, two seamless cycles
+  gaitlab render                                   dog.gif: the dog walking ahead, two seamless cycles
   gaitlab render horse --gait gallop -o horse.mp4  a galloping horse as H.264 video
   gaitlab render cat -o cat.png --time 0.3         one frame, 0.3 s into the walk
   gaitlab render bear --camera side --cycles 3 --fps 30 --size 640x360
+  gaitlab render dog --path circle:r=2 --terrain hills:amp=0.15 --seconds 8
+  gaitlab render spider --terrain stairs:rise=0.08 --seconds 10 -o climb.mp4
+  gaitlab render ant --path waypoints:0,0,1,1,2,0,3,1 --seconds 6
+  gaitlab render dog --in-place                    the cycle on a treadmill (the ground moves)
+  gaitlab render scenes/hillside.toml              a scene file: terrain, path, creature
   gaitlab render dog --set gait.duty_factor=0.8 --set legs.hind.femur=0.25 -o slow.gif
-  gaitlab render my_creature.toml -o mine.gif      a creature file of your own
 
-CREATURE is a preset (see 'gaitlab creatures') or a path to a creature .toml file.
+CREATURE is a preset (see 'gaitlab creatures'), a creature .toml file or a scene .toml.
+The creature walks along --path over --terrain (default: straight ahead on flat ground)
+and the camera follows it, keeping the preset's angle to its heading.
+--path KIND[:KEY=VALUE,...]:
+  straight[:heading=DEG]  circle:r=M[,dir=left|right]  figure-eight:r=M
+  waypoints:X,Z,X,Z,...[,closed]   (a smooth curve through the points, metres)
+--terrain KIND[:KEY=VALUE,...]  (every kind also takes max_slope=DEG, default 40):
+  flat  slope:angle=DEG[,dir=DEG]  hills[:amp=M,wavelength=M,seed=N]
+  stairs[:rise=M,run=M,steps=N,start=M,dir=DEG]  heightmap:file=PNG[,size=M,height=M]
+  mesh:file=OBJ|PLY|STL|GLB[,cell=M]
 --gait replaces the creature's gait with a preset and drops its gait adjustments; add
 --set gait.KEY=VALUE to adjust the new gait. --set takes any key a creature file has
 ('gaitlab creatures --keys' lists them); values are TOML (numbers, "strings").
@@ -123,6 +136,18 @@ Phases follow Hildebrand: the left hind foot (or the left foot) touches down at 
 """
 
 
+def _world_arguments(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("where it walks")
+    group.add_argument("--path", metavar="KIND[:K=V,...]",
+                       help="the body's path: straight (default), circle:r=3, figure-eight:r=2, "
+                            "waypoints:0,0,2,1,4,0 (see the list below)")
+    group.add_argument("--terrain", metavar="KIND[:K=V,...]",
+                       help="the ground: flat (default), slope:angle=15, hills:amp=0.2, stairs:rise=0.1,run=0.35, "
+                            "heightmap:file=map.png, mesh:file=ground.obj")
+    group.add_argument("--in-place", action="store_true",
+                       help="walk on the spot while the ground moves under the feet (flat, straight only)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="gaitlab", description="Procedural tetrapod locomotion: parametric legs driven by "
                      "gait oscillators and analytic IK, rendered headless or live.",
@@ -139,7 +164,7 @@ def build_parser() -> argparse.ArgumentParser:
                                         "H.264 MP4.", epilog=RENDER_EPILOG,
                             formatter_class=argparse.RawDescriptionHelpFormatter)
     render.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
-                        help="preset name or creature .toml path (default: dog)")
+                        help="preset name, creature .toml or scene .toml (default: dog)")
     render.add_argument("-o", "--output", metavar="OUT", type=Path,
                         help="output file: .png, .gif or .mp4 (default: CREATURE.gif)")
     render.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
@@ -159,11 +184,13 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--speed", metavar="V[:V1]", type=_speed,
                         help="speed in m/s, or a ramp V0:V1 over the clip: the gait follows the speed "
                              "(walk, trot, gallop by Froude number); default length 4 s")
+    _world_arguments(render)
     render.add_argument("--msaa", metavar="N", type=_samples, default=4,
                         help="antialiasing samples: 0 (off), 2, 4 or 8 (default: 4)")
     render.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
     render.add_argument("--no-shadow", action="store_true", help="no shadow")
     render.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
+    render.add_argument("--no-path", action="store_true", help="do not draw the path on the ground")
     render.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
 
     analyze = sub.add_parser("analyze", help="measure a gait: foot events, duty factor, phase, slip, gait name",
@@ -188,6 +215,9 @@ def build_parser() -> argparse.ArgumentParser:
                           help="speed-driven gait: m/s, or a ramp V0:V1 (the report lists the gait per time span)")
     creature.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                           help="override a creature key (repeatable)")
+    creature.add_argument("--path", metavar="KIND[:K=V,...]", help="the body's path (as for render)")
+    creature.add_argument("--terrain", metavar="KIND[:K=V,...]", help="the ground (as for render)")
+    creature.add_argument("--in-place", action="store_true", help="walk on the spot (the ground moves)")
     files = analyze.add_argument_group("for a BVH or CSV file")
     files.add_argument("--feet", metavar="MAP", help="BVH foot joints: NAME=ANKLE[:TOE],... e.g. "
                                                      "L=LeftFoot:LeftToeBase,R=RightFoot:RightToeBase")
@@ -200,10 +230,11 @@ def build_parser() -> argparse.ArgumentParser:
                                       "control. F1 in the window lists the keyboard and mouse controls.",
                           epilog=VIEW_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     view.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
-                      help="preset name or creature .toml path (default: dog)")
+                      help="preset name, creature .toml or scene .toml (default: dog)")
     view.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
     view.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                       help="override a creature key (repeatable)")
+    _world_arguments(view)
     view.add_argument("--size", metavar="WxH", type=_size, default=(1280, 720), help="window size (default: 1280x720)")
     view.add_argument("--no-vsync", action="store_true", help="do not wait for the display (for measuring)")
     view.add_argument("--msaa", metavar="N", type=_samples, default=0,
@@ -221,7 +252,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def cmd_creatures(args: argparse.Namespace) -> int:
-    from .kinematics.rig import build_rig
+    from .gaits import gaits_for
+    from .rigging import build_rig
     from .resources import preset_creature_names
     from .spec import leg_type, load_creature
 
@@ -230,12 +262,14 @@ def cmd_creatures(args: argparse.Namespace) -> int:
     for name in preset_creature_names():
         spec = load_creature(name)
         rig = build_rig(spec)
-        kind = leg_type(spec.leg("hind").ankle_lift)
-        rows.append((name, f"{spec.description}  [{kind}, hip height {rig.hip_height:.2f} m, "
-                           f"gait {spec.gait.preset}]"))
+        kind = leg_type(spec.girdles[-1][0].ankle_lift)
+        pairs = spec.pair_count
+        rows.append((name, f"{spec.description}  [{pairs} leg pair{'s' if pairs > 1 else ''}, {kind}, hip height "
+                           f"{rig.hip_height:.2f} m, gait {spec.gait.preset}; gaits: {', '.join(gaits_for(pairs))}]"))
     _print_rows(rows)
     print("\nGaits (--gait NAME):")
-    _print_rows([(g.name, f"{g.description}  [duty factor {g.duty_factor:.2f}]") for g in GAIT_PRESETS.values()])
+    _print_rows([(g.name, f"{g.description}  [duty factor {g.duty_factor:.2f}; for {g.fits_text}]")
+                 for g in GAIT_PRESETS.values()])
     if args.keys:
         from .spec import override_keys, rule_for
 
@@ -259,12 +293,12 @@ def cmd_render(args: argparse.Namespace) -> int:
 
     output = args.output or Path(f"{Path(args.creature).stem}.gif")
     fmt = output_format(output)
-    spec = _load_with_overrides(args)
+    spec, world, speed = _creature_and_world(args)
     view = ViewSettings(size=args.size, camera=args.camera, samples=args.msaa,
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
-                                              joints=not args.no_joints))
+                                              joints=not args.no_joints, path=not args.no_path))
     request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,
-                            start=args.time, view=view, speed=args.speed)
+                            start=args.time, view=view, speed=speed, world=world)
     if fmt == "gif" and (warning := gif_fps_warning(args.fps)) and not args.quiet:
         print(warning, file=sys.stderr)
 
@@ -298,12 +332,53 @@ def cmd_render(args: argparse.Namespace) -> int:
     return 0
 
 
-def _load_with_overrides(args: argparse.Namespace):
+def _is_scene(name: str) -> bool:
+    """Whether a .toml argument is a scene file (it has [[creatures]]) rather than a creature."""
+    import tomllib
+
+    path = Path(name)
+    if path.suffix.lower() != ".toml" or not path.is_file():
+        return False
+    try:
+        return "creatures" in tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return False  # the creature loader reports it
+
+
+def _creature_and_world(args: argparse.Namespace):
+    """The creature (with --gait and --set), its world (--path, --terrain, --in-place, or a
+    scene file's) and its speed (--speed, or the scene's)."""
+    from .scenes import load_scene, make_world
+
+    speed = getattr(args, "speed", None)
+    if _is_scene(args.creature):
+        given = [flag for flag, value in (("--path", args.path), ("--terrain", args.terrain),
+                                          ("--in-place", args.in_place)) if value]
+        if given:
+            raise GaitlabError(f"{', '.join(given)}: a scene file sets its own path and terrain")
+        scene = load_scene(args.creature)
+        first = scene.creatures[0]
+        if len(scene.creatures) > 1 and not getattr(args, "quiet", False):
+            print(f"note: {args.creature} has {len(scene.creatures)} creatures; this version renders the first "
+                  f"({Path(first.creature).stem})", file=sys.stderr)
+        overrides = {**first.overrides}
+        if first.gait:
+            overrides["gait.preset"] = first.gait
+        spec = _load_with_overrides(args, first.creature, overrides)
+        if speed is None and first.speed is not None:
+            speed = (first.speed, first.speed)
+        return spec, first.world, speed
+    world = make_world(args.path, args.terrain, args.in_place)
+    return _load_with_overrides(args), world, speed
+
+
+def _load_with_overrides(args: argparse.Namespace, creature: str | None = None,
+                         base_overrides: dict[str, object] | None = None):
     """The creature named on the command line with --gait and --set applied."""
     from .spec import did_you_mean, load_creature, parse_override
 
-    spec = load_creature(args.creature)
-    overrides: dict[str, object] = {}
+    spec = load_creature(creature or args.creature)
+    overrides: dict[str, object] = dict(base_overrides or {})
     if args.gait is not None:
         if args.gait not in GAIT_PRESETS:
             raise GaitlabError(f"--gait {args.gait!r}: unknown gait{did_you_mean(args.gait, GAIT_PRESETS)}; "
@@ -328,13 +403,13 @@ def cmd_view(args: argparse.Namespace) -> int:
         if output_format(args.screenshot) != "png":
             raise GaitlabError(f"--screenshot {args.screenshot}: screenshots are PNG; use a .png name")
         check_output_dir(args.screenshot)
-    spec = _load_with_overrides(args)
+    spec, world, _ = _creature_and_world(args)
     from .ui.viewer import ViewerOptions, run_viewer
 
     options = ViewerOptions(size=args.size, vsync=not args.no_vsync, samples=args.msaa, frames=args.frames,
                             screenshot=args.screenshot, hide_ui=args.hide_ui, report_fps=args.report_fps,
                             dump_state=args.dump_state, presets=preset_creature_names())
-    return run_viewer(spec, options)
+    return run_viewer(spec, options, world)
 
 
 def cmd_analyze(args: argparse.Namespace) -> int:
@@ -342,12 +417,13 @@ def cmd_analyze(args: argparse.Namespace) -> int:
     import math as _math
 
     from .analysis import analyze_tracks, tracks_from_motion
+    from .analysis.metrics import path_error
     from .analysis.plot import write_plot
     from .analysis.report import format_table, write_events_csv
     from .analysis.sources import load_tracks
-    from .kinematics.rig import build_rig
+    from .kinematics.clip import clip_motion
     from .output import check_output_dir
-    from .recording import clip_motion
+    from .rigging import build_rig
 
     for option, suffix in ((args.plot, ".png"), (args.csv, ".csv")):
         if option is not None:
@@ -360,9 +436,11 @@ def cmd_analyze(args: argparse.Namespace) -> int:
                            "or .toml), a .bvh or a .csv file")
     is_file = suffix in (".bvh", ".csv")
     requested = None
+    path_report = None
     if is_file:
         given = [name for name, value in (("--gait", args.gait), ("--cycles", args.cycles), ("--seconds", args.seconds),
-                                          ("--speed", args.speed), ("--set", args.overrides)) if value]
+                                          ("--speed", args.speed), ("--set", args.overrides), ("--path", args.path),
+                                          ("--terrain", args.terrain), ("--in-place", args.in_place)) if value]
         if given:
             raise GaitlabError(f"{', '.join(given)}: for creatures; a motion file has its own gait")
         tracks, notes = load_tracks(args.creature, feet=args.feet, units=args.units, up=args.up)
@@ -374,27 +452,31 @@ def cmd_analyze(args: argparse.Namespace) -> int:
             raise GaitlabError(f"{', '.join(given)}: for BVH or CSV files, not creatures")
         if args.cycles is not None and args.seconds is not None:
             raise GaitlabError("give --cycles or --seconds, not both")
-        spec = _load_with_overrides(args)
+        spec, world, speed = _creature_and_world(args)
+        args.speed = speed
         rig = build_rig(spec)
         frequency = rig.gait.frequency
         if args.speed is not None:
             from .kinematics.speed import gait_at_speed
 
-            frequency = max(gait_at_speed(spec, v).gait.frequency for v in args.speed)
+            frequency = max(gait_at_speed(rig, v).gait.frequency for v in args.speed)
         fps = float(max(120, _math.ceil(200 * frequency)))  # ~200 frames per stride: sub-percent timing
         seconds = args.seconds
         if args.speed is None and seconds is None:
             cycles = args.cycles or 4.0
-            motion, _ = clip_motion(rig, fps, cycles=cycles)
+            motion, _ = clip_motion(rig, fps, cycles=cycles, world=world)
         else:
-            motion, _ = clip_motion(rig, fps, seconds=seconds, cycles=args.cycles, speed=args.speed)
+            motion, _ = clip_motion(rig, fps, seconds=seconds, cycles=args.cycles, speed=args.speed, world=world)
         tracks = tracks_from_motion(motion)
+        path_report = path_error(motion)
         gait = None if args.speed is not None else spec.gait.preset
         notes = f"{motion.frame_count} frames at {fps:g} fps"
         if args.speed is None:
             requested = {name: (rig.gait.duty_factor, float(phase)) for name, phase in zip(rig.leg_names,
                                                                                            rig.gait.offsets)}
     report = analyze_tracks(tracks, requested_gait=gait)
+    if not is_file:
+        report.path_error = path_report
     if args.csv is not None:
         write_events_csv(report, args.csv)
     if args.plot is not None:

@@ -8,6 +8,9 @@ with status 2; it never shows a traceback for these.
 
 from __future__ import annotations
 
+import difflib
+from typing import Iterable
+
 
 class GaitlabError(Exception):
     """A problem the user can fix, described in one line."""
@@ -23,3 +26,9 @@ class OutputError(GaitlabError):
 
 class GLContextError(GaitlabError):
     """No OpenGL context could be created (missing EGL/Mesa, no display, too old GL)."""
+
+
+def did_you_mean(word: str, options: Iterable[str]) -> str:
+    """' (did you mean 'x'?)' for the closest of ``options``, or ''."""
+    match = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
+    return f" (did you mean {match[0]!r}?)" if match else ""

@@ -99,6 +99,13 @@ class AtomicPath:
             raise cannot_write(self.final, exc) from None
 
 
+def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` through a temporary file renamed into place."""
+    with AtomicPath(path) as out:
+        out.tmp.write_text(text, encoding="utf-8")
+    return Path(path)
+
+
 def write_png(path: str | os.PathLike[str], image: NDArray[np.uint8]) -> Path:
     """Save one (H, W, 3) uint8 image as PNG, atomically."""
     from PIL import Image

@@ -13,19 +13,18 @@ import moderngl
 import numpy as np
 
 from .errors import GaitlabError
-from .kinematics.motion import Motion, frame_count, solve_motion
-from .kinematics.rig import Rig, build_rig
+from .kinematics.clip import clip_motion, frame_at
+from .kinematics.world import World
 from .output import (GIF_MAX_FPS, MAX_SIZE, Mp4Writer, cannot_write, check_output_dir, output_format, write_gif,
                      write_png)
-from .render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
+from .render.clip import ClipRenderer, ViewSettings, clip_cameras, loop_grid_spacing
 from .render.renderer import RenderOptions
+from .rigging import build_rig
 from .spec import CreatureSpec
 
-DEFAULT_CYCLES = 2.0
 MAX_FPS = 240.0
 MAX_SECONDS = 600.0
 MAX_SPEED = 30.0
-DEFAULT_SPEED_SECONDS = 4.0
 
 Progress = Callable[[int, int], None]
 
@@ -44,6 +43,7 @@ class RecordRequest:
     start: float = 0.0
     view: ViewSettings = field(default_factory=ViewSettings)
     speed: tuple[float, float] | None = None  # m/s at the first and last frame: speed-driven gaits
+    world: World = field(default_factory=World)  # path and terrain (default: straight ahead, flat)
 
     def __post_init__(self) -> None:
         w, h = self.view.size
@@ -75,32 +75,6 @@ class RecordResult:
     gaits: tuple[str, ...] = ()  # the gaits a speed-driven clip went through, in order
 
 
-def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: float | None = None,
-                start: float = 0.0, speed: tuple[float, float] | None = None) -> tuple[Motion, float | None]:
-    """The motion of a clip and, for whole-cycle clips, its cycle count.
-
-    With ``cycles`` the frame count is ``round(cycles * fps / frequency)`` and the clock
-    steps by exactly ``cycles / frames`` per frame (the frequency nudged by under half a
-    frame per clip) so the last frame leads seamlessly into the first. With ``speed``
-    (m/s at the first and last frame, linear in between) the gait follows the speed
-    (:mod:`app.kinematics.speed`).
-    """
-    if speed is not None:
-        return _speed_clip(rig, fps, seconds, cycles, speed)
-    f = rig.gait.frequency
-    start_clock = f * start
-    if seconds is None:
-        cycles = DEFAULT_CYCLES if cycles is None else cycles
-        frames = max(1, int(round(cycles * fps / f)))
-        clock = start_clock + cycles * np.arange(frames) / frames
-    else:
-        frames = frame_count(seconds, fps)
-        clock = start_clock + f * np.arange(frames) / fps
-        cycles = None
-    times = start + np.arange(frames) / fps
-    return solve_motion(rig, clock, times=times, fps=fps), cycles
-
-
 class Recording:
     """A recording in progress, rendered a few frames at a time so a UI can show progress
     and stay responsive. :func:`record` drives one to the end; the viewer steps one per
@@ -120,17 +94,19 @@ class Recording:
         rig = build_rig(request.spec)
         self.frequency = rig.gait.frequency
         view = request.view
+        world = request.world
         if self.format == "png":
-            cycle, _ = clip_motion(rig, request.fps, cycles=1.0)
-            self.motion = solve_motion(rig, np.array([rig.gait.frequency * request.start]),
-                                       times=np.array([request.start]), fps=request.fps)
-            self.camera = clip_camera(cycle, view)
+            # Framed as the cycle around the frame would be (no jitter between frames of a
+            # film strip made with --time).
+            cycle, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=world)
+            self.motion = frame_at(rig, request.start, request.fps, world)
+            self.cameras = clip_cameras(cycle, view)[:1]
             self.options = _with_grid(view.options, loop_grid_spacing(cycle, None))
             self.cycles: float | None = None
         else:
             self.motion, self.cycles = clip_motion(rig, request.fps, request.seconds, request.cycles, request.start,
-                                                   request.speed)
-            self.camera = clip_camera(self.motion, view)
+                                                   request.speed, world=world)
+            self.cameras = clip_cameras(self.motion, view)
             self.options = _with_grid(view.options, loop_grid_spacing(self.motion, self.cycles))
         self.total = self.motion.frame_count
         self.done = 0
@@ -157,7 +133,7 @@ class Recording:
         """Render up to ``frames`` more frames; True when all are rendered."""
         try:
             for _ in range(min(frames, self.total - self.done)):
-                image = self._renderer.frame(self.motion, self.done, self.camera, self.options)
+                image = self._renderer.frame(self.motion, self.done, self.cameras[self.done], self.options)
                 if self._mp4 is not None:
                     self._mp4.add(image)
                 else:
@@ -216,20 +192,6 @@ class Recording:
         if self._renderer is not None:
             self._renderer.release()
             self._renderer = None  # type: ignore[assignment]
-
-
-def _speed_clip(rig: Rig, fps: float, seconds: float | None, cycles: float | None,
-                speed: tuple[float, float]) -> tuple[Motion, float | None]:
-    from .kinematics.speed import gait_at_speed, simulate_speed
-
-    if seconds is None:
-        if cycles is not None:  # a constant speed: its frequency turns cycles into seconds
-            seconds = cycles / gait_at_speed(rig.spec, speed[0]).gait.frequency
-        else:
-            seconds = DEFAULT_SPEED_SECONDS
-    frames = frame_count(seconds, fps)
-    motion, gaits = simulate_speed(rig.spec, np.linspace(speed[0], speed[1], frames), fps)
-    return replace(motion, gaits=tuple(gaits)), None
 
 
 def record(request: RecordRequest, progress: Progress | None = None,

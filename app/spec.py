@@ -13,27 +13,23 @@ degrees). Kinematic quantities derived from them live in :mod:`app.kinematics.ri
 
 from __future__ import annotations
 
-import difflib
 import math
 import os
 import re
-import tempfile
 import tomllib
 from dataclasses import dataclass, field, fields
 from pathlib import Path
-from typing import Any, Literal, Mapping
+from typing import Any, Mapping
 
 import tomli_w
 
-from .errors import SpecError
-from .gaits import GAIT_PRESETS, TETRAPOD_FEET
+from .choices import KNEE_DIRECTIONS, WAVE_SHAPES, KneeDirection, LegType, WaveShape
+from .errors import SpecError, did_you_mean
+from .output import atomic_write_text
+from .gaits import GAIT_PRESETS, MAX_PAIRS, foot_names, gaits_for, phases_from_offsets, preset_phases
 from .resources import creatures_dir, preset_creature_names
 
-WaveShape = Literal["planted", "skewed-sine"]
-KneeDirection = Literal["forward", "back"]
-WAVE_SHAPES: tuple[str, ...] = ("planted", "skewed-sine")
-KNEE_DIRECTIONS: tuple[str, ...] = ("forward", "back")
-LEG_PAIRS: tuple[str, ...] = ("fore", "hind")
+TETRAPOD_PAIRS: tuple[str, ...] = ("fore", "hind")  # the classic two-girdle form: [legs.fore], [legs.hind]
 DUTY_RANGE = (0.05, 0.95)
 BIAS_LIMIT = 50.0  # |b| <= 50 covers duty factors up to ~0.947
 
@@ -103,7 +99,15 @@ BODY_RULES: dict[str, Rule] = {
 }
 
 LEG_RULES: dict[str, Rule] = {
-    "position": _num(-0.25, 1.25, doc="where the pair attaches along the spine: 0 hind end, 1 fore end"),
+    "position": _num(-0.25, 1.25, doc="where the pair attaches along the trunk: 0 rear end, 1 front end "
+                     "(default: fore 1, hind 0)"),
+    "count": Rule("integer", 1, MAX_PAIRS, doc="how many pairs of this leg, spread evenly over span"),
+    "span": Rule("numbers", -0.25, 1.25, doc="with count > 1: positions of the rearmost and the frontmost pair"),
+    "hip_offset": _length("sideways distance of each hip from the spine (default: half the body width)",
+                          zero_ok=True, hi=10.0),
+    "abduction": _num(0, 80, unit="deg", doc="the leg's rest direction turned out from vertical (0 upright mammal "
+                      "legs; 40-60 sprawled insect and spider legs)"),
+    "splay": _num(-80, 80, unit="deg", doc="the foot's rest position turned forward (+) or back (-) about the hip"),
     "femur": _length("upper leg (femur / humerus)"),
     "tibia": _length("lower leg (tibia / radius)"),
     "metatarsus": _length("foot bone between ankle and ball (metatarsus / metacarpus)"),
@@ -111,7 +115,9 @@ LEG_RULES: dict[str, Rule] = {
     "ankle_lift": _num(0, 90, unit="deg",
                        doc="metatarsus angle to the ground at rest: ~0 plantigrade, mid digitigrade, ~90 unguligrade"),
     "natural_bend": _num(0, 0.6, doc="rest length as a fraction below full extension: L_rest = L_max (1 - bend)"),
-    "knee": Rule("choice", choices=KNEE_DIRECTIONS, doc="which way the middle joint points"),
+    "knee": Rule("choice", choices=KNEE_DIRECTIONS,
+                  doc="which way the middle joint points: forward (knee), back (elbow), out (up and away from "
+                      "the body: insects, spiders)"),
     "radius": _length("bone radius at the hip; bones taper towards the foot", hi=2.0),
 }
 
@@ -120,9 +126,9 @@ GAIT_RULES: dict[str, Rule] = {
     "frequency": _num(0.0, 20.0, lo_open=True, unit="Hz", doc="stride frequency (default: from the preset and hip height)"),
     "duty_factor": _num(*DUTY_RANGE, lo_open=True, hi_open=True, doc="fraction of the cycle each foot is planted"),
     "bias": _num(-BIAS_LIMIT, BIAS_LIMIT, doc="the seed's swing/stance bias b; duty = 1/2 + asin(ln(cosh b)/b)/pi"),
-    "front_back": _num(-1, 1, doc="how far (cycle fraction) a fore foot lags the hind foot on its side"),
+    "front_back": _num(-1, 1, doc="how far (cycle fraction) a foot lags the one behind it on its side"),
     "left_right": _num(-1, 1, doc="how far (cycle fraction) the right side lags the left"),
-    "phases": _num(-1, 1, doc="explicit touchdown phase per foot (LF RF LH RH), left hind = 0"),
+    "phases": _num(-1, 1, doc="explicit touchdown phase per foot (e.g. LF RF LH RH), rearmost left foot = 0"),
     "step_height": _num(0, 1, unit="leg rest lengths", doc="how high a foot lifts in swing"),
     "stride": _num(0, 2, unit="leg rest lengths", doc="fore-aft travel of a planted foot relative to its hip"),
     "wave": Rule("choice", choices=WAVE_SHAPES,
@@ -162,6 +168,7 @@ TABLES: dict[str, dict[str, Rule]] = {
     "look": LOOK_RULES,
 }
 _COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}$")
+_FOOT_RE = re.compile(r"^[LR]([FH]|[0-9]{1,2})?$")
 
 
 # --------------------------------------------------------------------------------------
@@ -190,7 +197,8 @@ class BodySpec:
 
 @dataclass(frozen=True)
 class LegSpec:
-    """One left/right pair of legs: four bones, ankle lift (degrees), natural bend."""
+    """One left/right pair of legs (or ``count`` identical pairs spread over ``span``):
+    four bones, ankle lift (degrees), natural bend, and where the hips sit."""
 
     name: str
     femur: float
@@ -202,6 +210,19 @@ class LegSpec:
     position: float
     natural_bend: float = 0.1
     radius: float = 0.03
+    count: int = 1
+    span: tuple[float, ...] | None = None
+    hip_offset: float | None = None
+    abduction: float = 0.0
+    splay: float = 0.0
+
+    @property
+    def positions(self) -> tuple[float, ...]:
+        """Trunk position of each pair of this kind, rear to front."""
+        if self.count == 1:
+            return (self.position,)
+        lo, hi = self.span if self.span is not None else (0.0, 1.0)
+        return tuple(lo + (hi - lo) * i / (self.count - 1) for i in range(self.count))
 
 
 @dataclass(frozen=True)
@@ -272,16 +293,27 @@ class CreatureSpec:
     # -- access ---------------------------------------------------------------------
 
     def leg(self, name: str) -> LegSpec:
-        """The leg pair called ``name`` (``fore`` or ``hind``)."""
+        """The leg table called ``name`` (e.g. ``fore`` or ``hind``)."""
         for leg in self.legs:
             if leg.name == name:
                 return leg
         raise KeyError(name)
 
     @property
+    def girdles(self) -> tuple[tuple[LegSpec, float], ...]:
+        """Every leg pair as (its leg table, its trunk position), front pair first."""
+        pairs = [(leg, p) for leg in self.legs for p in leg.positions]
+        return tuple(sorted(pairs, key=lambda lp: -lp[1]))
+
+    @property
+    def pair_count(self) -> int:
+        return sum(leg.count for leg in self.legs)
+
+    @property
     def foot_names(self) -> tuple[str, ...]:
-        """Foot names in array order: ``("LF", "RF", "LH", "RH")``."""
-        return TETRAPOD_FEET
+        """Foot names in array order, front pair first: ``LF RF LH RH`` for two pairs, ``L R``
+        for one, ``L1 R1 L2 R2 ...`` for more."""
+        return foot_names(self.pair_count)
 
     # -- conversion -----------------------------------------------------------------
 
@@ -291,7 +323,8 @@ class CreatureSpec:
         if self.description:
             doc["description"] = self.description
         doc["body"] = _table(self.body)
-        doc["legs"] = {leg.name: _table(leg, skip=("name",)) for leg in self.legs}
+        doc["legs"] = {leg.name: {k: v for k, v in _table(leg, skip=("name",)).items()
+                                  if (k, v) not in _LEG_DEFAULTS} for leg in self.legs}
         gait = _table(self.gait)
         if self.gait.phases is not None:
             gait["phases"] = dict(self.gait.phases)
@@ -321,6 +354,9 @@ class CreatureSpec:
         return atomic_write_text(path, text)
 
 
+_LEG_DEFAULTS = {("count", 1), ("abduction", 0.0), ("splay", 0.0)}  # left out of saved files
+
+
 def _table(obj: Any, skip: tuple[str, ...] = ()) -> dict[str, Any]:
     out: dict[str, Any] = {}
     for f in fields(obj):
@@ -331,22 +367,6 @@ def _table(obj: Any, skip: tuple[str, ...] = ()) -> dict[str, Any]:
             continue
         out[f.name] = list(value) if isinstance(value, tuple) else value
     return out
-
-
-def atomic_write_text(path: Path, text: str) -> Path:
-    """Write ``text`` to ``path`` through a temporary file in the same folder."""
-    from .output import check_output_dir  # local import: output imports nothing from spec
-
-    check_output_dir(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
 
 
 # --------------------------------------------------------------------------------------
@@ -392,25 +412,10 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
     body_t = _subtable(data, "body", where, required=True)
     body = BodySpec(**_read_table(body_t, BODY_RULES, "body", where, required=("length", "width", "radius")))
 
-    legs_t = _subtable(data, "legs", where, required=True)
-    unknown = [k for k in legs_t if k not in LEG_PAIRS]
-    if unknown:
-        raise SpecError(f"{_at(where)}legs.{unknown[0]}: unknown leg pair{did_you_mean(unknown[0], LEG_PAIRS)}; "
-                        f"a creature has the pairs {', '.join('[legs.' + p + ']' for p in LEG_PAIRS)}")
-    legs = []
-    for pair in LEG_PAIRS:
-        table = _subtable(legs_t, pair, where, required=True, prefix="legs.")
-        values = _read_table(table, LEG_RULES, f"legs.{pair}", where,
-                             required=("femur", "tibia", "metatarsus", "toe", "ankle_lift"))
-        values.setdefault("knee", "back" if pair == "fore" else "forward")
-        values.setdefault("position", 1.0 if pair == "fore" else 0.0)
-        legs.append(LegSpec(name=pair, **values))
-    fore, hind = legs
-    if fore.position <= hind.position:
-        raise SpecError(f"{_at(where)}legs.fore.position = {fore.position:g} must be ahead of "
-                        f"legs.hind.position = {hind.position:g}")
+    legs = _read_legs(_subtable(data, "legs", where, required=True), body, where)
+    pairs = sum(leg.count for leg in legs)
 
-    gait = _read_gait(_subtable(data, "gait", where, required=False), where)
+    gait = _read_gait(_subtable(data, "gait", where, required=False), foot_names(pairs), where)
     motion = MotionSpec(**_read_table(_subtable(data, "motion", where, required=False), MOTION_RULES, "motion", where))
     speed = SpeedSpec(**_read_table(_subtable(data, "speed", where, required=False), SPEED_RULES, "speed", where))
     if speed.trot_gallop <= speed.walk_trot:
@@ -424,21 +429,81 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
     return spec
 
 
-def _read_gait(table: Mapping[str, Any], where: str) -> GaitSpec:
+_BONES = ("femur", "tibia", "metatarsus", "toe", "ankle_lift")
+
+
+def _read_legs(legs_t: Mapping[str, Any], body: BodySpec, where: str) -> list[LegSpec]:
+    """The leg tables: ``[legs.fore]`` and ``[legs.hind]`` (the tetrapod form, positions 1
+    and 0 by default) or any names, each with a ``position`` (or ``count`` and ``span``)."""
+    if not legs_t:
+        raise SpecError(f"{_at(where)}[legs] has no leg pairs; give [legs.fore] and [legs.hind], or any "
+                        "[legs.NAME] tables with a position along the trunk")
+    given = set(legs_t) & set(TETRAPOD_PAIRS)
+    if len(given) == 1:
+        missing = (set(TETRAPOD_PAIRS) - given).pop()
+        raise SpecError(f"{_at(where)}missing table [legs.{missing}]: [legs.fore] and [legs.hind] come together "
+                        "(for other layouts name the pairs freely, each with a position)")
+    legs = []
+    for pair in legs_t:
+        table = _subtable(legs_t, pair, where, required=True, prefix="legs.")
+        values = _read_table(table, LEG_RULES, f"legs.{pair}", where, required=_BONES)
+        values.setdefault("knee", "back" if pair == "fore" else "forward")
+        count = values.get("count", 1)
+        if "span" in values:
+            if len(values["span"]) != 2:
+                raise SpecError(f"{_at(where)}legs.{pair}.span = {list(values['span'])}: expected two positions "
+                                "[rearmost, frontmost], e.g. [0.1, 0.9]")
+            if count == 1:
+                raise SpecError(f"{_at(where)}legs.{pair}.span is for repeated pairs (count > 1); a single pair "
+                                "takes a position")
+        if count > 1 and "position" in values:
+            raise SpecError(f"{_at(where)}legs.{pair}: give count with span = [rear, front], not a position")
+        if "position" not in values:
+            if pair in TETRAPOD_PAIRS:
+                values["position"] = 1.0 if pair == "fore" else 0.0
+            elif count == 1:
+                raise SpecError(f"{_at(where)}missing key legs.{pair}.position ({LEG_RULES['position'].doc}; "
+                                f"{LEG_RULES['position'].allowed()})")
+            else:
+                values["position"] = values.get("span", (0.0, 1.0))[-1]
+        legs.append(LegSpec(name=pair, **values))
+    positions = sorted((p, leg.name) for leg in legs for p in leg.positions)
+    for (p0, n0), (p1, n1) in zip(positions, positions[1:]):
+        if p1 - p0 < 1e-6:
+            raise SpecError(f"{_at(where)}legs.{n0} and legs.{n1}: two leg pairs at trunk position {p0:g}; give "
+                            "each pair its own position")
+    if given:
+        fore = next(leg for leg in legs if leg.name == "fore")
+        hind = next(leg for leg in legs if leg.name == "hind")
+        if fore.position <= hind.position:
+            raise SpecError(f"{_at(where)}legs.fore.position = {fore.position:g} must be ahead of "
+                            f"legs.hind.position = {hind.position:g}")
+    pairs = len(positions)
+    if pairs > MAX_PAIRS:
+        raise SpecError(f"{_at(where)}legs: {pairs} leg pairs; a creature has 1 to {MAX_PAIRS}")
+    return legs
+
+
+def _read_gait(table: Mapping[str, Any], feet: tuple[str, ...], where: str) -> GaitSpec:
     values = _read_table(table, {k: v for k, v in GAIT_RULES.items() if k != "phases"}, "gait", where,
                          extra=("phases",))
     if "phases" in table:
         phases_t = table["phases"]
         if not isinstance(phases_t, Mapping):
             raise SpecError(f"{_at(where)}gait.phases must be a table like {{ LF = 0.25, RF = 0.75, LH = 0, RH = 0.5 }}")
-        _check_keys(phases_t, dict.fromkeys(TETRAPOD_FEET), "gait.phases.", where)
-        missing = [f for f in TETRAPOD_FEET if f not in phases_t]
+        _check_keys(phases_t, dict.fromkeys(feet), "gait.phases.", where)
+        missing = [f for f in feet if f not in phases_t]
         if missing:
             raise SpecError(f"{_at(where)}gait.phases is missing {', '.join(missing)}; give a phase for each of "
-                            f"{', '.join(TETRAPOD_FEET)}")
+                            f"{', '.join(feet)}")
         values["phases"] = tuple((foot, _value(phases_t, foot, GAIT_RULES["phases"], where, prefix="gait.phases."))
-                                 for foot in TETRAPOD_FEET)
+                                 for foot in feet)
     gait = GaitSpec(**values)
+    pairs = len(feet) // 2
+    if not gait.preset_spec.fits(pairs):
+        fitting = ", ".join(gaits_for(pairs))
+        raise SpecError(f"{_at(where)}gait.preset = {gait.preset!r} is a gait for {gait.preset_spec.fits_text}; this "
+                        f"creature has {pairs} leg pair{'s' if pairs > 1 else ''}: use one of {fitting}")
     if gait.duty_factor is not None and gait.bias is not None:
         raise SpecError(f"{_at(where)}gait: give duty_factor or bias, not both (duty_factor = {gait.duty_factor:g}, "
                         f"bias = {gait.bias:g})")
@@ -484,9 +549,10 @@ def _check_geometry(spec: CreatureSpec, where: str) -> None:
             raise SpecError(f"{_at(where)}legs.{leg.name}: unreachable geometry: femur {leg.femur:g} and tibia "
                             f"{leg.tibia:g} cannot fold to the rest pose (hip to ankle {ankle_at_rest:.3g} m < "
                             f"|femur - tibia| = {fold:.3g} m); make them closer in length or lower natural_bend")
-    if spec.leg("hind").radius * 2 > spec.body.width * 1.5:
-        raise SpecError(f"{_at(where)}legs.hind.radius = {spec.leg('hind').radius:g} m is too thick for "
-                        f"body.width = {spec.body.width:g} m (legs would overlap)")
+        offset = spec.body.width / 2 if leg.hip_offset is None else leg.hip_offset
+        if leg.radius * 2 > max(spec.body.width, 2 * offset) * 1.5:
+            raise SpecError(f"{_at(where)}legs.{leg.name}.radius = {leg.radius:g} m is too thick for "
+                            f"body.width = {spec.body.width:g} m (legs would overlap)")
 
 
 # -- table readers ---------------------------------------------------------------------
@@ -593,20 +659,14 @@ def _at(where: str) -> str:
     return f"{where}: " if where else ""
 
 
-def did_you_mean(word: str, options) -> str:
-    """' (did you mean 'x'?)' for the closest of ``options``, or ''."""
-    match = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
-    return f" (did you mean {match[0]!r}?)" if match else ""
-
-
 # -- overrides -------------------------------------------------------------------------
 
 
 def override_keys() -> list[str]:
     """Every dotted key that :meth:`CreatureSpec.with_overrides` accepts."""
     keys = [f"{table}.{k}" for table, rules in TABLES.items() for k in rules if k != "phases"]
-    keys += [f"legs.{pair}.{k}" for pair in LEG_PAIRS for k in LEG_RULES]
-    keys += [f"gait.phases.{foot}" for foot in TETRAPOD_FEET]
+    keys += [f"legs.{pair}.{k}" for pair in TETRAPOD_PAIRS for k in LEG_RULES]
+    keys += [f"gait.phases.{foot}" for foot in foot_names(2)]
     keys += list(TOP_RULES)
     return keys
 
@@ -616,9 +676,9 @@ def rule_for(key: str) -> Rule | None:
     parts = key.split(".")
     if len(parts) == 1:
         return TOP_RULES.get(parts[0])
-    if parts[0] == "legs" and len(parts) == 3 and parts[1] in LEG_PAIRS:
+    if parts[0] == "legs" and len(parts) == 3:
         return LEG_RULES.get(parts[2])
-    if parts[:2] == ["gait", "phases"] and len(parts) == 3 and parts[2] in TETRAPOD_FEET:
+    if parts[:2] == ["gait", "phases"] and len(parts) == 3 and _FOOT_RE.match(parts[2]):
         return GAIT_RULES["phases"]
     if len(parts) == 2 and parts[0] in TABLES and parts[1] != "phases":
         return TABLES[parts[0]].get(parts[1])
@@ -632,15 +692,21 @@ def _apply_override(data: dict[str, Any], key: str, value: Any, spec: CreatureSp
                         "keys look like body.length, legs.hind.femur, gait.duty_factor, gait.phases.LF")
     value = check_value(key, value, rule, origin)
     parts = key.split(".")
+    if parts[0] == "legs" and parts[1] not in data.get("legs", {}):
+        pairs = ", ".join(data.get("legs", {}))
+        raise SpecError(f"{origin + ' ' if origin else ''}{key}: {spec.name} has no leg pair {parts[1]!r}"
+                        f"{did_you_mean(parts[1], data.get('legs', {}))}; its pairs are: {pairs}")
     if key == "gait.preset":
         data["gait"] = {"preset": value, "wave": data.get("gait", {}).get("wave", "planted")}
         return
     if parts[:2] == ["gait", "phases"]:
         gait = data.setdefault("gait", {})
+        if parts[2] not in spec.foot_names:
+            raise SpecError(f"{origin + ' ' if origin else ''}{key}: {spec.name} has no foot {parts[2]}; its feet are "
+                            f"{', '.join(spec.foot_names)}")
         if "phases" not in gait:
-            from .kinematics.gait import resolve_phases
-
-            gait["phases"] = dict(zip(TETRAPOD_FEET, (float(p) for p in resolve_phases(spec.gait))))
+            phases = resolve_phases(spec.gait, spec.foot_names)
+            gait["phases"] = dict(zip(spec.foot_names, (float(p) for p in phases)))
             gait.pop("front_back", None)
             gait.pop("left_right", None)
         gait["phases"][parts[2]] = value
@@ -680,8 +746,6 @@ def without_adjustment(spec: CreatureSpec, key: str) -> CreatureSpec:
     return creature_from_dict(data, source=spec.source or f"<{spec.name}>")
 
 
-LegType = Literal["plantigrade", "digitigrade", "unguligrade"]
-LEG_TYPES: tuple[str, ...] = ("plantigrade", "digitigrade", "unguligrade")
 # (ankle lift in degrees, toe length as a fraction of the metatarsus) typical of each type.
 LEG_TYPE_SHAPES: dict[str, tuple[float, float]] = {
     "plantigrade": (8.0, 0.6), "digitigrade": (62.0, 0.5), "unguligrade": (84.0, 0.18)}
@@ -705,3 +769,18 @@ def parse_override(text: str) -> tuple[str, Any]:
     except tomllib.TOMLDecodeError:
         value = raw  # a bare word such as a preset name; validated against the key's rule
     return key, value
+
+
+def resolve_phases(gait: GaitSpec, feet: tuple[str, ...]) -> Any:
+    """Each foot's touchdown phase for a gait spec, shape (len(feet),), in [0, 1)."""
+    import numpy as np
+
+    preset = gait.preset_spec
+    if gait.phases is not None:
+        given = dict(gait.phases)
+        return np.mod(np.array([given[f] for f in feet], dtype=np.float64), 1.0)
+    if preset.symmetric:
+        fb = preset.front_back if gait.front_back is None else gait.front_back
+        lr = preset.left_right if gait.left_right is None else gait.left_right
+        return phases_from_offsets(float(fb), float(lr), feet)
+    return preset_phases(gait.preset, feet)

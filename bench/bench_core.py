@@ -28,7 +28,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from app import build_rig, load_creature  # noqa: E402
 from app.kinematics.leg import solve_legs  # noqa: E402
 from app.kinematics.leg_scalar import solve_leg  # noqa: E402
-from app.kinematics.motion import simulate  # noqa: E402
+from app import simulate  # noqa: E402
 
 UP = np.array([0.0, 1.0, 0.0])
 FWD = np.array([0.0, 0.0, 1.0])

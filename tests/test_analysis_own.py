@@ -9,8 +9,8 @@ import pytest
 from app import build_rig, load_creature
 from app.analysis import analyze_tracks, tracks_from_motion
 from app.analysis.metrics import cyclic_distance
-from app.gaits import GAIT_PRESETS
-from app.recording import clip_motion
+from app.gaits import gaits_for
+from app.kinematics.clip import clip_motion
 
 
 def analyse(creature: str, gait: str, wave: str = "planted"):
@@ -20,7 +20,7 @@ def analyse(creature: str, gait: str, wave: str = "planted"):
     return rig, analyze_tracks(tracks_from_motion(motion), gait)
 
 
-CASES = [("dog", g, "planted") for g in GAIT_PRESETS] + [("horse", g, "skewed-sine") for g in GAIT_PRESETS]
+CASES = [("dog", g, "planted") for g in gaits_for(2)] + [("horse", g, "skewed-sine") for g in gaits_for(2)]
 
 
 @pytest.mark.parametrize("creature, gait, wave", CASES)

@@ -49,7 +49,7 @@ def test_speed_ramp_reports_gait_per_time_span(tmp_path: Path) -> None:
 def test_csv_input(tmp_path: Path) -> None:
     from app import build_rig, load_creature
     from app.analysis import tracks_from_motion
-    from app.recording import clip_motion
+    from app.kinematics.clip import clip_motion
 
     motion, _ = clip_motion(build_rig(load_creature("cat").with_overrides({"gait.preset": "pace"})), 400.0,
                             cycles=4.0)

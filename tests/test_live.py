@@ -7,8 +7,8 @@ import functools
 import numpy as np
 import pytest
 
-from app import load_creature
-from app.gaits import GAIT_PRESETS
+from app import build_rig, load_creature
+from app.gaits import gaits_for
 from app.kinematics.live import BLEND_CYCLES, LiveMotion
 
 DT = 1.0 / 60.0
@@ -35,19 +35,20 @@ def steady_max_step(spec, seconds: float = 1.2, alignments: int = 6) -> float:
     at several sub-frame offsets (a single run only samples the swing peak by chance)."""
     best = 0.0
     for k in range(alignments):
-        live = LiveMotion(spec)
+        live = LiveMotion(build_rig(spec))
         live.step(DT * k / alignments)
         best = max(best, max_step(run(live, seconds)))
     return best
 
 
 def test_clock_integrates_frequency() -> None:
-    live = LiveMotion(load_creature("dog"))
+    dog = load_creature("dog")
+    live = LiveMotion(build_rig(dog))
     f = live.rig.gait.frequency
     for _ in range(60):
         live.step(DT)
     assert live.clock == pytest.approx(f * 1.0)
-    live.set_spec(live.spec.with_overrides({"gait.frequency": 2 * f}))
+    live.set_rig(build_rig(dog.with_overrides({"gait.frequency": 2 * f})))
     before = live.clock
     live.step(DT)
     assert live.clock - before == pytest.approx(f * DT)  # the old speed holds at the first step...
@@ -63,13 +64,13 @@ def dog_steady_max_step(gait: str) -> float:
     return steady_max_step(load_creature("dog").with_overrides({"gait.preset": gait}))
 
 
-@pytest.mark.parametrize("to_gait", [g for g in GAIT_PRESETS if g != "walk"])
+@pytest.mark.parametrize("to_gait", [g for g in gaits_for(2) if g != "walk"])
 def test_gait_switch_has_no_foot_jump(to_gait: str) -> None:
     spec = load_creature("dog")
     reference = max(dog_steady_max_step("walk"), dog_steady_max_step(to_gait))
-    live = LiveMotion(spec)
+    live = LiveMotion(build_rig(spec))
     before = run(live, 0.73)  # switch mid-step
-    live.set_spec(spec.with_overrides({"gait.preset": to_gait}))
+    live.set_rig(build_rig(spec.with_overrides({"gait.preset": to_gait})))
     during = run(live, 5.5)  # the feet reach the new gait within a few cycles (worst: ~7 walk cycles)
     feet = np.concatenate([before, during])
     assert max_step(feet) <= reference * 1.01  # 1%: the reference samples the peak at 60 fps
@@ -78,9 +79,9 @@ def test_gait_switch_has_no_foot_jump(to_gait: str) -> None:
 
 def test_wave_shape_change_cross_fades() -> None:
     spec = load_creature("horse")
-    live = LiveMotion(spec)
+    live = LiveMotion(build_rig(spec))
     before = run(live, 0.5)
-    live.set_spec(spec.with_overrides({"gait.wave": "skewed-sine"}))
+    live.set_rig(build_rig(spec.with_overrides({"gait.wave": "skewed-sine"})))
     assert live.blending
     during = run(live, BLEND_CYCLES / live.rig.gait.frequency + 0.2)
     reference = max(steady_max_step(spec), steady_max_step(spec.with_overrides({"gait.wave": "skewed-sine"})))
@@ -88,15 +89,16 @@ def test_wave_shape_change_cross_fades() -> None:
 
 
 def test_bone_length_change_applies_at_once() -> None:
-    live = LiveMotion(load_creature("dog"))
+    dog = load_creature("dog")
+    live = LiveMotion(build_rig(dog))
     live.step(DT)
-    live.set_spec(live.spec.with_overrides({"legs.hind.femur": 0.3}))
+    live.set_rig(build_rig(dog.with_overrides({"legs.hind.femur": 0.3})))
     bones = np.linalg.norm(np.diff(live.pose().joints, axis=1), axis=-1)
     assert bones[2, 0] == pytest.approx(0.3)
 
 
 def test_scrub_sets_the_phase_within_the_cycle() -> None:
-    live = LiveMotion(load_creature("dog"))
+    live = LiveMotion(build_rig(load_creature("dog")))
     for _ in range(100):
         live.step(DT)
     cycle = np.floor(live.clock)

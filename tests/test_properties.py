@@ -8,8 +8,8 @@ from hypothesis import strategies as st
 
 from app import build_rig
 from app.errors import SpecError
-from app.gaits import GAIT_PRESETS
-from app.recording import clip_motion
+from app.gaits import GAIT_PRESETS, gaits_for
+from app.kinematics.clip import clip_motion
 from app.spec import creature_from_dict
 
 length = st.floats(0.03, 1.2)
@@ -26,7 +26,7 @@ def leg_tables(draw) -> dict:
 
 @st.composite
 def creatures(draw):
-    gait = {"preset": draw(st.sampled_from(list(GAIT_PRESETS))),
+    gait = {"preset": draw(st.sampled_from(gaits_for(2))),
             "duty_factor": draw(st.floats(0.06, 0.94)),
             "wave": draw(st.sampled_from(["planted", "skewed-sine"])),
             "step_height": draw(st.floats(0.0, 0.6)),

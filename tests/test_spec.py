@@ -11,9 +11,8 @@ import pytest
 from app import build_rig, load_creature
 from app.errors import SpecError
 from app.gaits import GAIT_PRESETS
-from app.kinematics.gait import resolve_phases
 from app.resources import preset_creature_names
-from app.spec import parse_override
+from app.spec import parse_override, resolve_phases
 
 PRESETS = ["bear", "cat", "deer", "dog", "horse"]
 
@@ -51,7 +50,7 @@ def test_changing_preset_resets_gait_adjustments_unless_given_together() -> None
 
 def test_per_foot_phase_override_starts_from_the_current_phases() -> None:
     spec = load_creature("dog").with_overrides({"gait.phases.LF": 0.3})
-    phases = dict(zip(("LF", "RF", "LH", "RH"), resolve_phases(spec.gait)))
+    phases = dict(zip(("LF", "RF", "LH", "RH"), resolve_phases(spec.gait, spec.foot_names)))
     assert phases == pytest.approx({"LF": 0.3, "RF": 0.75, "LH": 0.0, "RH": 0.5})
 
 
@@ -61,10 +60,15 @@ def test_bias_gives_duty_through_closed_form() -> None:
 
 
 @pytest.mark.parametrize("gait", list(GAIT_PRESETS))
-def test_every_gait_resolves_on_every_creature(gait: str) -> None:
+def test_every_gait_resolves_on_every_creature_it_fits(gait: str) -> None:
     for name in PRESETS:
-        rig = build_rig(load_creature(name).with_overrides({"gait.preset": gait}))
-        assert rig.gait.offsets.shape == (4,)
+        spec = load_creature(name)
+        if not GAIT_PRESETS[gait].fits(spec.pair_count):
+            with pytest.raises(SpecError, match=f"is a gait for .*this creature has {spec.pair_count} leg pair"):
+                spec.with_overrides({"gait.preset": gait})
+            continue
+        rig = build_rig(spec.with_overrides({"gait.preset": gait}))
+        assert rig.gait.offsets.shape == (2 * spec.pair_count,)
         assert 0.0 < rig.gait.frequency < 10.0
 
 

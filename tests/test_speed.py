@@ -9,6 +9,8 @@ from app import build_rig, load_creature
 from app.kinematics.speed import choose_gait, froude, gait_at_speed, gait_with_speed, simulate_speed, stride_length
 
 DOG = load_creature("dog")
+RIG = build_rig(DOG)
+TABLE = RIG.speed
 
 
 def test_froude_scaling() -> None:
@@ -16,26 +18,25 @@ def test_froude_scaling() -> None:
     v = 1.5
     assert froude(v, h) == pytest.approx(v * v / (9.81 * h))
     assert stride_length(v, h) == pytest.approx(2.3 * froude(v, h) ** 0.3 * h)
-    spec = gait_at_speed(DOG, v)
-    rig = build_rig(spec)
+    rig = gait_at_speed(RIG, v)
     assert rig.gait.frequency == pytest.approx(v / stride_length(v, h))
     assert rig.ground_speed == pytest.approx(v, rel=1e-9)  # the planted feet move at exactly v
 
 
 def test_gait_thresholds_and_hysteresis() -> None:
     wt, tg, hys = DOG.speed.walk_trot, DOG.speed.trot_gallop, DOG.speed.hysteresis
-    assert choose_gait(wt * 0.9, None, DOG) == "walk" and choose_gait(wt * 1.1, None, DOG) == "trot"
-    assert choose_gait(wt * (1 + hys / 2), "walk", DOG) == "walk"  # not yet
-    assert choose_gait(wt * (1 + hys), "walk", DOG) == "trot"
-    assert choose_gait(wt * (1 - hys / 2), "trot", DOG) == "trot"  # sticky on the way down
-    assert choose_gait(wt * (1 - hys) * 0.99, "trot", DOG) == "walk"
-    assert choose_gait(tg * (1 + hys), "trot", DOG) == "gallop"
+    assert choose_gait(wt * 0.9, None, TABLE) == "walk" and choose_gait(wt * 1.1, None, TABLE) == "trot"
+    assert choose_gait(wt * (1 + hys / 2), "walk", TABLE) == "walk"  # not yet
+    assert choose_gait(wt * (1 + hys), "walk", TABLE) == "trot"
+    assert choose_gait(wt * (1 - hys / 2), "trot", TABLE) == "trot"  # sticky on the way down
+    assert choose_gait(wt * (1 - hys) * 0.99, "trot", TABLE) == "walk"
+    assert choose_gait(tg * (1 + hys), "trot", TABLE) == "gallop"
     horse = load_creature("horse")
     assert horse.speed.walk_trot == 0.35  # configurable per creature
 
 
 def test_duty_factor_falls_with_speed() -> None:
-    duties = [build_rig(gait_at_speed(DOG, v)).gait.duty_factor for v in (0.4, 1.0, 2.0, 4.0, 7.0)]
+    duties = [gait_at_speed(RIG, v).gait.duty_factor for v in (0.4, 1.0, 2.0, 4.0, 7.0)]
     assert duties == sorted(duties, reverse=True)
     assert duties[0] > 0.6 and duties[-1] < 0.3
 
@@ -43,7 +44,7 @@ def test_duty_factor_falls_with_speed() -> None:
 def test_speed_ramp_walks_trots_gallops_without_foot_jumps() -> None:
     fps = 120.0
     speeds = np.linspace(0.3, 6.0, int(12 * fps))
-    motion, gaits = simulate_speed(DOG, speeds, fps)
+    motion, gaits = simulate_speed(RIG, speeds, fps)
     h = build_rig(DOG).hip_height
     switches = [(i, gaits[i - 1], gaits[i]) for i in range(1, len(gaits)) if gaits[i] != gaits[i - 1]]
     assert [(a, b) for _, a, b in switches] == [("walk", "trot"), ("trot", "gallop")]
@@ -63,9 +64,9 @@ def test_speed_ramp_walks_trots_gallops_without_foot_jumps() -> None:
 
 
 def steady_max_step(gait: str, speed: float, fps: float) -> float:
-    from app.recording import clip_motion
+    from app.kinematics.clip import clip_motion
 
-    motion, _ = clip_motion(build_rig(gait_with_speed(DOG, speed, gait)), fps, cycles=2.0)
+    motion, _ = clip_motion(gait_with_speed(RIG, speed, gait), fps, cycles=2.0)
     feet = motion.joints[:, :, 3].copy()
     feet[:, :, 2] += motion.ground_offset[:, None]
     return float(np.linalg.norm(np.diff(feet, axis=0), axis=-1).max())

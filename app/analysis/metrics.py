@@ -8,9 +8,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..gaits import GAIT_PRESETS, TETRAPOD_FEET
-from ..kinematics.gait import resolve_phases
-from ..spec import GaitSpec
+from ..gaits import GAIT_PRESETS, TETRAPOD_FEET, foot_names, phases_from_offsets, preset_phases
+from ..kinematics.motion import Motion
 from .events import AnalysisError, FootEvents, detect_events, clip_period
 from .tracks import FootTracks
 
@@ -47,6 +46,35 @@ class FootReport:
 
 
 @dataclass
+class PathError:
+    """How closely the trunk's centre followed its path: cross-track distance (m) RMS and
+    maximum, the maximum in body lengths, and the heading error (degrees) RMS and maximum."""
+
+    rms: float
+    max: float
+    max_body_lengths: float
+    heading_rms_deg: float
+    heading_max_deg: float
+
+
+def path_error(motion: Motion) -> PathError | None:
+    """The path error of a travelling motion (None in place)."""
+    if motion.in_place:
+        return None
+    from ..kinematics.path import path_distance
+
+    centre = motion.root[:, [0, 2], 3]
+    distance, s = path_distance(motion.path, centre, motion.travel, 0.5 * motion.rig.body_length)
+    _, tangent = motion.path.sample(s)
+    facing = motion.root[:, [0, 2], 2]
+    facing /= np.maximum(np.linalg.norm(facing, axis=1, keepdims=True), 1e-12)
+    angle = np.degrees(np.arccos(np.clip(np.sum(facing * tangent, axis=1), -1.0, 1.0)))
+    return PathError(rms=float(np.sqrt(np.mean(distance ** 2))), max=float(distance.max()),
+                     max_body_lengths=float(distance.max() / motion.rig.body_length),
+                     heading_rms_deg=float(np.sqrt(np.mean(angle ** 2))), heading_max_deg=float(angle.max()))
+
+
+@dataclass
 class GaitSpan:
     start: float
     end: float
@@ -67,6 +95,7 @@ class GaitReport:
     spans: list[GaitSpan]
     foot_events: list[FootEvents] = field(repr=False, default_factory=list)
     tracks: FootTracks | None = field(repr=False, default=None)
+    path_error: PathError | None = None
 
     def foot(self, name: str) -> FootReport:
         for f in self.feet:
@@ -90,19 +119,38 @@ class GaitReport:
                       "skating_ratio": num(f.skating_ratio), "events": [{"kind": k, "time": num(t)} for k, t in f.events]}
                      for f in self.feet],
             "spans": [{"start": num(s.start), "end": num(s.end), "gait": s.gait} for s in self.spans],
+            "path_error": None if self.path_error is None else {
+                "rms": num(self.path_error.rms, 5), "max": num(self.path_error.max, 5),
+                "max_body_lengths": num(self.path_error.max_body_lengths, 5),
+                "heading_rms_deg": num(self.path_error.heading_rms_deg, 3),
+                "heading_max_deg": num(self.path_error.heading_max_deg, 3)},
         }
 
 
 def reference_foot(names: tuple[str, ...]) -> str:
-    """The foot whose touchdown is phase 0: left hind (Hildebrand), or left for bipeds."""
-    for name in ("LH", "L", "L1"):
+    """The foot whose touchdown is phase 0: left hind (Hildebrand), left for bipeds, the
+    rearmost left foot (Ln) of many-legged creatures."""
+    for name in ("LH", "L"):
         if name in names:
             return name
+    numbered = [n for n in names if n[:1] == "L" and n[1:].isdigit()]
+    if numbered:
+        return max(numbered, key=lambda n: int(n[1:]))
     return names[0]
 
 
 def _preset_phases() -> dict[str, np.ndarray]:
-    return {name: resolve_phases(GaitSpec(preset=name)) for name in GAIT_PRESETS}
+    return {name: preset_phases(name, TETRAPOD_FEET) for name, p in GAIT_PRESETS.items() if p.fits(2)}
+
+
+def wave_lag(phases: dict[str, float]) -> float | None:
+    """The mean lag (cycle fraction) of a foot behind the one behind it on its side, for
+    creatures with three or more pairs (L1 R1 ... Ln Rn): a metachronal wave's lag."""
+    pairs = len([n for n in phases if n[:1] in "LR" and n[1:].isdigit()]) // 2
+    if pairs < 3:
+        return None
+    lags = [(phases[f"{side}{i}"] - phases[f"{side}{i + 1}"]) % 1.0 for side in "LR" for i in range(1, pairs)]
+    return circular_mean(lags)
 
 
 def _mirror(phases: dict[str, float]) -> dict[str, float]:
@@ -138,6 +186,21 @@ def gait_distance(phases: dict[str, float], duty: float) -> tuple[str, float]:
         scores = {g: cyclic_distance(lr, p) + abs(duty - d) for g, (p, d) in BIPED_GAITS.items()}
         best = min(scores, key=scores.get)
         return best, scores[best]
+    pairs = len(feet) // 2
+    names = foot_names(pairs)
+    if pairs >= 3 and feet >= set(names):
+        best, best_d = "", math.inf
+        lag = wave_lag(phases)
+        for name, preset in GAIT_PRESETS.items():
+            if not preset.fits(pairs):
+                continue
+            fb = lag if name == "metachronal" and lag is not None else float(preset.front_back)
+            expected = phases_from_offsets(fb, float(preset.left_right), names)
+            d = float(np.mean([cyclic_distance(phases[n], e) for n, e in zip(names, expected)]))
+            d += abs(duty - preset.duty_factor) * (0.25 if name == "metachronal" else 1.0)
+            if d < best_d:
+                best, best_d = name, d
+        return best, best_d
     return "unknown", math.inf
 
 

@@ -48,7 +48,10 @@ def write_plot(report: GaitReport, path: str | os.PathLike[str]) -> Path:
     # Gait diagram: stance bars over two cycles from the first complete reference strike.
     ax = fig.add_subplot(grid[-1])
     start = times[0]
-    ref = next((fe for fe in feet if fe.name in ("LH", "L")), feet[0])
+    from .metrics import reference_foot
+
+    ref_name = reference_foot(tuple(fe.name for fe in feet))
+    ref = next(fe for fe in feet if fe.name == ref_name)
     complete = [s for s in ref.steps if s.complete]
     if complete:
         start = times[complete[0].strike]

@@ -30,6 +30,11 @@ def format_table(report: GaitReport, requested: dict[str, tuple[float, float]] |
         lines.append(f"gait         {report.gait_match}")
     lines.append(f"cycle        {_fmt(report.cycle_seconds, 3, ' s')}   speed {_fmt(report.speed, 2, ' m/s')}"
                  + (f"   limb phase {_fmt(report.limb_phase, 3)}" if report.limb_phase is not None else ""))
+    if report.path_error is not None:
+        e = report.path_error
+        lines.append(f"path         off by {_fmt(e.rms * 1000, 1)} mm RMS, {_fmt(e.max * 1000, 1)} mm at most "
+                     f"({_fmt(e.max_body_lengths * 100, 2)}% of the body length); heading off by "
+                     f"{_fmt(e.heading_rms_deg, 2)} deg RMS, {_fmt(e.heading_max_deg, 2)} deg at most")
     if len(report.spans) > 1:
         spans = ", ".join(f"{s.gait} {s.start:.2f}-{s.end:.2f} s" for s in report.spans)
         lines.append(f"gaits        {spans}")
@@ -59,6 +64,6 @@ def events_csv(report: GaitReport) -> str:
 
 
 def write_events_csv(report: GaitReport, path: str | os.PathLike[str]) -> Path:
-    from ..spec import atomic_write_text
+    from ..output import atomic_write_text
 
-    return atomic_write_text(Path(path), events_csv(report))
+    return atomic_write_text(path, events_csv(report))

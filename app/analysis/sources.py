@@ -12,7 +12,7 @@ from typing import Literal
 
 import numpy as np
 
-from ..spec import did_you_mean
+from ..errors import did_you_mean
 from .bvh import InputError, read_bvh
 from .tracks import FootTracks
 

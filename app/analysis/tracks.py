@@ -69,15 +69,14 @@ class FootTracks:
 
 
 def tracks_from_motion(motion: Motion) -> FootTracks:
-    """Gaitlab's in-place motion put on the ground it walks over: the ground moved back by
-    ``ground_offset``, so in the ground's frame everything moves forward by it. The heel
-    point is the ball (what a digitigrade or unguligrade foot stands on) and the toe point
-    the toe tip."""
+    """Gaitlab's motion in world space: a travelling creature as it is; an in-place one put
+    on the ground it walks over (the ground moved back by ``ground_offset``, so in the
+    ground's frame everything moves forward by it). The heel point is the ball (what a
+    digitigrade or unguligrade foot stands on) and the toe point the toe tip."""
     shift = np.zeros((motion.frame_count, 3))
     shift[:, 2] = motion.ground_offset
     heel = motion.joints[:, :, 3] + shift[:, None, :]
     toe = motion.joints[:, :, 4] + shift[:, None, :]
     body = motion.root[:, :3, 3] + shift
-    spec = motion.rig.spec
     return FootTracks(times=motion.times - motion.times[0], names=tuple(motion.leg_names), heel=heel, toe=toe,
-                      body=body, source=f"gaitlab:{spec.name}", hip_height=motion.rig.hip_height)
+                      body=body, source=f"gaitlab:{motion.rig.name}", hip_height=motion.rig.hip_height)

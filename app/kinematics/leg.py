@@ -66,6 +66,7 @@ def solve_legs(
     l_rest: NDArray[np.float64],
     l_min: NDArray[np.float64],
     knee_sign: NDArray[np.float64],
+    swing_rest: NDArray[np.float64] | float = 0.0,
     ground_height: NDArray[np.float64] | float = 0.0,
 ) -> NDArray[np.float64]:
     """Solve legs for hip and ball positions.
@@ -75,6 +76,8 @@ def solve_legs(
                    heading and world up); broadcastable, e.g. (3,)
     toe_curl:      (..., L) in [0, 1]: 0 keeps the toe flat, 1 drops it by the ankle lift
     femur..knee_sign: (L,) rig arrays (m, radians, +1 knee forward / -1 back)
+    swing_rest:    (L,) the rest angle (rad) of the hip-to-ball line from the frame's down
+                   axis (a sprawled leg's abduction in its own plane; 0 for upright legs)
     ground_height: height (m) of the ground under each ball, for keeping the toe above it
 
     Returns joints (..., L, 5, 3): hip, knee, ankle, ball, toe tip. Bone lengths are
@@ -83,7 +86,7 @@ def solve_legs(
     nearer one slides it away horizontally at the target's height.
     """
     rig = dict(femur=femur, tibia=tibia, metatarsus=metatarsus, toe=toe, ankle_lift=ankle_lift, l_max=l_max,
-               l_rest=l_rest, l_min=l_min, knee_sign=knee_sign)
+               l_rest=l_rest, l_min=l_min, knee_sign=knee_sign, swing_rest=swing_rest)
     hip = np.asarray(hip, dtype=np.float64)
     target = np.asarray(target, dtype=np.float64)
     shape = np.broadcast_shapes(hip.shape, target.shape)
@@ -108,7 +111,7 @@ def solve_legs(
 
 
 def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, metatarsus, toe, ankle_lift,
-           l_max, l_rest, l_min, knee_sign) -> NDArray[np.float64]:
+           l_max, l_rest, l_min, knee_sign, swing_rest=0.0) -> NDArray[np.float64]:
     """:func:`solve_legs` on one block (see there)."""
     shape = np.broadcast_shapes(hip.shape, target.shape)
     hip = np.broadcast_to(hip, shape)
@@ -144,9 +147,10 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, m
 
     # 2. Metatarsus angle: rest lift, flattened when the leg is compressed, raised as it
     #    extends towards L_max, then rotated with the whole leg's swing about the hip.
-    swing = np.arctan2(hf, -hu)  # > 0 when the foot is ahead of the hip
+    swing = np.arctan2(hf, -hu) - swing_rest  # > 0 when the foot is ahead of its rest direction
     extension = np.clip((length - l_rest) / np.maximum(l_max - l_rest, 1e-12), 0.0, 1.0)
-    lift = ankle_lift * np.minimum(1.0, np.sqrt(length / l_rest)) + (0.5 * np.pi - ankle_lift) * extension ** 2
+    lift = ankle_lift * np.minimum(1.0, np.sqrt(length / l_rest)) \
+        + (0.5 * np.pi - swing_rest - ankle_lift) * extension ** 2
     alpha = np.clip(lift - swing, 0.0, MAX_ANKLE_ANGLE)
     wf, wu = -np.cos(alpha), np.sin(alpha)  # wanted direction ball -> ankle (no lateral part)
     wl = np.zeros_like(wf)

@@ -34,7 +34,7 @@ def _unit(a: Vec, fallback: Vec) -> Vec:
 
 def solve_leg(hip: Vec, target: Vec, fwd: Vec, up: Vec, toe_curl: float, femur: float, tibia: float,
               metatarsus: float, toe: float, ankle_lift: float, l_max: float, l_rest: float, l_min: float,
-              knee_sign: float) -> list[Vec]:
+              knee_sign: float, swing_rest: float = 0.0) -> list[Vec]:
     """Joints [hip, knee, ankle, ball, toe tip] of one leg (see ``solve_legs``)."""
     h = _add(target, hip, -1.0)
     dist = math.sqrt(_dot(h, h))
@@ -51,9 +51,9 @@ def solve_leg(hip: Vec, target: Vec, fwd: Vec, up: Vec, toe_curl: float, femur: 
     ball = _add(hip, h)
 
     h_fwd, h_up = _dot(h, fwd), _dot(h, up)
-    swing = math.atan2(h_fwd, -h_up)
+    swing = math.atan2(h_fwd, -h_up) - swing_rest
     extension = min(max((length - l_rest) / max(l_max - l_rest, 1e-12), 0.0), 1.0)
-    lift = ankle_lift * min(1.0, math.sqrt(length / l_rest)) + (0.5 * math.pi - ankle_lift) * extension ** 2
+    lift = ankle_lift * min(1.0, math.sqrt(length / l_rest)) + (0.5 * math.pi - swing_rest - ankle_lift) * extension ** 2
     alpha = min(max(lift - swing, 0.0), _MAX_ANKLE_ANGLE)
     wanted = _add(_scale(fwd, -math.cos(alpha)), up, math.sin(alpha))
 

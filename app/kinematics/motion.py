@@ -1,33 +1,34 @@
-"""From a rig and a gait clock to poses: feet, legs, body, neck, head and tail.
+"""From a rig, a gait clock and a world to poses: feet, legs, body, neck, head and tail.
 
-:func:`solve_motion` is the frame path. It is vectorised over frames and legs: the
-gait inputs may vary per frame (blends in the viewer) and broadcast as (T, L). For a
-constant gait the whole clip is one call (:func:`simulate`).
+:func:`solve_motion` is the frame path, vectorised over frames and legs. It takes one
+:class:`MotionInputs` (the clock, each foot's :class:`~app.kinematics.footfalls.FootPlan`,
+where the body is along its path) and runs the steps: foot targets, girdles, spine, hips
+and leg IK, head and tail, root. For a constant gait the whole clip is one call
+(:func:`simulate`); the viewer and speed ramps fill the same inputs frame by frame
+(:class:`~app.kinematics.live.LiveMotion`).
 
-Conventions: Y up, the creature faces +Z, +X is its left. In-place locomotion: the
-creature stays near the origin and the ground moves backwards under it at the speed of
-the planted feet (``ground_offset``), so planted feet keep still relative to the ground.
+Conventions: Y up, the creature faces +Z (+X is its left) at the start of its path.
+Positions are in the world, except in place (``World(in_place=True)``): then the body
+stays at the origin and ``ground_offset`` says how far the ground has moved back under
+it, so planted feet keep still relative to the ground.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
-from ..spec import CreatureSpec
+from .body import place_girdles, root_frames, spine_through
+from .footfalls import FootPlan, foot_directions, foot_targets, plan_constant_gait
+from .gait import ground_speed
 from .leg import solve_legs
 from .oscillator import FootWave, foot_wave
-from .rig import Rig, build_rig
-from .spine import arc_length_parameters, bezier, bezier_tangent
-
-UP = np.array([0.0, 1.0, 0.0])
-FORWARD = np.array([0.0, 0.0, 1.0])
-TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
-TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
-REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
-MIN_CROUCH = 0.6  # ... by lowering the body, but never below this fraction of its rest height
+from .path import Path
+from .rig import Rig
+from .terrain import Terrain
+from .world import World
 
 
 @dataclass(frozen=True)
@@ -38,7 +39,8 @@ class Pose:
     foot phase since touchdown; spine (S, 3) segment centres, spine_tangent (S, 3),
     spine_radius (S,); neck (2, 3) base and top; head (2, 3) back of skull and nose;
     tail (K+1, 3) chain; root (4, 4) body transform; ground_offset: how far (m) the
-    ground has moved backwards (-Z) since time 0.
+    ground has moved backwards (-Z) since time 0 (in place; 0 when travelling);
+    travel: the body's arc length along its path (m).
     """
 
     joints: NDArray[np.float64]
@@ -52,14 +54,17 @@ class Pose:
     tail: NDArray[np.float64]
     root: NDArray[np.float64]
     ground_offset: float
+    travel: float
     leg_names: tuple[str, ...]
 
 
 @dataclass(frozen=True)
 class Motion:
-    """A clip: every :class:`Pose` field with a leading time axis T, plus the clock.
+    """A clip: every :class:`Pose` field with a leading time axis T, plus the clock, the
+    rig and the world it walked in.
 
-    times (T,) seconds; clock (T,) cycles since the start; fps frames per second.
+    times (T,) seconds; clock (T,) cycles since the start; fps frames per second;
+    ``path`` and ``terrain`` are the world's.
     """
 
     times: NDArray[np.float64]
@@ -75,14 +80,28 @@ class Motion:
     tail: NDArray[np.float64]
     root: NDArray[np.float64]
     ground_offset: NDArray[np.float64]
+    travel: NDArray[np.float64]
     leg_names: tuple[str, ...]
     fps: float
     rig: Rig
+    world: World = field(default_factory=World)
     gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
 
     @property
     def frame_count(self) -> int:
         return int(self.times.shape[0])
+
+    @property
+    def path(self) -> Path:
+        return self.world.path
+
+    @property
+    def terrain(self) -> Terrain:
+        return self.world.terrain
+
+    @property
+    def in_place(self) -> bool:
+        return self.world.in_place
 
     def pose(self, index: int) -> Pose:
         """Frame ``index`` as a :class:`Pose`."""
@@ -92,161 +111,98 @@ class Motion:
             value = getattr(self, f.name)
             values[f.name] = value if f.name in static else value[index]
         values["ground_offset"] = float(self.ground_offset[index])
+        values["travel"] = float(self.travel[index])
         return Pose(**values)
 
 
-def _rotate_y(v: NDArray[np.float64], angle: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Rotate vectors (..., 3) about +Y by ``angle`` (...) radians."""
-    c, s = np.cos(angle), np.sin(angle)
-    x, y, z = v[..., 0], v[..., 1], v[..., 2]
-    x, y, z, c, s = np.broadcast_arrays(x, y, z, c, s)
-    return np.stack([c * x + s * z, y, -s * x + c * z], axis=-1)
+@dataclass(frozen=True)
+class MotionInputs:
+    """Everything one call of :func:`solve_motion` needs, per frame (T) and foot (L).
 
-
-def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
-
-
-def _pitch(direction: NDArray[np.float64], angle: ArrayLike) -> NDArray[np.float64]:
-    """Tilt a (nearly horizontal) direction up by ``angle`` radians towards +Y."""
-    flat = _unit(direction * np.array([1.0, 0.0, 1.0]))
-    angle = np.asarray(angle)[..., None]
-    return np.cos(angle) * flat + np.sin(angle) * UP
-
-
-def foot_waves(rig: Rig, clock: NDArray[np.float64], offsets: ArrayLike, duty: ArrayLike,
-               shape: str) -> tuple[NDArray[np.float64], FootWave, FootWave]:
-    """Each foot's phase (T, L) and its oscillator, plus the oscillator sampled for the
-    body bob (shifted by ``motion.bob_phase``). clock (T,); offsets (T, L) or (L,);
-    duty (T, 1) or scalar."""
-    phase = np.mod(clock[:, None] - np.asarray(offsets, dtype=np.float64), 1.0)
-    wave = foot_wave(phase, duty, shape)  # type: ignore[arg-type]
-    bob_wave = foot_wave(phase - rig.spec.motion.bob_phase, duty, shape)  # type: ignore[arg-type]
-    return phase, wave, bob_wave
-
-
-def solve_motion(rig: Rig, clock: ArrayLike, *, offsets: ArrayLike | None = None,
-                 duty: ArrayLike | None = None, stride: ArrayLike | None = None,
-                 step_height: ArrayLike | None = None, bob: ArrayLike | None = None,
-                 ground_offset: ArrayLike | None = None, times: ArrayLike | None = None,
-                 fps: float = 60.0,
-                 waves: tuple[NDArray[np.float64], FootWave, FootWave] | None = None,
-                 forward_m: ArrayLike | None = None) -> Motion:
-    """Poses for gait clock values.
-
-    clock: (T,) cycles. Optional gait values (default: the rig's gait): offsets
-    (touchdown phases), duty, stride (mean leg rest lengths) and step_height (leg rest
-    lengths), each a scalar, (L,) per foot or (T, L); bob (leg rest lengths) a scalar or
-    (T,). ground_offset (T,) metres of ground travel (default: the planted feet's mean
-    stride / duty times the clock, i.e. how far they have been carried since clock 0).
-    ``waves`` replaces the oscillators (phase, wave, bob wave as from
-    :func:`foot_waves`), e.g. a cross-fade of two wave shapes. ``forward_m`` (T, L) gives
-    each foot's fore-aft offset from its hip in metres directly (feet locked to the ground
-    while planted, see LiveMotion) instead of the oscillator's offset times the stride.
+    clock (T,) cycles; times (T,) s; plan: the feet (see FootPlan); travel (T,) the body
+    centre's arc length along the path (m); stride (T, L) the planted feet's travel
+    relative to their hips (m, for the standing height); bob (T,) leg rest lengths; wave:
+    the oscillator shape; ``waves`` optionally replaces the oscillators (a cross-fade of
+    two shapes: foot wave and bob wave).
     """
-    gait = rig.gait
-    clock = np.atleast_1d(np.asarray(clock, dtype=np.float64))
-    frames = clock.shape[0]
-    per_foot = lambda v, default: np.broadcast_to(np.asarray(default if v is None else v, dtype=np.float64),
-                                                  (frames, rig.leg_count))  # noqa: E731
-    offsets = per_foot(offsets, gait.offsets)
-    duty_t = per_foot(duty, gait.duty_factor)
-    stride_m = per_foot(stride, gait.stride) * float(rig.l_rest.mean())
-    lift_m = per_foot(step_height, gait.step_height) * rig.l_rest
-    bob_t = np.broadcast_to(np.asarray(gait.bob if bob is None else bob, dtype=np.float64), (frames,))[:, None]
-    spec = rig.spec
 
-    # Feet: oscillators -> targets on the moving ground.
-    phase, wave, bob_wave = waves if waves is not None else foot_waves(rig, clock, offsets, duty_t, gait.wave)
+    clock: NDArray[np.float64]
+    times: NDArray[np.float64]
+    plan: FootPlan
+    travel: NDArray[np.float64]
+    stride: NDArray[np.float64]
+    bob: NDArray[np.float64]
+    wave: str
+    waves: tuple[FootWave, FootWave] | None = None
 
-    # Body: bob and yaw per pair (fore, hind) from the feet of that pair.
-    pairs = np.array([[0, 1], [2, 3]])
-    pair_lift = bob_wave.lift[:, pairs].max(axis=-1)  # (T, 2)
-    # Long strides lower the body: each pair stands no higher than lets its feet reach both
-    # ends of the stride within REACH_MARGIN of full extension (bob included), so planted
-    # feet never get pulled off the ground.
-    reach = np.sqrt(np.maximum((REACH_MARGIN * rig.l_max) ** 2 - (0.5 * stride_m) ** 2, 0.0))  # (T, L)
-    bob_room = 0.5 * bob_t * rig.pair_rest_height  # (T, 2)
-    lowest = np.maximum(MIN_CROUCH * rig.pair_rest_height, 1.05 * rig.l_min[pairs].max(axis=-1))
-    stand = np.clip(reach[:, pairs].min(axis=-1) - bob_room, lowest, rig.pair_rest_height)
-    pair_height = stand + bob_t * rig.pair_rest_height * (pair_lift - 0.5)
-    pair_yaw = -np.radians(spec.motion.yaw) * (wave.forward[:, pairs[:, 0]] - wave.forward[:, pairs[:, 1]])
 
-    # Spine: a cubic Bezier from the body's hind end (position 0) to its fore end (1);
-    # the end heights are extrapolated from the two pairs, the end tangents carry the yaw.
-    p_fore, p_hind = rig.pair_position
-    slope = (pair_height[:, 0] - pair_height[:, 1]) / (p_fore - p_hind)
-    y0 = pair_height[:, 1] - slope * p_hind
-    y1 = y0 + slope
-    half = 0.5 * rig.body_length
-    p0 = np.stack([np.zeros(frames), y0, np.full(frames, -half)], axis=-1)
-    p3 = np.stack([np.zeros(frames), y1, np.full(frames, half)], axis=-1)
-    chord = _unit(p3 - p0)
-    d_hind = _rotate_y(chord, pair_yaw[:, 1])
-    d_fore = _rotate_y(chord, pair_yaw[:, 0])
-    third = rig.body_length / 3.0
-    ctrl = np.stack([p0, p0 + d_hind * third, p3 - d_fore * third, p3], axis=-2)  # (T, 4, 3)
+def oscillators(rig: Rig, plan: FootPlan, wave: str) -> tuple[FootWave, FootWave]:
+    """Each foot's oscillator at its phase, and the one sampled for the body bob (shifted
+    by the bob phase)."""
+    return (foot_wave(plan.phase, plan.duty, wave),  # type: ignore[arg-type]
+            foot_wave(plan.phase - rig.motion.bob_phase, plan.duty, wave))  # type: ignore[arg-type]
 
-    centres = bezier(ctrl, np.broadcast_to(rig.pair_position, (frames, 2)))  # (T, 2, 3)
-    lateral = _rotate_y(np.broadcast_to(np.array([1.0, 0.0, 0.0]), (frames, 2, 3)), pair_yaw)
-    hips = centres[:, rig.pair_index] + (rig.hip_side * rig.half_width)[None, :, None] * lateral[:, rig.pair_index]
 
-    rest_z = (rig.pair_position[rig.pair_index] - 0.5) * rig.body_length
-    neutral = np.stack([rig.hip_side * rig.half_width, np.zeros(rig.leg_count), rest_z], axis=-1)  # (L, 3)
-    forward = wave.forward * stride_m if forward_m is None else np.broadcast_to(
-        np.asarray(forward_m, dtype=np.float64), wave.lift.shape)
-    targets = neutral + np.stack([np.zeros_like(wave.lift), wave.lift * lift_m, forward], axis=-1)
+def _leg_frames(rig: Rig, heading: NDArray[np.float64], normal: NDArray[np.float64]):
+    """Each leg's frame (forward, up): up is the ground normal under its foot; forward is
+    the girdle's heading (mammal legs) or the outward direction (sprawled legs), made
+    perpendicular to up. Returns (3,) vectors when every leg shares one frame."""
+    legs = np.arange(rig.leg_count)
+    direction = foot_directions(rig, heading[..., [0, 2]], legs)
+    forward = np.stack([direction[..., 0], np.zeros(direction.shape[:-1]), direction[..., 1]], axis=-1)
+    forward = forward - np.sum(forward * normal, axis=-1, keepdims=True) * normal
+    forward /= np.linalg.norm(forward, axis=-1, keepdims=True)
+    first_f, first_u = forward.reshape(-1, 3)[0], normal.reshape(-1, 3)[0]
+    if np.all(forward == first_f) and np.all(normal == first_u):
+        return first_f.copy(), first_u.copy()
+    return forward, normal
+
+
+def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0) -> Motion:
+    """Poses for every frame of ``inputs`` (see the module docstring for the steps)."""
+    plan = inputs.plan
+    frames = inputs.clock.shape[0]
+    wave, bob_wave = inputs.waves if inputs.waves is not None else oscillators(rig, plan, inputs.wave)
+
+    # 1. Feet: targets from the plan, lifted by the oscillator.
+    feet = foot_targets(plan, wave.lift, inputs.wave, rig, world, inputs.travel)
+
+    # 2. Girdles: on the path, at the height of their feet's ground.
+    planted = np.where(plan.contact, 1.0, np.clip(np.maximum(1.0 - 4.0 * plan.swing, 4.0 * plan.swing - 3.0), 0, 1))
+    girdles = place_girdles(rig, world, inputs.travel, feet.support, feet.ball, planted, inputs.stride,
+                            inputs.bob, bob_wave.lift, wave.forward)
+
+    # 3. Spine, neck, head, tail.
+    spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock)
+
+    # 4. Hips beside the girdle centres, then the legs in their own frames.
+    hips = girdles.centre[:, rig.girdle] + (rig.hip_side * rig.hip_offset)[None, :, None] * \
+        girdles.lateral[:, rig.girdle]
+    forward, up = _leg_frames(rig, girdles.heading[:, rig.girdle], feet.normal)
+    ground = world.terrain.height(feet.ball[..., [0, 2]]) if not world.terrain.flat else 0.0
     joints = solve_legs(
-        hips, targets, FORWARD, UP, np.sin(np.pi * wave.swing),
+        hips, feet.ball, forward, up, np.sin(np.pi * wave.swing),
         femur=rig.femur, tibia=rig.tibia, metatarsus=rig.metatarsus, toe=rig.toe,
         ankle_lift=rig.ankle_lift, l_max=rig.l_max, l_rest=rig.l_rest, l_min=rig.l_min,
-        knee_sign=rig.knee_sign,
+        knee_sign=rig.knee_sign, swing_rest=rig.swing_rest, ground_height=ground,
     )
+    root = root_frames(spine)
 
-    # Body segments at equal arc length, a little beyond the hips and shoulders.
-    body = spec.body
-    radius = np.asarray(body.radius)
-    ext_hind = 0.9 * radius[0] / rig.body_length
-    ext_fore = 0.9 * radius[-1] / rig.body_length
-    fractions = (np.arange(body.segments) + 0.5) / body.segments
-    t_seg = arc_length_parameters(ctrl, fractions, -ext_hind, 1.0 + ext_fore)
-    spine = bezier(ctrl, t_seg)
-    spine_tangent = bezier_tangent(ctrl, t_seg)
-    spine_radius = np.interp(fractions, np.linspace(0.0, 1.0, radius.size), radius)
-
-    # Neck and head off the fore end, tail off the hind end.
-    ends = bezier(ctrl, np.broadcast_to(np.array([-0.6 * ext_hind, 1.0 + 0.6 * ext_fore]), (frames, 2)))
-    neck_dir = _pitch(d_fore, np.radians(body.neck_angle))
-    neck_top = ends[:, 1] + body.neck_length * neck_dir
-    head_dir = _pitch(d_fore, -np.radians(body.head_angle))
-    neck = np.stack([ends[:, 1], neck_top], axis=1)
-    head = np.stack([neck_top, neck_top + body.head_length * head_dir], axis=1)
-
-    k = np.arange(body.tail_segments)
-    along = (k + 1) / body.tail_segments
-    droop = np.minimum(np.radians(body.tail_angle) * (1.0 + TAIL_DROOP * k / body.tail_segments), 0.5 * np.pi)
-    sway = np.radians(spec.motion.tail_sway) * along * np.sin(2.0 * np.pi * (clock[:, None] - TAIL_WAVE_LAG * along))
-    back = _rotate_y(-d_hind[:, None, :], sway + pair_yaw[:, 1:2])  # (T, K, 3)
-    tail_dirs = _pitch(back, -droop)
-    tail = np.concatenate([ends[:, None, 0], ends[:, None, 0] + np.cumsum(
-        (body.tail_length / body.tail_segments) * tail_dirs, axis=1)], axis=1)
-
-    # Root transform: at the middle of the chord, Z along it, Y up-ish.
-    root = np.zeros((frames, 4, 4))
-    x_axis = _unit(np.cross(UP, chord))
-    root[:, :3, 0] = x_axis
-    root[:, :3, 1] = np.cross(chord, x_axis)
-    root[:, :3, 2] = chord
-    root[:, :3, 3] = 0.5 * (p0 + p3)
-    root[:, 3, 3] = 1.0
-
-    if ground_offset is None:
-        ground_offset = (stride_m / duty_t).mean(axis=1) * clock
-    times = np.arange(frames) / fps if times is None else np.asarray(times, dtype=np.float64)
-    return Motion(times=times, clock=clock, joints=joints, contact=wave.contact, phase=phase, spine=spine,
-                  spine_tangent=spine_tangent, spine_radius=spine_radius, neck=neck, head=head, tail=tail,
-                  root=root, ground_offset=np.asarray(ground_offset, dtype=np.float64), leg_names=rig.leg_names,
-                  fps=fps, rig=rig)
+    spine_pts, spine_tan, neck, head, tail = spine.segments, spine.tangents, spine.neck, spine.head, spine.tail
+    ground_offset = np.zeros(frames)
+    if world.in_place:
+        # The body stays at the origin; the ground moves back under it by the travel.
+        ground_offset = inputs.travel.copy()
+        shift = np.zeros((frames, 3))
+        shift[:, 2] = -inputs.travel
+        joints = joints + shift[:, None, None, :]
+        spine_pts, neck, head, tail = (a + shift[:, None, :] for a in (spine_pts, neck, head, tail))
+        root = root.copy()
+        root[:, 2, 3] -= inputs.travel
+    return Motion(times=inputs.times, clock=inputs.clock, joints=joints, contact=plan.contact, phase=plan.phase,
+                  spine=spine_pts, spine_tangent=spine_tan, spine_radius=spine.radius, neck=neck, head=head,
+                  tail=tail, root=root, ground_offset=ground_offset, travel=inputs.travel,
+                  leg_names=rig.leg_names, fps=fps, rig=rig, world=world)
 
 
 def frame_count(seconds: float, fps: float) -> int:
@@ -254,13 +210,29 @@ def frame_count(seconds: float, fps: float) -> int:
     return max(1, int(round(seconds * fps)))
 
 
-def simulate(spec: CreatureSpec | Rig, seconds: float = 4.0, fps: float = 60.0, *,
-             start_phase: float = 0.0) -> Motion:
-    """Simulate a creature walking in place for ``seconds`` at ``fps`` (fixed dt = 1/fps).
+def travel_per_cycle(rig: Rig) -> float:
+    """How far (m) the body moves along its path in one cycle of the rig's gait."""
+    return float(ground_speed(rig.gait.stride * rig.leg_scale, rig.gait.duty_factor))
 
-    Deterministic: the clock is ``start_phase + frequency * i / fps`` for frame i.
-    """
-    rig = spec if isinstance(spec, Rig) else build_rig(spec)
+
+def constant_gait_inputs(rig: Rig, world: World, clock: NDArray[np.float64],
+                         times: NDArray[np.float64]) -> MotionInputs:
+    """The inputs of a constant gait at clock values (T,) (body at arc length 0 at clock 0)."""
+    per_cycle = travel_per_cycle(rig)
+    plan = plan_constant_gait(rig, world, clock, per_cycle)
+    stride = np.broadcast_to(rig.stride_length, plan.phase.shape)
+    bob = np.full(clock.shape[0], rig.gait.bob)
+    return MotionInputs(clock=clock, times=times, plan=plan, travel=per_cycle * clock, stride=stride, bob=bob,
+                        wave=rig.gait.wave)
+
+
+def simulate(rig: Rig, seconds: float = 4.0, fps: float = 60.0, *, world: World | None = None,
+             start_phase: float = 0.0) -> Motion:
+    """A creature walking its gait for ``seconds`` at ``fps`` (fixed dt = 1/fps) in
+    ``world`` (default: straight ahead on flat ground). Deterministic: the clock is
+    ``start_phase + frequency * i / fps`` for frame i."""
+    world = world or World()
     times = np.arange(frame_count(seconds, fps)) / fps
     clock = start_phase + rig.gait.frequency * times
-    return solve_motion(rig, clock, times=times, fps=fps)
+    return solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps)
+

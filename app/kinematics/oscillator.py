@@ -30,7 +30,8 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..spec import WaveShape
+from ..choices import WaveShape
+from .easing import smootherstep
 
 _TINY_BIAS = 1e-12
 _TINY_SLOPE = 1e-12
@@ -139,10 +140,6 @@ class FootWave:
     swing: NDArray[np.float64]
 
 
-def _smootherstep(s: NDArray[np.float64]) -> NDArray[np.float64]:
-    return s * s * s * (s * (6.0 * s - 15.0) + 10.0)
-
-
 def foot_wave(phase: ArrayLike, duty: ArrayLike, shape: WaveShape = "planted") -> FootWave:
     """Evaluate the oscillator of feet at ``phase`` (cycle fraction since touchdown).
 
@@ -153,7 +150,7 @@ def foot_wave(phase: ArrayLike, duty: ArrayLike, shape: WaveShape = "planted") -
     contact = phi < d
     swing = np.where(contact, 0.0, (phi - d) / (1.0 - d))
     if shape == "planted":
-        forward = np.where(contact, 0.5 - phi / d, _smootherstep(swing) - 0.5)
+        forward = np.where(contact, 0.5 - phi / d, smootherstep(swing) - 0.5)
         lift = np.where(contact, 0.0, np.sin(np.pi * swing))
     elif shape == "skewed-sine":
         bias = bias_from_duty(d)

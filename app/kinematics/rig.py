@@ -1,51 +1,113 @@
-"""The rig: a creature's spec turned into numpy arrays, one entry per leg.
+"""The rig: everything the solver needs about a creature, as numpy arrays in SI units.
 
-Legs are ordered as the feet ``LF, RF, LH, RH`` (fore pair first). Everything that does
-not change from frame to frame is derived here once: SI units, radians, the leg's
-maximum / rest / minimum hip-to-ball lengths, which way its knee points, where its hip
-sits on the body, and the resolved gait.
+A rig is built from a creature file by :func:`app.rigging.build_rig`; nothing here knows
+about files. Legs are ordered as the feet are named (:func:`app.gaits.foot_names`): front
+pair first, left before right. A *girdle* is one leg pair, attached to the trunk at a
+fraction of its length (0 the rear end, 1 the front end); girdles are indexed front first.
+
+Each leg has its own frame: for knees that point forward or back (mammals) the sagittal
+plane of the body; for knees that point out (insects, spiders) the vertical plane through
+the hip and the foot's rest position, so the knee stands up and out.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..spec import CreatureSpec, LegSpec
-from .gait import GaitParams, resolve_gait
-
-G = 9.81  # m/s^2
+from .gait import GaitParams, ground_speed
 
 
 def leg_lengths(femur: NDArray, tibia: NDArray, metatarsus: NDArray, ankle_lift: NDArray,
-                natural_bend: NDArray) -> tuple[NDArray, NDArray, NDArray]:
+                natural_bend: NDArray, swing_rest: NDArray | float = 0.0) -> tuple[NDArray, NDArray, NDArray]:
     """Maximum, rest and minimum hip-to-ball distance of legs (all arrays (L,), metres).
 
-    ``L_max = sqrt((f+t)^2 - (m cos A)^2) + m sin A`` (ball straight below the hip at the
-    rest ankle lift), ``L_rest = L_max * clamp(1 - bend, 0.2, 1)``, and ``L_min`` is the
-    largest of ``0.2 L_max``, the distance below which the knee cannot fold
-    (``|f - t| - m``) and, for a metatarsus longer than femur and tibia together, the
-    distance below which the ankle cannot reach (``m - f - t``), with a small margin.
+    With the metatarsus at ``phi = ankle_lift + swing_rest`` from the perpendicular of the
+    hip-ball line (``swing_rest`` is how far the rest direction of a sprawled leg is turned
+    from vertical in its own plane), ``L_max = sqrt((f+t)^2 - (m cos phi)^2) + m sin phi``,
+    ``L_rest = L_max * clamp(1 - bend, 0.2, 1)``, and ``L_min`` is the largest of
+    ``0.2 L_max``, the distance below which the knee cannot fold (``|f - t| - m``) and, for
+    a metatarsus longer than femur and tibia together, the distance below which the ankle
+    cannot reach (``m - f - t``), with a small margin.
     """
     reach = femur + tibia
-    flat = metatarsus * np.cos(ankle_lift)
-    l_max = np.sqrt(np.maximum(reach ** 2 - flat ** 2, 0.0)) + metatarsus * np.sin(ankle_lift)
+    phi = ankle_lift + swing_rest
+    flat = metatarsus * np.cos(phi)
+    l_max = np.sqrt(np.maximum(reach ** 2 - flat ** 2, 0.0)) + metatarsus * np.sin(phi)
     l_rest = l_max * np.clip(1.0 - natural_bend, 0.2, 1.0)
     l_min = np.maximum.reduce([0.2 * l_max, np.abs(femur - tibia) - metatarsus, metatarsus - reach]) * 1.001
     return l_max, l_rest, l_min
 
 
 @dataclass(frozen=True)
-class Rig:
-    """Per-leg arrays (shape (L,) unless noted) and the few per-creature scalars.
+class BodyShape:
+    """Trunk, neck, head and tail. Metres and radians.
 
-    Lengths in metres, angles in radians. ``hip_side`` is +1 for left legs (+X) and -1
-    for right legs; ``pair_index`` is 0 for fore legs and 1 for hind legs.
+    length: rear end to front end of the trunk along the spine (a tetrapod's hind hips to
+    fore shoulders); radius (R,) the trunk's profile from rear to front.
     """
 
-    spec: CreatureSpec
+    length: float
+    width: float
+    radius: NDArray[np.float64]
+    segments: int
+    neck_length: float
+    neck_angle: float
+    head_length: float
+    head_radius: float
+    head_angle: float
+    ear_length: float
+    tail_length: float
+    tail_angle: float
+    tail_segments: int
+
+
+@dataclass(frozen=True)
+class SecondaryMotion:
+    """yaw: how far (rad) the girdles turn with their feet; tail_sway (rad); bob_phase
+    (cycle fraction) shifts the body bob relative to the feet."""
+
+    yaw: float = 0.0
+    tail_sway: float = 0.0
+    bob_phase: float = 0.0
+
+
+@dataclass(frozen=True)
+class Look:
+    """Colours as ``#rrggbb`` strings (sRGB)."""
+
+    body_color: str = "#b59a7a"
+    left_color: str = "#2f8f9d"
+    right_color: str = "#d8664f"
+
+
+@dataclass(frozen=True)
+class SpeedGaits:
+    """How speed picks the gait: Froude thresholds, their hysteresis, and the gaits (with
+    their phases, step heights and bob resolved for this creature) that speeds switch
+    between. ``order`` lists them slow to fast (one gait: speed only scales it)."""
+
+    walk_trot: float
+    trot_gallop: float
+    hysteresis: float
+    order: tuple[str, ...]
+    gaits: dict[str, GaitParams] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Rig:
+    """Per-leg arrays (shape (L,) unless noted) and the per-creature values.
+
+    Lengths in metres, angles in radians. ``hip_side`` is +1 for left legs (+X) and -1 for
+    right legs; ``girdle`` is each leg's girdle index (0 = front pair); ``knee_out`` marks
+    sprawled legs whose knee points up and out; ``swing_rest`` is the angle (rad) of a
+    leg's rest hip-to-foot direction from its frame's down axis (the abduction of a
+    sprawled leg, 0 for the others).
+    """
+
+    name: str
     leg_names: tuple[str, ...]
     femur: NDArray[np.float64]
     tibia: NDArray[np.float64]
@@ -56,23 +118,43 @@ class Rig:
     l_rest: NDArray[np.float64]
     l_min: NDArray[np.float64]
     knee_sign: NDArray[np.float64]
+    knee_out: NDArray[np.bool_]
+    swing_rest: NDArray[np.float64]
     bone_radius: NDArray[np.float64]
     hip_side: NDArray[np.float64]
-    pair_index: NDArray[np.int64]
-    pair_position: NDArray[np.float64]  # (2,) fore, hind: fraction along the spine
-    pair_rest_height: NDArray[np.float64]  # (2,) hip height of each pair at rest
-    half_width: float
-    body_length: float
+    girdle: NDArray[np.int64]
+    hip_offset: NDArray[np.float64]
+    abduction: NDArray[np.float64]
+    splay: NDArray[np.float64]
+    girdle_position: NDArray[np.float64]  # (G,) along the trunk: 0 rear end, 1 front end
+    girdle_rest_height: NDArray[np.float64]  # (G,) hip height of each girdle at rest
+    body: BodyShape
     gait: GaitParams
+    motion: SecondaryMotion = SecondaryMotion()
+    look: Look = Look()
+    speed: SpeedGaits | None = None
 
     @property
     def leg_count(self) -> int:
         return len(self.leg_names)
 
     @property
+    def girdle_count(self) -> int:
+        return int(self.girdle_position.shape[0])
+
+    @property
     def hip_height(self) -> float:
-        """Mean rest hip height over the pairs (m): the ``h`` of the Froude number."""
-        return float(self.pair_rest_height.mean())
+        """Mean rest hip height over the girdles (m): the ``h`` of the Froude number."""
+        return float(self.girdle_rest_height.mean())
+
+    @property
+    def body_length(self) -> float:
+        return self.body.length
+
+    @property
+    def leg_scale(self) -> float:
+        """The mean leg rest length (m): the unit of the gait's stride."""
+        return float(self.l_rest.mean())
 
     @property
     def stride_length(self) -> NDArray[np.float64]:
@@ -81,7 +163,7 @@ class Rig:
         One length for all feet (the gait's stride times the mean rest length) so that
         every planted foot moves at the same ground speed.
         """
-        return np.full(self.leg_count, self.gait.stride * float(self.l_rest.mean()))
+        return np.full(self.leg_count, self.gait.stride * self.leg_scale)
 
     @property
     def step_height(self) -> NDArray[np.float64]:
@@ -90,44 +172,17 @@ class Rig:
 
     @property
     def ground_speed(self) -> float:
-        """Speed of the ground under the planted feet (m/s): stride * frequency / duty."""
-        return float(self.stride_length[0] * self.gait.frequency / self.gait.duty_factor)
+        """Travel speed (m/s): the planted feet's speed relative to the body."""
+        return float(ground_speed(self.gait.stride * self.leg_scale, self.gait.duty_factor, self.gait.frequency))
 
+    @property
+    def neutral_feet(self) -> NDArray[np.float64]:
+        """Each foot's rest position relative to its girdle's centre on the ground, in the
+        body frame (x left, z forward), shape (L, 2): the hip's lateral offset plus the
+        leg's abducted reach, turned forward or back by its splay."""
+        reach = self.l_rest * np.sin(self.abduction)
+        lateral = self.hip_side * (self.hip_offset + reach * np.cos(self.splay))
+        return np.stack([lateral, reach * np.sin(self.splay)], axis=-1)
 
-def _per_leg(fore: LegSpec, hind: LegSpec, attr: str) -> NDArray[np.float64]:
-    f, h = float(getattr(fore, attr)), float(getattr(hind, attr))
-    return np.array([f, f, h, h])
-
-
-def build_rig(spec: CreatureSpec) -> Rig:
-    """Derive the rig of a (validated) creature spec."""
-    fore, hind = spec.leg("fore"), spec.leg("hind")
-    femur = _per_leg(fore, hind, "femur")
-    tibia = _per_leg(fore, hind, "tibia")
-    meta = _per_leg(fore, hind, "metatarsus")
-    lift = np.radians(_per_leg(fore, hind, "ankle_lift"))
-    bend = _per_leg(fore, hind, "natural_bend")
-    l_max, l_rest, l_min = leg_lengths(femur, tibia, meta, lift, bend)
-    knee = np.array([1.0 if leg.knee == "forward" else -1.0 for leg in (fore, fore, hind, hind)])
-    rest_height = np.array([l_rest[0], l_rest[2]])
-    return Rig(
-        spec=spec,
-        leg_names=spec.foot_names,
-        femur=femur,
-        tibia=tibia,
-        metatarsus=meta,
-        toe=_per_leg(fore, hind, "toe"),
-        ankle_lift=lift,
-        l_max=l_max,
-        l_rest=l_rest,
-        l_min=l_min,
-        knee_sign=knee,
-        bone_radius=_per_leg(fore, hind, "radius"),
-        hip_side=np.array([1.0, -1.0, 1.0, -1.0]),
-        pair_index=np.array([0, 0, 1, 1]),
-        pair_position=np.array([fore.position, hind.position]),
-        pair_rest_height=rest_height,
-        half_width=0.5 * spec.body.width,
-        body_length=spec.body.length,
-        gait=resolve_gait(spec.gait, spec.foot_names, float(rest_height.mean()), bob=spec.motion.bob),
-    )
+    def with_gait(self, gait: GaitParams) -> "Rig":
+        return replace(self, gait=gait)

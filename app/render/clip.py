@@ -6,7 +6,8 @@ so the same settings give the same pixels.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+import math
+from dataclasses import dataclass, field, replace
 from typing import Iterator
 
 import moderngl
@@ -16,9 +17,11 @@ from numpy.typing import NDArray
 from ..kinematics.motion import Motion
 from .camera import DEFAULT_CAMERA, Camera, CameraPreset, frame_points
 from .context import create_headless_context
-from .renderer import RenderOptions, SceneRenderer, nice_grid_spacing
-from .scene import SceneInstances, motion_bounds, motion_instances
+from .renderer import GroundView, RenderOptions, SceneRenderer, nice_grid_spacing
+from .scene import SceneInstances, box_corners, creature_points, motion_bounds, motion_instances
 from .target import OffscreenTarget
+
+FOLLOW_SMOOTHING = 1.0  # seconds over which the follow camera averages the ground's height
 
 
 @dataclass(frozen=True)
@@ -32,9 +35,45 @@ class ViewSettings:
 
 
 def clip_camera(motion: Motion, view: ViewSettings) -> Camera:
-    """The preset camera framing the creature over the whole clip (no jitter)."""
+    """The preset camera framing the creature over the whole clip (no jitter); for a
+    travelling creature, its first frame of :func:`clip_cameras`."""
+    return clip_cameras(motion, view)[0]
+
+
+def clip_cameras(motion: Motion, view: ViewSettings) -> list[Camera]:
+    """A camera per frame. In place: one fixed preset camera framing the whole clip. A
+    travelling creature is followed: the preset's angle is kept relative to the path's
+    heading, the target moves with the body along its path (at the ground's height,
+    smoothed), and the distance frames the creature's whole motion about that point, so
+    it never leaves the frame and the camera does not jitter with the steps."""
     w, h = view.size
-    return frame_points(motion_bounds(motion), view.camera, aspect=w / h)
+    aspect = w / h
+    if motion.in_place:
+        return [frame_points(motion_bounds(motion), view.camera, aspect=aspect)] * motion.frame_count
+    points, tangents = motion.path.sample(motion.travel)
+    heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
+    ground = np.zeros(motion.frame_count)
+    if not motion.terrain.flat:
+        from scipy.ndimage import uniform_filter1d
+
+        window = max(1, int(round(FOLLOW_SMOOTHING * motion.fps)))
+        ground = uniform_filter1d(motion.terrain.height(points), size=window, mode="nearest")
+    anchor = np.column_stack([points[:, 0], ground, points[:, 1]])
+    c, s = np.cos(heading), np.sin(heading)
+    rel = creature_points(motion) - anchor[:, None, :]
+    # Into each frame's heading frame (the creature facing +Z): rotate by -heading about Y.
+    local = np.stack([c[:, None] * rel[..., 0] - s[:, None] * rel[..., 2], rel[..., 1],
+                      s[:, None] * rel[..., 0] + c[:, None] * rel[..., 2]], axis=-1).reshape(-1, 3)
+    lo, hi = local.min(axis=0), local.max(axis=0)
+    lo[1] = min(lo[1], 0.0)
+    base = frame_points(box_corners(lo, hi), view.camera, aspect=aspect)
+    tx, ty, tz = base.target
+    cameras = []
+    for i in range(motion.frame_count):
+        target = anchor[i] + np.array([c[i] * tx + s[i] * tz, ty, -s[i] * tx + c[i] * tz])
+        cameras.append(replace(base, target=tuple(float(v) for v in target),
+                               azimuth=base.azimuth + math.degrees(heading[i])))
+    return cameras
 
 
 def loop_grid_spacing(motion: Motion, cycles: float | None) -> float:
@@ -42,8 +81,8 @@ def loop_grid_spacing(motion: Motion, cycles: float | None) -> float:
     nudged so the ground has moved a whole number of major squares (5 lines) by the end,
     which makes the loop seamless."""
     spacing = nice_grid_spacing(motion.rig.hip_height * 1.6)
-    travel = float(motion.ground_offset[-1] - motion.ground_offset[0]) + (
-        float(motion.ground_offset[1] - motion.ground_offset[0]) if motion.frame_count > 1 else 0.0)
+    travel = float(motion.travel[-1] - motion.travel[0]) + (
+        float(motion.travel[1] - motion.travel[0]) if motion.frame_count > 1 else 0.0)
     if cycles and travel > 0:
         majors = max(1, round(travel / (5.0 * spacing)))
         spacing = travel / (5.0 * majors)
@@ -69,12 +108,14 @@ class ClipRenderer:
     def frame(self, motion: Motion, index: int, camera: Camera, options: RenderOptions) -> NDArray[np.uint8]:
         """Frame ``index`` of ``motion`` as (H, W, 3) uint8."""
         scene = self._instances(motion, options.joints).frame(index)
-        self.scene.draw_instances(scene, float(motion.ground_offset[index]), camera, self.target.fbo, options)
+        ground = GroundView(terrain=motion.terrain, offset=float(motion.ground_offset[index]),
+                            path=None if motion.in_place else motion.path, travel=float(motion.travel[index]))
+        self.scene.draw_instances(scene, ground, camera, self.target.fbo, options)
         return self.target.read()
 
-    def frames(self, motion: Motion, camera: Camera, options: RenderOptions) -> Iterator[NDArray[np.uint8]]:
+    def frames(self, motion: Motion, cameras: list[Camera], options: RenderOptions) -> Iterator[NDArray[np.uint8]]:
         for index in range(motion.frame_count):
-            yield self.frame(motion, index, camera, options)
+            yield self.frame(motion, index, cameras[index], options)
 
     def release(self) -> None:
         self.target.release()

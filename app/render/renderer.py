@@ -15,7 +15,9 @@ import moderngl
 import numpy as np
 
 from ..kinematics.motion import Pose
+from ..kinematics.path import Path, left_of
 from ..kinematics.rig import Rig
+from ..kinematics.terrain import FlatTerrain, Terrain
 from .camera import Camera
 from .meshes import unit_capsule, unit_sphere
 from .scene import CAPSULE_FLOATS, ELLIPSOID_FLOATS, SceneInstances, pose_instances, srgb_to_linear
@@ -40,6 +42,22 @@ class RenderOptions:
     horizon_color: str = "#eef0ee"
     ground_color: str = "#e3ddd2"
     line_color: str = "#a89f91"
+    path: bool = False  # draw the body's path on the ground
+    path_color: str = "#3b7dd8"
+
+
+@dataclass(frozen=True)
+class GroundView:
+    """The ground under a frame: the terrain, how far the ground has moved back (in place),
+    and the path to draw around the body's arc length ``travel`` (m) along it."""
+
+    terrain: Terrain = FlatTerrain()
+    offset: float = 0.0
+    path: Path | None = None
+    travel: float = 0.0
+
+
+TERRAIN_CELLS = 72  # the terrain patch around the creature is this many cells across
 
 
 def nice_grid_spacing(scale: float) -> float:
@@ -144,7 +162,16 @@ class SceneRenderer:
         self.shadow_map.repeat_x = False
         self.shadow_map.repeat_y = False
         self.shadow_fbo = ctx.framebuffer(depth_attachment=self.shadow_map)
-        self._lit_programs = (lit_caps, lit_ell, self.ground_prog, self.ground_shadow_prog)
+        self.terrain_prog = self.shaders.program("terrain.vert", "terrain.frag")
+        self.overlay_prog = self.shaders.program("overlay.vert", "overlay.frag")
+        self._terrain_key: tuple | None = None
+        self._terrain_objects: list = []
+        self._terrain_vao: moderngl.VertexArray | None = None
+        self.path_vbo = ctx.buffer(reserve=64, dynamic=True)
+        self._path_capacity = 64
+        self.path_vao = ctx.vertex_array(self.overlay_prog, [(self.path_vbo, "3f", "in_position")])
+        self._lit_programs = (lit_caps, lit_ell, self.ground_prog, self.ground_shadow_prog, self.terrain_prog,
+                              self.overlay_prog)
         self._members: dict[int, set[str]] = {}
         self._uniforms: dict[tuple[int, str], object] = {}
 
@@ -154,16 +181,21 @@ class SceneRenderer:
                options: RenderOptions = RenderOptions(), viewport: tuple[int, int, int, int] | None = None) -> None:
         """Draw ``pose`` of creature ``rig`` seen by ``camera`` into ``target`` (cleared first)."""
         scene = pose_instances(pose, rig, show_joints=options.joints)
-        self.draw_instances(scene, pose.ground_offset, camera, target, options, viewport)
+        self.draw_instances(scene, GroundView(offset=pose.ground_offset), camera, target, options, viewport)
 
     # The floor is drawn out to where the fog has turned it into the horizon colour; the
     # sky shader gives the same colour below the horizon beyond it.
     FOG_START = 2.2  # x the creature's bounding radius
     FOG_END = 5.0
 
-    def draw_instances(self, scene: SceneInstances, ground_offset: float, camera: Camera,
+    def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
                        target: moderngl.Framebuffer, options: RenderOptions,
                        viewport: tuple[int, int, int, int] | None = None) -> None:
+        """Draw creature instances over ``ground`` (a GroundView, or the in-place ground
+        offset in metres) seen by ``camera`` into ``target`` (cleared first)."""
+        if not isinstance(ground, GroundView):
+            ground = GroundView(offset=float(ground))
+        terrain = ground.terrain
         ctx = self.ctx
         # Nearest first, so the depth test rejects hidden fragments before shading them.
         eye = np.asarray(camera.eye, dtype=np.float32)
@@ -178,8 +210,9 @@ class SceneRenderer:
         viewport = viewport or (0, 0, *target.size)
         aspect = viewport[2] / max(viewport[3], 1)
 
-        centre, radius = self._bounds(scene)
-        light_vp, shadow_texel = self._light_view_proj(scene)
+        centre, radius = self._bounds(scene, terrain)
+        ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
+        light_vp, shadow_texel = self._light_view_proj(scene, ground_level)
         ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         ctx.disable(moderngl.BLEND)
         ctx.depth_func = "<"
@@ -215,23 +248,45 @@ class SceneRenderer:
             mesh.draw(depth_only=False)
 
         ctx.disable(moderngl.CULL_FACE)
-        g = self.ground_prog
         reach = radius * self.FOG_END * 1.05
+        horizon_t = tuple(horizon)
+        for prog in (self.ground_prog, self.terrain_prog, self.overlay_prog):
+            self._set(prog, "u_horizon_color", horizon_t)
+            self._set(prog, "u_focus", (float(centre[0]), float(centre[2])))
+            self._set(prog, "u_fog_range", (radius * self.FOG_START, radius * self.FOG_END))
+        for prog in (self.ground_prog, self.terrain_prog):
+            self._set(prog, "u_ground_color", tuple(srgb_to_linear(options.ground_color)))
+            self._set(prog, "u_line_color", tuple(srgb_to_linear(options.line_color)))
+            self._set(prog, "u_grid_offset", (0.0, float(ground.offset)))
+            self._set(prog, "u_grid_spacing", float(options.grid_spacing))
+            self._set(prog, "u_grid_on", 1.0 if options.grid else 0.0)
+        if terrain.flat:
+            self._draw_floor(scene, centre, reach, shadow_texel, radius, options)
+        else:
+            self._draw_terrain(terrain, centre, reach)
+        if options.path and ground.path is not None:
+            self._draw_path(ground, terrain, reach, radius, options)
+
+        band = self._sky_band(camera, aspect, centre, reach, ground_level)
+        if band is not None:
+            ctx.depth_func = "<="  # the sky sits exactly on the far plane
+            self.sky_vbo.write(band.tobytes())
+            self._set(self.background_prog, "u_top_color", tuple(sky))
+            self._set(self.background_prog, "u_horizon_color", tuple(horizon))
+            self.background_vao.render(moderngl.TRIANGLE_STRIP)
+            ctx.depth_func = "<"
+
+    def _draw_floor(self, scene: SceneInstances, centre: np.ndarray, reach: float, shadow_texel: float,
+                    radius: float, options: RenderOptions) -> None:
+        """The flat floor (a disc fading into the horizon) and the creature's shadow on it."""
+        ctx = self.ctx
+        g = self.ground_prog
         self._set(g, "u_center", (float(centre[0]), float(centre[2])))
         self._set(g, "u_half_size", (reach, reach))
         self._set(g, "u_lift", 0.0)
-        self._set(g, "u_ground_color", tuple(srgb_to_linear(options.ground_color)))
-        self._set(g, "u_line_color", tuple(srgb_to_linear(options.line_color)))
-        self._set(g, "u_horizon_color", tuple(horizon))
         floor_ambient, floor_sun = self._floor_light(options)
         self._set(g, "u_floor_light", tuple(floor_ambient + floor_sun))
-        self._set(g, "u_grid_offset", (0.0, float(ground_offset)))
-        self._set(g, "u_grid_spacing", float(options.grid_spacing))
-        self._set(g, "u_grid_on", 1.0 if options.grid else 0.0)
-        self._set(g, "u_focus", (float(centre[0]), float(centre[2])))
-        self._set(g, "u_fog_range", (radius * self.FOG_START, radius * self.FOG_END))
         self.ground_vao.render(moderngl.TRIANGLE_FAN)
-
         if options.shadow:
             # The shadow on the floor, over its footprint only, lifted a hair above the floor.
             lo, hi = self._shadow_footprint(scene, shadow_texel)
@@ -246,14 +301,51 @@ class SceneRenderer:
             ctx.disable(moderngl.BLEND)
             ctx.blend_func = moderngl.DEFAULT_BLENDING
 
-        band = self._sky_band(camera, aspect, centre, reach)
-        if band is not None:
-            ctx.depth_func = "<="  # the sky sits exactly on the far plane
-            self.sky_vbo.write(band.tobytes())
-            self._set(self.background_prog, "u_top_color", tuple(sky))
-            self._set(self.background_prog, "u_horizon_color", tuple(horizon))
-            self.background_vao.render(moderngl.TRIANGLE_STRIP)
-            ctx.depth_func = "<"
+    def _draw_terrain(self, terrain: Terrain, centre: np.ndarray, reach: float) -> None:
+        """The terrain as a lit mesh over a patch around the creature. The patch snaps to
+        whole cells of a grid fixed in the world, and is rebuilt only when it moves."""
+        cell = 2.0 * reach / TERRAIN_CELLS
+        cell = float(10.0 ** math.floor(math.log10(cell)) * min((1.0, 2.0, 2.5, 5.0, 10.0),
+                                                              key=lambda m: abs(m - cell / 10.0 ** math.floor(
+                                                                  math.log10(cell)))))
+        lo = (math.floor((centre[0] - reach) / cell) * cell, math.floor((centre[2] - reach) / cell) * cell)
+        size = (TERRAIN_CELLS + 2) * cell
+        key = (id(terrain), lo, cell)
+        if key != self._terrain_key:
+            for obj in self._terrain_objects:
+                obj.release()
+            positions, normals, indices = terrain.surface(lo, (lo[0] + size, lo[1] + size), cell)
+            vbo = self.ctx.buffer(np.concatenate([positions, normals], axis=1).astype("f4").tobytes())
+            ibo = self.ctx.buffer(indices.astype("u4").tobytes())
+            self._terrain_vao = self.ctx.vertex_array(self.terrain_prog, [(vbo, "3f 3f", "in_position", "in_normal")],
+                                                      index_buffer=ibo, index_element_size=4)
+            self._terrain_objects = [self._terrain_vao, vbo, ibo]
+            self._terrain_key = key
+        assert self._terrain_vao is not None
+        self._terrain_vao.render(moderngl.TRIANGLES)
+
+    def _draw_path(self, ground: GroundView, terrain: Terrain, reach: float, radius: float,
+                   options: RenderOptions) -> None:
+        """The body's path as a thin ribbon draped over the ground, around the body."""
+        assert ground.path is not None
+        width = 0.012 * radius + 0.004
+        pts = ground.path.polyline(ground.travel - reach, ground.travel + reach, reach / 120.0)
+        _, tangents = ground.path.sample(np.linspace(ground.travel - reach, ground.travel + reach, len(pts)))
+        side = left_of(tangents) * width
+        y = terrain.height(pts) + 0.004 * radius + 0.002
+        left, right = pts + side, pts - side
+        strip = np.empty((2 * len(pts), 3), dtype="f4")
+        strip[0::2] = np.column_stack([left[:, 0], y, left[:, 1]])
+        strip[1::2] = np.column_stack([right[:, 0], y, right[:, 1]])
+        if ground.offset:
+            strip[:, 2] -= ground.offset
+        data = strip.tobytes()
+        if len(data) > self._path_capacity:
+            self._path_capacity = len(data) * 2
+            self.path_vbo.orphan(self._path_capacity)
+        self.path_vbo.write(data)
+        self._set(self.overlay_prog, "u_color", tuple(srgb_to_linear(options.path_color)))
+        self.path_vao.render(moderngl.TRIANGLE_STRIP, vertices=len(strip))
 
     def _set(self, prog: moderngl.Program, name: str, value) -> None:
         """Set a uniform if the program has it and its value changed since the last frame."""
@@ -282,15 +374,16 @@ class SceneRenderer:
         return ambient, SUN_COLOR * wrapped
 
     @staticmethod
-    def _bounds(scene: SceneInstances) -> tuple[np.ndarray, float]:
+    def _bounds(scene: SceneInstances, terrain: Terrain) -> tuple[np.ndarray, float]:
+        """The creature's box down to the ground: its centre and half diagonal (m)."""
         pts = np.concatenate([scene.capsules[:, 0:3], scene.capsules[:, 3:6], scene.ellipsoids[:, 0:3]])
         lo, hi = pts.min(axis=0), pts.max(axis=0)
-        lo[1] = 0.0
+        lo[1] = 0.0 if terrain.flat else min(float(lo[1]), float(terrain.height(0.5 * (lo + hi)[[0, 2]])))
         centre = 0.5 * (lo + hi)
         return centre, float(np.linalg.norm(hi - lo) * 0.5 + 0.05)
 
     @staticmethod
-    def _light_view_proj(scene: SceneInstances) -> tuple[glm.mat4, float]:
+    def _light_view_proj(scene: SceneInstances, ground: float = 0.0) -> tuple[glm.mat4, float]:
         """Orthographic key-light matrix fitted tightly around the shadow casters, and the
         world size (m) of one shadow-map texel.
 
@@ -309,7 +402,9 @@ class SceneRenderer:
         local = points @ m[:3, :3].T + m[:3, 3]
         lo = local.min(axis=0) - pads.max()
         hi = local.max(axis=0) + pads.max()
-        reach = height / max(-LIGHT_DIR[1], 1e-3) + 0.01  # from the highest caster down to the ground
+        # From the highest caster down to the ground (and as far again below it on terrain).
+        drop = height - ground if ground == 0.0 else 2.0 * (height - ground) + 0.5 * float(np.ptp(points[:, 0]))
+        reach = drop / max(-LIGHT_DIR[1], 1e-3) + 0.01
         near, far = -hi[2] - 0.01, -lo[2] + reach
         proj = glm.ortho(float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1]), float(near), float(far))
         return proj * view, float(max(hi[0] - lo[0], hi[1] - lo[1]) / SHADOW_MAP_SIZE)
@@ -326,7 +421,8 @@ class SceneRenderer:
         return on_ground[:, [0, 2]].min(axis=0) - pad, on_ground[:, [0, 2]].max(axis=0) + pad
 
     @staticmethod
-    def _sky_band(camera: Camera, aspect: float, centre: np.ndarray, reach: float) -> np.ndarray | None:
+    def _sky_band(camera: Camera, aspect: float, centre: np.ndarray, reach: float,
+                  ground_level: float = 0.0) -> np.ndarray | None:
         """The sky's screen band: from the floor's far edge straight ahead up to the top
         of the view, as 4 vertices (ndc x, ndc y, height); None when no sky is in view."""
         forward = np.asarray(camera.target, dtype=np.float64) - camera.eye
@@ -334,7 +430,7 @@ class SceneRenderer:
         if camera.top_down or np.linalg.norm(flat) < 1e-6:
             return None
         flat /= np.linalg.norm(flat)
-        edge = np.array([centre[0], 0.0, centre[2]]) + flat * reach
+        edge = np.array([centre[0], ground_level, centre[2]]) + flat * reach
         vp = np.array(camera.view_proj(aspect), dtype=np.float64)
         clip = vp @ np.append(edge, 1.0)
         y0 = float(np.clip(clip[1] / clip[3], -1.0, 1.0)) if clip[3] > 0 else -1.0
@@ -352,6 +448,8 @@ class SceneRenderer:
         """Free every GL object this renderer made."""
         for mesh in (self.capsules, self.thin_capsules, self.ellipsoids, self.small_ellipsoids):
             mesh.release()
+        for obj in (*self._terrain_objects, self.path_vao, self.path_vbo):
+            obj.release()
         for obj in (self.ground_vao, self.ground_shadow_vao, self.ground_vbo, self.quad_vbo, self.background_vao,
                     self.sky_vbo, self.shadow_fbo, self.shadow_map):
             obj.release()

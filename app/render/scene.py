@@ -95,9 +95,9 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
                show_joints: bool) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
     array has a leading frame axis T."""
-    look = rig.spec.look
-    head_radius = rig.spec.body.head_radius
-    ear_length = rig.spec.body.ear_length
+    look = rig.look
+    head_radius = rig.body.head_radius
+    ear_length = rig.body.ear_length
     frames = joints.shape[0]
     body_color = srgb_to_linear(look.body_color)
     side_colors = np.stack([srgb_to_linear(look.left_color), srgb_to_linear(look.right_color)])
@@ -163,13 +163,22 @@ def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True) -> SceneInsta
     return batch.frame(0)
 
 
+def creature_points(motion: Motion) -> NDArray[np.float64]:
+    """Every joint, head, neck and tail point and the trunk's extent, (T, N, 3)."""
+    pad = float(np.max(motion.spine_radius))
+    return np.concatenate([motion.joints.reshape(motion.frame_count, -1, 3), motion.head, motion.neck, motion.tail,
+                           motion.spine - pad, motion.spine + pad], axis=1)
+
+
+def box_corners(lo: NDArray[np.float64], hi: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The 8 corners (8, 3) of the box lo..hi."""
+    return np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+
+
 def motion_bounds(motion: Motion) -> NDArray[np.float64]:
     """Corners (8, 3) of a box enclosing the creature over the whole clip, down to the
     ground, for camera framing."""
-    pad = float(np.max(motion.spine_radius))
-    spine = motion.spine.reshape(-1, 3)
-    pts = np.concatenate([motion.joints.reshape(-1, 3), motion.head.reshape(-1, 3), motion.neck.reshape(-1, 3),
-                          motion.tail.reshape(-1, 3), spine - pad, spine + pad], axis=0)
+    pts = creature_points(motion).reshape(-1, 3)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
-    lo[1] = min(lo[1], 0.0)
-    return np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+    lo[1] = min(lo[1], 0.0) if motion.terrain.flat else lo[1]
+    return box_corners(lo, hi)

@@ -11,9 +11,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from imgui_bundle import imgui, implot
 
-from ..gaits import GAIT_PRESETS, TETRAPOD_FEET
+from ..gaits import GAIT_PRESETS, gaits_for
 from ..render.camera import CAMERA_PRESETS
-from ..spec import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES, rule_for
+from ..choices import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
+from ..spec import rule_for
 from .state import ViewerState
 
 ICON_RESET = "\uf2ea"
@@ -169,7 +170,7 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
     if changed:
         state.load_preset(presets[index])
     imgui.text_disabled(state.spec.description or state.spec.source)
-    for pair in ("fore", "hind"):
+    for pair in (leg.name for leg in state.spec.legs):
         imgui.separator_text(f"{pair.capitalize()} legs")
         current = state.leg_type(pair)
         width = (imgui.get_content_region_avail().x - 8 * pc.scale) / 3
@@ -203,9 +204,10 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
 
 
 def gait_panel(state: ViewerState, pc: PanelContext) -> None:
-    names = list(GAIT_PRESETS)
+    names = gaits_for(state.spec.pair_count)  # only the gaits that fit this body
     imgui.set_next_item_width(-1)
-    changed, index = imgui.combo("##gait", names.index(state.spec.gait.preset), names)
+    current = state.spec.gait.preset
+    changed, index = imgui.combo("##gait", names.index(current) if current in names else 0, names)
     _remember(state, "gait")
     if changed:
         state.set_gait(names[index])
@@ -225,8 +227,9 @@ def gait_panel(state: ViewerState, pc: PanelContext) -> None:
         choice(state, pc, "gait.wave", "wave shape", WAVE_SHAPES)
         imgui.end_table()
     imgui.text("touchdown phase per foot (left hind = 0)")
-    if imgui.begin_table("phases", 4):
-        for foot in TETRAPOD_FEET:
+    feet = state.live.rig.leg_names
+    if imgui.begin_table("phases", min(4, len(feet))):
+        for foot in feet:
             imgui.table_next_column()
             key = f"gait.phases.{foot}"
             imgui.set_next_item_width(-1)
@@ -236,7 +239,7 @@ def gait_panel(state: ViewerState, pc: PanelContext) -> None:
                 state.set(key, float(value) % 1.0)
         imgui.end_table()
     if state.spec.gait.phases is not None and imgui.small_button("back to the preset's phases"):
-        state.reset("gait.phases.LF")
+        state.reset(f"gait.phases.{feet[0]}")
     if state.live.blending:
         imgui.text_colored(_ACCENT, "blending into the new gait...")
 

@@ -12,14 +12,18 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal
 
+import numpy as np
+
 from ..errors import GaitlabError
-from ..gaits import GAIT_PRESETS, TETRAPOD_FEET
+from ..gaits import GAIT_PRESETS
 from ..kinematics.live import LiveMotion
 from ..kinematics.motion import Pose
+from ..kinematics.world import World
 from ..recording import RecordRequest
 from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, frame_points
 from ..render.clip import ViewSettings
-from ..render.renderer import RenderOptions, nice_grid_spacing
+from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
+from ..rigging import build_rig
 from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, LegType, leg_type, load_creature, spec_value,
                     without_adjustment)
 
@@ -56,6 +60,7 @@ class ViewerState:
     """Everything the viewer shows and edits."""
 
     base: CreatureSpec  # the creature as loaded: what "reset" goes back to
+    world: World = field(default_factory=World)  # where it walks (path and terrain)
     spec: CreatureSpec = field(init=False)
     live: LiveMotion = field(init=False)
     playing: bool = True
@@ -74,10 +79,12 @@ class ViewerState:
     screenshot_requested: bool = False
     record_requested: bool = False
     widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    _follow_height: float | None = field(default=None, init=False, repr=False)  # camera target above the root
+    _heading: float | None = field(default=None, init=False, repr=False)  # path heading last frame (degrees)
 
     def __post_init__(self) -> None:
         self.spec = self.base
-        self.live = LiveMotion(self.base)
+        self.live = LiveMotion(build_rig(self.base), self.world)
         self.file_path = self.base.source if self.base.source.endswith(".toml") else f"{self.base.name}.toml"
         self.frame_view()
 
@@ -89,7 +96,7 @@ class ViewerState:
         gait = self.live.rig.gait
         if key in _RESOLVED or key.startswith("gait.phases."):
             if key.startswith("gait.phases."):
-                return float(gait.offsets[TETRAPOD_FEET.index(key.rsplit(".", 1)[1])])
+                return float(gait.offsets[self.live.rig.leg_names.index(key.rsplit(".", 1)[1])])
             if key in ("gait.front_back", "gait.left_right"):
                 value = spec_value(self.spec, key)
                 if value is not None:
@@ -115,7 +122,7 @@ class ViewerState:
 
     def _apply(self, spec: CreatureSpec, blend: bool = True) -> None:
         self.spec = spec
-        self.live.set_spec(spec, blend=blend)
+        self.live.set_rig(build_rig(spec), blend=blend)
         self.error = None
 
     def set(self, key: str, value: Any) -> bool:
@@ -233,19 +240,27 @@ class ViewerState:
     # -- view -------------------------------------------------------------------------
 
     def frame_view(self, preset: str | None = None, ortho: bool | None = None) -> None:
-        """Point a camera preset at the creature, framing a whole gait cycle."""
-        from ..recording import clip_motion
+        """Point a camera preset at the creature, framing a whole gait cycle (around where
+        the creature is now, at the preset's angle to its heading)."""
+        from ..kinematics.clip import clip_motion
+        from ..render.scene import motion_bounds
 
         preset = preset or self.camera_preset
         if preset not in CAMERA_PRESETS:
             self.error = f"unknown camera {preset!r}"
             return
         self.camera_preset = preset
-        motion, _ = clip_motion(self.live.rig, 30.0, cycles=1.0)
-        from ..render.scene import motion_bounds
-
+        motion, _ = clip_motion(self.live.rig, 30.0, cycles=1.0, world=World(in_place=True))
         cam = frame_points(motion_bounds(motion), preset, aspect=self.aspect)
+        if not self.world.in_place:
+            root = self.live.pose().root
+            heading = float(np.degrees(np.arctan2(root[0, 2], root[2, 2])))
+            tx, ty, tz = cam.target
+            c, s = np.cos(np.radians(heading)), np.sin(np.radians(heading))
+            target = (float(root[0, 3] + c * tx + s * tz), ty, float(root[2, 3] - s * tx + c * tz))
+            cam = replace(cam, target=target, azimuth=cam.azimuth + heading)
         self.camera = replace(cam, ortho=self.camera.ortho if ortho is None else ortho)
+        self._follow_height = None
         self.options = replace(self.options, grid_spacing=nice_grid_spacing(self.live.rig.hip_height * 1.6))
 
     def side_ortho(self) -> None:
@@ -272,12 +287,24 @@ class ViewerState:
         self.camera = replace(self.camera, target=tuple(float(v) for v in point))
 
     def follow_creature(self, pose: Pose | None = None) -> None:
-        """Keep the camera target over the creature's root (horizontally)."""
+        """Keep the camera on the creature: the target over its root, its height eased
+        towards the root's (stairs, hills), and the view turning with the path's heading."""
+        pose = pose or self.pose()
+        root = pose.root[:3, 3]
+        _, tangent = self.world.path.sample(np.array([pose.travel]))
+        heading = float(np.degrees(np.arctan2(tangent[0, 0], tangent[0, 1])))
+        previous = heading if self._heading is None else self._heading
+        self._heading = heading
         if not self.follow:
             return
-        root = (pose or self.pose()).root[:3, 3]
         tx, ty, tz = self.camera.target
-        self.camera = replace(self.camera, target=(float(root[0]), ty, float(root[2])))
+        offset = self._follow_height
+        if offset is None:
+            offset = self._follow_height = ty - float(root[1])
+        ty = ty + (float(root[1]) + offset - ty) * 0.08
+        turn = (heading - previous + 180.0) % 360.0 - 180.0
+        self.camera = replace(self.camera, target=(float(root[0]), ty, float(root[2])),
+                              azimuth=self.camera.azimuth + (0.0 if self.world.in_place else turn))
 
     # -- recording --------------------------------------------------------------------
 
@@ -290,4 +317,9 @@ class ViewerState:
                             options=replace(RenderOptions(), grid=self.options.grid, shadow=self.options.shadow,
                                             joints=self.options.joints))
         return RecordRequest(spec=self.spec, output=r.path(self.spec.name), fps=float(r.fps), seconds=seconds,
-                             cycles=cycles, view=view)
+                             cycles=cycles, view=view, world=self.world)
+
+    def ground(self, pose: Pose) -> GroundView:
+        """What the renderer draws under ``pose``."""
+        return GroundView(terrain=self.world.terrain, offset=pose.ground_offset,
+                          path=None if self.world.in_place else self.world.path, travel=pose.travel)

@@ -7,7 +7,6 @@ animation by a fixed 1/60 s per frame, so its screenshot is reproducible.
 from __future__ import annotations
 
 import json
-import os
 import statistics
 import sys
 import time
@@ -21,9 +20,11 @@ import numpy as np
 from imgui_bundle import imgui, implot
 
 from ..errors import GaitlabError
-from ..output import write_png
+from ..output import atomic_write_text, write_png
 from ..recording import Recording
 from ..render.renderer import SceneRenderer
+from ..render.scene import pose_instances
+from ..kinematics.world import World
 from ..spec import CreatureSpec
 from .imgui_renderer import ImguiRenderer
 from .monitor import GaitMonitor
@@ -83,7 +84,7 @@ def _ema(old: float, new: float, k: float = 0.1) -> float:
 class Viewer:
     """One viewer window and its GL/ImGui resources."""
 
-    def __init__(self, spec: CreatureSpec, options: ViewerOptions) -> None:
+    def __init__(self, spec: CreatureSpec, options: ViewerOptions, world: World | None = None) -> None:
         self.options = options
         self.imgui_ctx = imgui.create_context()
         imgui.get_io().set_ini_filename("")
@@ -95,7 +96,7 @@ class Viewer:
         icons = _setup_style(self.scale)
         self.scene = SceneRenderer(self.ctx)
         self.ui = ImguiRenderer(self.ctx, self.scene.shaders)
-        self.state = ViewerState(spec)
+        self.state = ViewerState(spec, world=world or World())
         self.state.show_ui = not options.hide_ui
         _, _, vw, vh = self._scene_viewport()
         if vw > 0 and vh > 0:  # frame the creature for the part of the window the scene gets
@@ -242,9 +243,7 @@ class Viewer:
             "window": {"size": list(self.window.window_size), "framebuffer": list(self.window.framebuffer_size)},
             "widgets": {k: list(v) for k, v in state.widget_rects.items()},
         }
-        tmp = path.with_name(f".{path.name}.tmp")
-        tmp.write_text(json.dumps(doc, indent=1))
-        os.replace(tmp, path)
+        atomic_write_text(path, json.dumps(doc, indent=1))
 
     # -- loop -------------------------------------------------------------------------
 
@@ -282,7 +281,8 @@ class Viewer:
                 self.ctx.screen.use()
                 if viewport[0] > 0:  # the sidebar's background (the panels draw none)
                     self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
-                self.scene.render(pose, state.live.rig, state.camera, self.ctx.screen, state.options, viewport)
+                self.scene.draw_instances(pose_instances(pose, state.live.rig, state.options.joints),
+                                          state.ground(pose), state.camera, self.ctx.screen, state.options, viewport)
                 self._resolve_pick(viewport)
                 if sync:
                     self.ctx.finish()
@@ -349,9 +349,9 @@ class Viewer:
         self.window.close()
 
 
-def run_viewer(spec: CreatureSpec, options: ViewerOptions) -> int:
-    """Open the viewer on ``spec``; returns the exit status."""
-    viewer = Viewer(spec, options)
+def run_viewer(spec: CreatureSpec, options: ViewerOptions, world: World | None = None) -> int:
+    """Open the viewer on ``spec`` walking in ``world``; returns the exit status."""
+    viewer = Viewer(spec, options, world)
     try:
         return viewer.run()
     finally:

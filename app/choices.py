@@ -1,0 +1,19 @@
+"""Typed user-facing choices shared by creature files, kinematics, the CLI and the UI.
+
+A leaf module: it imports nothing from Gaitlab, so every layer may use it.
+"""
+
+from __future__ import annotations
+
+from typing import Literal, get_args
+
+WaveShape = Literal["planted", "skewed-sine"]
+WAVE_SHAPES: tuple[str, ...] = get_args(WaveShape)
+
+# Which way a leg's middle joint points: a knee forward, an elbow back, or (sprawled
+# insect and spider legs) up and out, away from the body.
+KneeDirection = Literal["forward", "back", "out"]
+KNEE_DIRECTIONS: tuple[str, ...] = get_args(KneeDirection)
+
+LegType = Literal["plantigrade", "digitigrade", "unguligrade"]
+LEG_TYPES: tuple[str, ...] = get_args(LegType)

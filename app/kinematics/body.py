@@ -1,0 +1,272 @@
+"""The body from the feet: girdles, spine, neck, head, tail and the root transform.
+
+Steps, each vectorised over frames (T) and girdles (G) or legs (L):
+
+1. :func:`place_girdles` — each girdle's centre sits on the path at its own arc length
+   (so a long body bends with the path), at the height of the ground its feet stand on
+   (the mean of its two feet's supports: for two girdles, a plane through the four feet)
+   plus its standing height and bob; it rolls towards its higher foot and never stands
+   higher than lets its planted feet reach the ground.
+2. :func:`spine_through` — a chain of cubic Béziers through the girdle centres (and the
+   trunk's ends), tangents along the path with the girdles' yaw; body segments at equal
+   arc length, the neck and head off the front, the tail off the rear.
+3. :func:`root_frames` — the body's transform at the middle of the trunk.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .path import left_of
+from .rig import Rig
+from .spine import bezier, bezier_tangent
+from .world import World
+
+UP = np.array([0.0, 1.0, 0.0])
+TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
+TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
+REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
+REACH_LIMIT = 0.985  # ... and never beyond this one, wherever the ground is
+MIN_CROUCH = 0.6  # ... by lowering the body, but never below this fraction of its rest height
+MAX_ROLL = 0.5  # rad
+ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
+
+
+def unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+
+
+def rotate_y(v: NDArray[np.float64], angle: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Rotate vectors (..., 3) about +Y by ``angle`` (...) radians."""
+    c, s = np.cos(angle), np.sin(angle)
+    x, y, z = v[..., 0], v[..., 1], v[..., 2]
+    x, y, z, c, s = np.broadcast_arrays(x, y, z, c, s)
+    return np.stack([c * x + s * z, y, -s * x + c * z], axis=-1)
+
+
+def pitch(direction: NDArray[np.float64], angle) -> NDArray[np.float64]:
+    """Tilt a (nearly horizontal) direction up by ``angle`` radians towards +Y."""
+    flat = unit(direction * np.array([1.0, 0.0, 1.0]))
+    angle = np.asarray(angle)[..., None]
+    return np.cos(angle) * flat + np.sin(angle) * UP
+
+
+def _flat3(xz: NDArray[np.float64]) -> NDArray[np.float64]:
+    return np.stack([xz[..., 0], np.zeros(xz.shape[:-1]), xz[..., 1]], axis=-1)
+
+
+@dataclass(frozen=True)
+class Girdles:
+    """centre (T, G, 3); heading (T, G, 3) horizontal unit tangent of the path; lateral
+    (T, G, 3) unit axis to the girdle's left (rolled and yawed); yaw (T, G) rad; arc
+    length (T, G) of each girdle along the path."""
+
+    centre: NDArray[np.float64]
+    heading: NDArray[np.float64]
+    lateral: NDArray[np.float64]
+    yaw: NDArray[np.float64]
+    s: NDArray[np.float64]
+
+
+def standing_height(rig: Rig, stride_m: NDArray[np.float64], bob: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each girdle's standing height above its feet's ground (T, G): its rest height,
+    lowered when the stride would carry a planted foot beyond REACH_MARGIN of full
+    extension (bob included), never below MIN_CROUCH of rest. stride_m (T, L); bob (T, 1)."""
+    sideways = rig.l_rest * np.sin(rig.abduction)
+    reach = np.sqrt(np.maximum((REACH_MARGIN * rig.l_max) ** 2 - (0.5 * stride_m) ** 2 - sideways ** 2, 0.0))
+    left, right = reach[:, 0::2], reach[:, 1::2]
+    rest = rig.girdle_rest_height
+    bob_room = 0.5 * bob * rest
+    lowest = np.maximum(MIN_CROUCH * rest, 1.05 * np.maximum(rig.l_min[0::2], rig.l_min[1::2]))
+    return np.clip(np.minimum(left, right) - bob_room, lowest, rest)
+
+
+def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArray[np.float64],
+                  ball: NDArray[np.float64], planted: NDArray[np.float64], stride_m: NDArray[np.float64],
+                  bob: NDArray[np.float64], bob_lift: NDArray[np.float64],
+                  forward: NDArray[np.float64]) -> Girdles:
+    """Girdle frames for body arc lengths s (T,).
+
+    support, ball (T, L, 3): each foot's ground support and ball target; planted (T, L) in
+    [0, 1]: how much each foot's reach limits the body (1 planted, fading out in mid-swing);
+    stride_m (T, L) m; bob (T,) leg rest lengths; bob_lift, forward (T, L): the oscillator's
+    lift for the bob and fore-aft offset for the yaw.
+    """
+    frames = s.shape[0]
+    s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
+    point, tangent = world.path.sample(s_g)
+    heading = _flat3(tangent)
+    left = _flat3(left_of(tangent))
+
+    # Height: ground under the feet + standing height + bob.
+    y_left, y_right = support[:, 0::2, 1], support[:, 1::2, 1]
+    ground = 0.5 * (y_left + y_right)
+    bob_t = bob[:, None]
+    rest = rig.girdle_rest_height
+    stand = standing_height(rig, stride_m, bob_t)
+    girdle_lift = np.maximum(bob_lift[:, 0::2], bob_lift[:, 1::2])
+    height = ground + stand + bob_t * rest * (girdle_lift - 0.5)
+
+    # Never higher than lets a planted foot reach its ball: the hip sits beside the centre.
+    hip_xz = point[:, rig.girdle] + left[:, rig.girdle][..., [0, 2]] * (rig.hip_side * rig.hip_offset)[None, :, None]
+    horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
+    allowed = ball[..., 1] + np.sqrt(np.maximum((REACH_LIMIT * rig.l_max) ** 2 - horizontal ** 2, 0.0))
+    allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
+    height = np.minimum(height, np.minimum(allowed[:, 0::2], allowed[:, 1::2]))
+
+    # Roll towards the higher foot; yaw with the feet (secondary motion).
+    across = np.linalg.norm(support[:, 0::2, [0, 2]] - support[:, 1::2, [0, 2]], axis=-1)
+    roll = np.clip(ROLL_FOLLOW * np.arctan2(y_left - y_right, np.maximum(across, 1e-6)), -MAX_ROLL, MAX_ROLL)
+    yaw = -rig.motion.yaw * (forward[:, 0::2] - forward[:, 1::2])
+    lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
+    centre = np.stack([point[..., 0], height, point[..., 1]], axis=-1)
+    del frames
+    return Girdles(centre=centre, heading=heading, lateral=lateral, yaw=yaw, s=s_g)
+
+
+@dataclass(frozen=True)
+class Spine:
+    """segments (T, S, 3) centres at equal arc length, tangents (T, S, 3), radius (S,);
+    neck (T, 2, 3) base and top; head (T, 2, 3) back of skull and nose; tail (T, K+1, 3);
+    front, rear (T, 3) the trunk's ends with their outward directions."""
+
+    segments: NDArray[np.float64]
+    tangents: NDArray[np.float64]
+    radius: NDArray[np.float64]
+    neck: NDArray[np.float64]
+    head: NDArray[np.float64]
+    tail: NDArray[np.float64]
+    middle: NDArray[np.float64]
+    chord: NDArray[np.float64]
+
+
+def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
+    """Spine knots rear to front: the girdle centres, plus the trunk's ends (positions 0
+    and 1) where no girdle sits there. Returns positions (K,), points (T, K, 3), horizontal
+    tangents (T, K, 3) and yaw (T, K)."""
+    order = np.argsort(rig.girdle_position)  # rear first
+    pos = rig.girdle_position[order]
+    points = girdles.centre[:, order]
+    heading = girdles.heading[:, order]
+    yaw = girdles.yaw[:, order]
+    extra_pos, extra_pts, extra_head, extra_yaw, where = [], [], [], [], []
+    for end, side in ((0.0, 0), (1.0, -1)):
+        if (end < pos[0] - 1e-9) if side == 0 else (end > pos[-1] + 1e-9):
+            s_end = s + (end - 0.5) * rig.body_length
+            xz, tangent = world.path.sample(s_end)
+            if len(pos) > 1:
+                i0, i1 = (0, 1) if side == 0 else (-2, -1)
+                slope = (points[:, i1, 1] - points[:, i0, 1]) / ((pos[i1] - pos[i0]) * rig.body_length)
+                y = points[:, side, 1] + slope * (end - pos[side]) * rig.body_length
+            else:
+                y = points[:, 0, 1]
+            extra_pos.append(end)
+            extra_pts.append(np.stack([xz[:, 0], y, xz[:, 1]], axis=-1))
+            extra_head.append(_flat3(tangent))
+            extra_yaw.append(yaw[:, side])
+            where.append(side)
+    for end, p, h, y, side in zip(extra_pos, extra_pts, extra_head, extra_yaw, where):
+        if side == 0:
+            pos = np.concatenate([[end], pos])
+            points = np.concatenate([p[:, None], points], axis=1)
+            heading = np.concatenate([h[:, None], heading], axis=1)
+            yaw = np.concatenate([y[:, None], yaw], axis=1)
+        else:
+            pos = np.concatenate([pos, [end]])
+            points = np.concatenate([points, p[:, None]], axis=1)
+            heading = np.concatenate([heading, h[:, None]], axis=1)
+            yaw = np.concatenate([yaw, y[:, None]], axis=1)
+    return pos, points, heading, yaw
+
+
+def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64],
+                  clock: NDArray[np.float64]) -> Spine:
+    """The trunk, neck, head and tail for girdles placed by :func:`place_girdles`."""
+    body = rig.body
+    frames = s.shape[0]
+    pos, knots, heading, yaw = _knots(rig, world, girdles, s)
+    count = len(pos)
+    if count == 1:  # a single girdle at a trunk end cannot happen (the ends are knots), but be safe
+        raise ValueError("a spine needs two knots")
+    gap = np.diff(pos) * rig.body_length  # (K-1,) arc length between knots
+    # Knot tangents: the path's heading, pitched by the height change between neighbours,
+    # turned by the girdle's yaw.
+    y = knots[..., 1]
+    dy = np.empty_like(y)
+    dy[:, 1:-1] = (y[:, 2:] - y[:, :-2]) / (gap[1:] + gap[:-1])
+    dy[:, 0] = (y[:, 1] - y[:, 0]) / gap[0]
+    dy[:, -1] = (y[:, -1] - y[:, -2]) / gap[-1]
+    tangent = rotate_y(unit(heading + dy[..., None] * UP), yaw)
+    third = gap / 3.0
+    ctrl = np.stack([knots[:, :-1], knots[:, :-1] + tangent[:, :-1] * third[:, None],
+                     knots[:, 1:] - tangent[:, 1:] * third[:, None], knots[:, 1:]], axis=-2)  # (T, K-1, 4, 3)
+
+    # Segment centres at equal arc length over the chain, a little beyond both ends.
+    radius = body.radius
+    ext_rear = 0.9 * radius[0] / gap[0]
+    ext_front = 0.9 * radius[-1] / gap[-1]
+    per = max(8, 64 // (count - 1))
+    local = np.linspace(0.0, 1.0, per + 1)
+    grid_t = np.broadcast_to(local, (count - 1, per + 1)).copy()
+    grid_t[0] = np.linspace(-ext_rear, 1.0, per + 1)
+    grid_t[-1] = np.linspace(grid_t[-1, 0], 1.0 + ext_front, per + 1)
+    samples = bezier(ctrl, np.broadcast_to(grid_t, (frames, count - 1, per + 1)))  # (T, K-1, per+1, 3)
+    seg_len = np.linalg.norm(np.diff(samples, axis=-2), axis=-1)  # (T, K-1, per)
+    cum = np.concatenate([np.zeros((frames, 1)), np.cumsum(seg_len.reshape(frames, -1), axis=-1)], axis=-1)
+    fractions = (np.arange(body.segments) + 0.5) / body.segments
+    wanted = fractions[None, :] * cum[:, -1:]  # (T, S)
+    idx = np.clip((cum[:, :, None] <= wanted[:, None, :]).sum(axis=1) - 1, 0, cum.shape[1] - 2)
+    c0 = np.take_along_axis(cum, idx, axis=1)
+    c1 = np.take_along_axis(cum, idx + 1, axis=1)
+    w = np.clip((wanted - c0) / np.maximum(c1 - c0, 1e-15), 0.0, 1.0)
+    seg = idx // per
+    sub = idx % per
+    t_lo = grid_t[seg, sub]
+    t_hi = grid_t[seg, sub + 1]
+    t_seg = t_lo + w * (t_hi - t_lo)
+    seg_ctrl = np.take_along_axis(ctrl, seg[..., None, None], axis=1)  # (T, S, 4, 3)
+    segments = bezier(seg_ctrl, t_seg[..., None])[..., 0, :]
+    tangents = bezier_tangent(seg_ctrl, t_seg[..., None])[..., 0, :]
+    spine_radius = np.interp(fractions, np.linspace(0.0, 1.0, radius.size), radius)
+
+    # Neck and head off the front, tail off the rear.
+    front = bezier(ctrl[:, -1], np.full((frames, 1), 1.0 + 0.6 * ext_front))[:, 0]
+    rear = bezier(ctrl[:, 0], np.full((frames, 1), -0.6 * ext_rear))[:, 0]
+    d_front, d_rear = tangent[:, -1], tangent[:, 0]
+    neck_dir = pitch(d_front, body.neck_angle)
+    neck_top = front + body.neck_length * neck_dir
+    head_dir = pitch(d_front, -body.head_angle)
+    neck = np.stack([front, neck_top], axis=1)
+    head = np.stack([neck_top, neck_top + body.head_length * head_dir], axis=1)
+    k = np.arange(body.tail_segments)
+    along = (k + 1) / body.tail_segments
+    droop = np.minimum(body.tail_angle * (1.0 + TAIL_DROOP * k / body.tail_segments), 0.5 * np.pi)
+    sway = rig.motion.tail_sway * along * np.sin(2.0 * np.pi * (clock[:, None] - TAIL_WAVE_LAG * along))
+    back = rotate_y(-d_rear[:, None, :], sway + yaw[:, :1])  # (T, K, 3)
+    tail_dirs = pitch(back, -droop)
+    tail = np.concatenate([rear[:, None], rear[:, None] + np.cumsum(
+        (body.tail_length / body.tail_segments) * tail_dirs, axis=1)], axis=1)
+
+    # The middle of the trunk (position 0.5) and its rear-to-front chord, for the root.
+    chord = unit(knots[:, -1] - knots[:, 0])
+    mid_seg = int(np.clip(np.searchsorted(pos, 0.5, side="right") - 1, 0, count - 2))
+    t_mid = (0.5 - pos[mid_seg]) / (pos[mid_seg + 1] - pos[mid_seg])
+    middle = bezier(ctrl[:, mid_seg], np.full((frames, 1), t_mid))[:, 0]
+    return Spine(segments=segments, tangents=tangents, radius=spine_radius, neck=neck, head=head, tail=tail,
+                 middle=middle, chord=chord)
+
+
+def root_frames(spine: Spine) -> NDArray[np.float64]:
+    """Body transforms (T, 4, 4): at the middle of the trunk, Z along its chord, Y up-ish."""
+    frames = spine.middle.shape[0]
+    root = np.zeros((frames, 4, 4))
+    x_axis = unit(np.cross(UP, spine.chord))
+    root[:, :3, 0] = x_axis
+    root[:, :3, 1] = np.cross(spine.chord, x_axis)
+    root[:, :3, 2] = spine.chord
+    root[:, :3, 3] = spine.middle
+    root[:, 3, 3] = 1.0
+    return root

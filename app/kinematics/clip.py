@@ -1,0 +1,68 @@
+"""Clip timing: how many frames a clip has and the gait clock at each (no rendering here).
+
+Shared by ``gaitlab render``, ``gaitlab analyze``, the viewer's recordings and tests, so
+all of them see the same frames.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from .motion import Motion, constant_gait_inputs, frame_count, solve_motion
+from .rig import Rig
+from .world import World
+
+DEFAULT_CYCLES = 2.0
+DEFAULT_SPEED_SECONDS = 4.0
+
+
+def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: float | None = None,
+                start: float = 0.0, speed: tuple[float, float] | None = None,
+                world: World | None = None) -> tuple[Motion, float | None]:
+    """The motion of a clip and, for whole-cycle clips, its cycle count.
+
+    With ``cycles`` the frame count is ``round(cycles * fps / frequency)`` and the clock
+    steps by exactly ``cycles / frames`` per frame (the frequency nudged by under half a
+    frame per clip) so the last frame leads seamlessly into the first. With ``speed``
+    (m/s at the first and last frame, linear in between) the gait follows the speed
+    (:mod:`app.kinematics.speed`). ``world``: where to walk (default straight ahead on
+    flat ground, travelling).
+    """
+    world = world or World()
+    if speed is not None:
+        return _speed_clip(rig, fps, seconds, cycles, speed, world)
+    f = rig.gait.frequency
+    start_clock = f * start
+    if seconds is None:
+        cycles = DEFAULT_CYCLES if cycles is None else cycles
+        frames = max(1, int(round(cycles * fps / f)))
+        clock = start_clock + cycles * np.arange(frames) / frames
+    else:
+        frames = frame_count(seconds, fps)
+        clock = start_clock + f * np.arange(frames) / fps
+        cycles = None
+    times = start + np.arange(frames) / fps
+    return solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps), cycles
+
+
+def frame_at(rig: Rig, time: float, fps: float, world: World | None = None) -> Motion:
+    """A one-frame motion at ``time`` seconds."""
+    world = world or World()
+    clock = np.array([rig.gait.frequency * time])
+    return solve_motion(rig, world, constant_gait_inputs(rig, world, clock, np.array([time])), fps=fps)
+
+
+def _speed_clip(rig: Rig, fps: float, seconds: float | None, cycles: float | None,
+                speed: tuple[float, float], world: World) -> tuple[Motion, float | None]:
+    from .speed import gait_at_speed, simulate_speed
+
+    if seconds is None:
+        if cycles is not None:  # a constant speed: its frequency turns cycles into seconds
+            seconds = cycles / gait_at_speed(rig, speed[0]).gait.frequency
+        else:
+            seconds = DEFAULT_SPEED_SECONDS
+    frames = frame_count(seconds, fps)
+    motion, gaits = simulate_speed(rig, np.linspace(speed[0], speed[1], frames), fps, world=world)
+    return replace(motion, gaits=tuple(gaits)), None

@@ -1,0 +1,244 @@
+"""Footfalls: phases decide *when* a foot lands and lifts, the world decides *where*.
+
+A foot's step k is the stance that starts when its phase clock ``clock - offset`` passes
+the integer k. Its foothold is the foot's neutral point (its rest position beside its
+girdle, see :attr:`Rig.neutral_feet`) at the moment of mid-stance on the body's path —
+so it lands half a step ahead of the hip and leaves half a step behind (terrain seed) —
+snapped to acceptable ground (:mod:`app.kinematics.footholds`). A planted foot is a
+constant in world space: zero slip by construction. A swinging foot goes from its
+lift-off foothold to the next one along an eased chord, raised along the averaged normal
+of the two by its step height (more where the ground between them is higher: stairs).
+
+:func:`plan_constant_gait` plans a whole clip of a constant gait at once, vectorised over
+every step of every foot; :class:`~app.kinematics.live.LiveMotion` plans one step at a
+time as feet lift off. Both fill the same :class:`FootPlan`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .footholds import EDGE_MARGIN, Footholds, place_feet
+from .easing import smootherstep
+from .oscillator import foot_wave
+from .path import left_of
+from .rig import Rig
+from .world import World, WorldError
+
+SEARCH_RADIUS = 0.3  # of the leg rest length: how far from its ideal spot a foot may land
+CLEARANCE = 0.3  # of the step height: the least room under a swinging foot over the ground between footholds
+_CLEAR_SAMPLES = np.linspace(0.12, 0.88, 9)
+
+
+@dataclass(frozen=True)
+class FootPlan:
+    """Each foot in each frame (arrays (T, L, ...)): its phase since touchdown and duty
+    factor, whether it is planted, its swing progress (0 in stance), the foothold it
+    stands on or left (``start``) and the one it swings to (``end``, equal to ``start``
+    in stance), their ground normals, its swing's apex height (m), and the body's arc
+    length along the path when the swing starts and ends (``lift_at``, ``land_at``)."""
+
+    phase: NDArray[np.float64]
+    duty: NDArray[np.float64]
+    contact: NDArray[np.bool_]
+    swing: NDArray[np.float64]
+    start: NDArray[np.float64]
+    end: NDArray[np.float64]
+    start_normal: NDArray[np.float64]
+    end_normal: NDArray[np.float64]
+    apex: NDArray[np.float64]
+    lift_at: NDArray[np.float64]
+    land_at: NDArray[np.float64]
+
+
+def swing_ease(swing: NDArray[np.float64], wave: str) -> NDArray[np.float64]:
+    """Progress (0..1) along the chord between footholds at swing progress ``swing``: a
+    smootherstep for the planted wave, a sine ease for the seed's skewed waves. Both start
+    and end at rest, so a foot leaves and meets the ground without a jolt."""
+    if wave == "planted":
+        return smootherstep(swing)
+    return 0.5 - 0.5 * np.cos(np.pi * swing)
+
+
+def footprint(rig: Rig) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Each foot's reach (m) ahead of its ball (toe), behind it (heel, where a low ankle
+    would touch) and to the side, shape (L,) each."""
+    ball_radius = 0.5 * rig.bone_radius
+    heel = rig.metatarsus * np.cos(rig.ankle_lift) * np.clip(1.0 - 2.0 * np.sin(rig.ankle_lift), 0.0, 1.0)
+    return rig.toe + ball_radius, np.maximum(heel, ball_radius), ball_radius
+
+
+def foot_directions(rig: Rig, tangent: NDArray[np.float64], legs: NDArray[np.int64]) -> NDArray[np.float64]:
+    """The (x, z) direction feet ``legs`` (...) point, given their girdles' path tangents
+    (..., 2): along the body for mammal legs, outwards (turned forward by the splay) for
+    sprawled legs."""
+    left = left_of(tangent)
+    out = (rig.hip_side * np.cos(rig.splay))[legs][..., None] * left + np.sin(rig.splay)[legs][..., None] * tangent
+    return np.where(rig.knee_out[legs][..., None], out, tangent)
+
+
+def neutral_points(rig: Rig, world: World, s: NDArray[np.float64], legs: NDArray[np.int64]
+                   ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ground (x, z) under each foot's rest position when the body's centre is at arc
+    length ``s`` (N,) of the path, for legs ``legs`` (N,); also the girdle's tangents."""
+    girdle = rig.girdle[legs]
+    s_girdle = s + (rig.girdle_position[girdle] - 0.5) * rig.body_length
+    point, tangent = world.path.sample(s_girdle)
+    rest = rig.neutral_feet[legs]  # (N, 2): lateral, forward
+    return point + left_of(tangent) * rest[:, :1] + tangent * rest[:, 1:], tangent
+
+
+def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDArray[np.int64]) -> Footholds:
+    """Footholds (N,) for legs ``legs`` whose stance is centred on body arc length ``s_mid``.
+    Raises :class:`WorldError` when the ground offers a foot no acceptable spot."""
+    ideal, tangent = neutral_points(rig, world, s_mid, legs)
+    heading = foot_directions(rig, tangent, legs)
+    front, back, side = footprint(rig)
+    search = np.maximum(SEARCH_RADIUS * rig.l_rest[legs], 3.0 * EDGE_MARGIN)
+    held = place_feet(world.terrain, ideal, heading, front[legs], back[legs], side[legs], search)
+    if not held.ok.all():
+        i = int(np.argmin(held.ok))
+        x, z = ideal[i]
+        raise WorldError(f"terrain {world.terrain.describe()}: no acceptable foothold for foot "
+                         f"{rig.leg_names[legs[i]]} within {search[i]:.2f} m of (x={x:.2f}, z={z:.2f}); a foot needs "
+                         f"ground no steeper than max_slope = {np.degrees(world.terrain.max_slope):.0f} deg, at "
+                         f"least {EDGE_MARGIN * 100:.1f} cm from an edge")
+    return held
+
+
+def swing_apex(rig: Rig, world: World, start: NDArray[np.float64], end: NDArray[np.float64],
+               legs: NDArray[np.int64], step_height: NDArray[np.float64], duty: NDArray[np.float64],
+               wave: str) -> NDArray[np.float64]:
+    """The apex height (m) of swings from ``start`` to ``end`` (N, 3): the step height, or
+    more where the ground along the way (under the ball and the toe tip) would otherwise
+    come within CLEARANCE of the foot. step_height (N,) in metres; duty (N,)."""
+    n = start.shape[0]
+    if n == 0 or world.terrain.flat:
+        return np.asarray(step_height, dtype=np.float64) * np.ones(n)
+    s = _CLEAR_SAMPLES
+    phase = duty[:, None] + s[None, :] * (1.0 - duty[:, None])
+    shape = foot_wave(phase, duty[:, None], wave).lift  # (N, M)
+    ease = swing_ease(np.broadcast_to(s, shape.shape), wave)
+    base = start[:, None, :] + (end - start)[:, None, :] * ease[..., None]  # (N, M, 3)
+    chord = end[:, [0, 2]] - start[:, [0, 2]]
+    ahead = chord / np.maximum(np.linalg.norm(chord, axis=-1, keepdims=True), 1e-9)
+    toe = (rig.toe[legs] + 0.5 * rig.bone_radius[legs])[:, None, None] * ahead[:, None, :]
+    xz = base[..., [0, 2]]
+    ground = np.maximum(world.terrain.height(xz), world.terrain.height(xz + toe))
+    ground = np.maximum(ground, world.terrain.height(xz - toe))
+    need = (ground + CLEARANCE * step_height[:, None] - base[..., 1]) / np.maximum(shape, 0.2)
+    apex = np.maximum(step_height, need.max(axis=1))
+    return np.minimum(apex, 1.5 * rig.l_rest[legs])
+
+
+def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], travel_per_cycle: float,
+                       origin: float = 0.0) -> FootPlan:
+    """The footfalls of a constant gait for clock values (T,), the body's centre moving
+    ``travel_per_cycle`` metres along the path per cycle (at arc length ``origin`` at
+    clock 0).
+
+    Every step of every foot that the clip touches is planned in one vectorised pass.
+    """
+    gait = rig.gait
+    legs = np.arange(rig.leg_count)
+    offsets = gait.offsets
+    duty = gait.duty_factor
+    u = clock[:, None] - offsets[None, :]
+    k = np.floor(u)
+    phase = u - k
+    k_min = int(k.min())
+    k_max = int(k.max()) + 1
+    steps = np.arange(k_min, k_max + 1, dtype=np.float64)  # (K,)
+    s_mid = origin + travel_per_cycle * (steps[:, None] + offsets[None, :] + 0.5 * duty)  # (K, L)
+    leg_index = np.broadcast_to(legs, s_mid.shape)
+    held = plan_footholds(rig, world, s_mid.reshape(-1), leg_index.reshape(-1))
+    count = steps.shape[0]
+    points = held.points.reshape(count, rig.leg_count, 3)
+    normals = held.normals.reshape(count, rig.leg_count, 3)
+    step_m = np.broadcast_to(gait.step_height * rig.l_rest, (count - 1, rig.leg_count))
+    apex = swing_apex(rig, world, points[:-1].reshape(-1, 3), points[1:].reshape(-1, 3),
+                      leg_index[:-1].reshape(-1), step_m.reshape(-1), np.full(step_m.size, duty),
+                      gait.wave).reshape(count - 1, rig.leg_count)
+    index = (k - k_min).astype(np.int64)  # (T, L)
+    contact = phase < duty
+    swing = np.where(contact, 0.0, (phase - duty) / (1.0 - duty))
+    nxt = np.where(contact, index, index + 1)
+    lift_at = origin + travel_per_cycle * (k + offsets + duty)
+    return FootPlan(phase=phase, duty=np.broadcast_to(duty, phase.shape), contact=contact, swing=swing,
+                    start=points[index, legs], end=points[nxt, legs], start_normal=normals[index, legs],
+                    end_normal=normals[nxt, legs], apex=apex[np.minimum(index, count - 2), legs],
+                    lift_at=lift_at, land_at=lift_at + travel_per_cycle * (1.0 - duty))
+
+
+@dataclass(frozen=True)
+class FootTargets:
+    """Per frame and foot (T, L, ...): the ball target, the foot's ground support (the
+    point it stands on, sliding from one foothold to the next in swing, no lift) with its
+    normal, and the ground height under the ball."""
+
+    ball: NDArray[np.float64]
+    support: NDArray[np.float64]
+    normal: NDArray[np.float64]
+    lift: NDArray[np.float64]
+
+
+def landing_points(rig: Rig, world: World, legs: NDArray[np.int64], start: NDArray[np.float64],
+                   end: NDArray[np.float64], lift_at: NDArray[np.float64], land_at: NDArray[np.float64],
+                   touch_at: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Where swings planned from ``start`` (lifted at body arc length ``lift_at``) to ``end``
+    (expected at ``land_at``) really land when the body is at ``touch_at`` (N,) at
+    touchdown: ``end`` moved with the hip if the body ran ahead of or behind the plan,
+    on the ground. Equal to ``end`` when the plan held."""
+    at = np.stack([land_at, touch_at], axis=-1)
+    point, tangent = neutral_points(rig, world, at.reshape(-1), np.repeat(legs, 2))
+    point, tangent = point.reshape(-1, 2, 2), tangent.reshape(-1, 2, 2)
+    left = left_of(tangent)
+    rel = end[:, [0, 2]] - point[:, 0]
+    a = np.stack([np.sum(rel * tangent[:, 0], -1), np.sum(rel * left[:, 0], -1)], -1)
+    xz = point[:, 1] + tangent[:, 1] * a[:, :1] + left[:, 1] * a[:, 1:]
+    moved = np.linalg.norm(xz - end[:, [0, 2]], axis=-1) > 1e-9
+    y = np.where(moved, world.terrain.height(xz), end[:, 1])
+    return np.column_stack([xz[:, 0], y, xz[:, 1]])
+
+
+def foot_targets(plan: FootPlan, lift_shape: NDArray[np.float64], wave: str, rig: Rig, world: World,
+                 travel: NDArray[np.float64]) -> FootTargets:
+    """Ball targets from a plan; ``lift_shape`` (T, L) is the oscillator's lift (0..1) and
+    ``travel`` (T,) the body's arc length now.
+
+    In swing the foot moves relative to its hip's neutral point (in the girdle's frame):
+    from where it left the ground, relative to where the hip's neutral point was then, to
+    where it lands, relative to where that point will be — eased, so it starts and ends at
+    rest relative to the body, and lands exactly on its foothold. Its height eases between
+    the two footholds' heights in the world; the lift is along their averaged normal.
+    """
+    ease = swing_ease(plan.swing, wave)[..., None]
+    swinging = ~plan.contact
+    support = plan.start.copy()
+    if swinging.any():
+        rows = np.nonzero(swinging)
+        s_now = np.broadcast_to(travel[:, None], plan.swing.shape)
+        at = np.stack([plan.lift_at[rows], plan.land_at[rows], s_now[rows]], axis=-1)  # (N, 3)
+        legs = rows[1]
+        point, tangent = neutral_points(rig, world, at.reshape(-1), np.repeat(legs, 3))
+        point, tangent = point.reshape(-1, 3, 2), tangent.reshape(-1, 3, 2)
+        left = left_of(tangent)
+        rel_start = plan.start[rows][:, [0, 2]] - point[:, 0]
+        rel_end = plan.end[rows][:, [0, 2]] - point[:, 1]
+        a0 = np.stack([np.sum(rel_start * tangent[:, 0], -1), np.sum(rel_start * left[:, 0], -1)], -1)
+        a1 = np.stack([np.sum(rel_end * tangent[:, 1], -1), np.sum(rel_end * left[:, 1], -1)], -1)
+        e = ease[rows]
+        a = a0 + (a1 - a0) * e
+        xz = point[:, 2] + tangent[:, 2] * a[:, :1] + left[:, 2] * a[:, 1:]
+        y = plan.start[rows][:, 1] + (plan.end[rows][:, 1] - plan.start[rows][:, 1]) * e[:, 0]
+        support[rows] = np.column_stack([xz[:, 0], y, xz[:, 1]])
+    normal = plan.start_normal + (plan.end_normal - plan.start_normal) * ease
+    normal = normal / np.linalg.norm(normal, axis=-1, keepdims=True)
+    averaged = plan.start_normal + plan.end_normal
+    averaged /= np.linalg.norm(averaged, axis=-1, keepdims=True)
+    lift = plan.apex * lift_shape
+    ball = support + averaged * lift[..., None]
+    return FootTargets(ball=ball, support=support, normal=normal, lift=lift)

@@ -1,0 +1,114 @@
+"""From a creature file to a rig: the one adapter between :mod:`app.spec` (what the file
+says, in its units) and :mod:`app.kinematics` (SI units, radians, per-leg arrays).
+
+Everything that does not change from frame to frame is derived here once: the legs'
+maximum / rest / minimum lengths, which way each knee points, where each hip sits, the
+resolved gait, and the gaits that speeds switch between.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .gaits import gaits_for
+from .kinematics.gait import GaitParams, natural_frequency
+from .kinematics.oscillator import duty_from_bias
+from .kinematics.rig import BodyShape, Look, Rig, SecondaryMotion, SpeedGaits, leg_lengths
+from .spec import CreatureSpec, GaitSpec, resolve_phases
+
+
+def resolve_duty(gait: GaitSpec) -> float:
+    """The duty factor: given directly, from the bias, or the preset's."""
+    if gait.duty_factor is not None:
+        return float(gait.duty_factor)
+    if gait.bias is not None:
+        return float(duty_from_bias(gait.bias))
+    return gait.preset_spec.duty_factor
+
+
+def resolve_gait(gait: GaitSpec, feet: tuple[str, ...], hip_height: float, bob: float | None = None) -> GaitParams:
+    """Combine a gait spec with its preset. ``hip_height`` (m) sets the default frequency."""
+    preset = gait.preset_spec
+    return GaitParams(
+        preset=gait.preset,
+        frequency=gait.frequency if gait.frequency is not None else natural_frequency(preset.cadence, hip_height),
+        duty_factor=resolve_duty(gait),
+        offsets=resolve_phases(gait, feet),
+        stride=preset.stride if gait.stride is None else gait.stride,
+        step_height=preset.step_height if gait.step_height is None else gait.step_height,
+        bob=preset.bob if bob is None else bob,
+        wave=gait.wave,
+    )
+
+
+def _speed_gaits(spec: CreatureSpec, hip_height: float) -> SpeedGaits:
+    """The gaits ``--speed`` switches between: walk, trot and the creature's gallop for
+    tetrapods; the creature's own gait (scaled by speed) for other body plans."""
+    feet = spec.foot_names
+    if "trot" in gaits_for(spec.pair_count) and spec.pair_count == 2:
+        order: tuple[str, ...] = ("walk", "trot", spec.speed.gallop)
+    else:
+        order = (spec.gait.preset,)
+    gaits = {}
+    for name in order:
+        own = spec.gait if name == spec.gait.preset and len(order) == 1 else GaitSpec(preset=name, wave=spec.gait.wave)
+        gaits[name] = resolve_gait(own, feet, hip_height, bob=spec.motion.bob)
+    return SpeedGaits(walk_trot=spec.speed.walk_trot, trot_gallop=spec.speed.trot_gallop,
+                      hysteresis=spec.speed.hysteresis, order=order, gaits=gaits)
+
+
+def build_rig(spec: CreatureSpec) -> Rig:
+    """Derive the rig of a (validated) creature spec."""
+    girdles = spec.girdles  # front first
+    legs = [leg for leg, _ in girdles for _side in (0, 1)]
+    per_leg = lambda attr: np.array([float(getattr(leg, attr)) for leg in legs])  # noqa: E731
+    femur, tibia, meta = per_leg("femur"), per_leg("tibia"), per_leg("metatarsus")
+    lift = np.radians(per_leg("ankle_lift"))
+    abduction = np.radians(per_leg("abduction"))
+    knee_out = np.array([leg.knee == "out" for leg in legs])
+    swing_rest = np.where(knee_out, abduction, 0.0)
+    l_max, l_rest, l_min = leg_lengths(femur, tibia, meta, lift, per_leg("natural_bend"), swing_rest)
+    knee = np.array([{"forward": 1.0, "back": -1.0, "out": 1.0}[leg.knee] for leg in legs])
+    half_width = 0.5 * spec.body.width
+    hip_offset = np.array([half_width if leg.hip_offset is None else float(leg.hip_offset) for leg in legs])
+    rest_height = (l_rest * np.cos(abduction))[0::2]
+    body = spec.body
+    shape = BodyShape(length=body.length, width=body.width, radius=np.asarray(body.radius, dtype=np.float64),
+                      segments=body.segments, neck_length=body.neck_length, neck_angle=math.radians(body.neck_angle),
+                      head_length=body.head_length, head_radius=body.head_radius,
+                      head_angle=math.radians(body.head_angle), ear_length=body.ear_length,
+                      tail_length=body.tail_length, tail_angle=math.radians(body.tail_angle),
+                      tail_segments=body.tail_segments)
+    hip_height = float(rest_height.mean())
+    return Rig(
+        name=spec.name,
+        leg_names=spec.foot_names,
+        femur=femur,
+        tibia=tibia,
+        metatarsus=meta,
+        toe=per_leg("toe"),
+        ankle_lift=lift,
+        l_max=l_max,
+        l_rest=l_rest,
+        l_min=l_min,
+        knee_sign=knee,
+        knee_out=knee_out,
+        swing_rest=swing_rest,
+        bone_radius=per_leg("radius"),
+        hip_side=np.tile([1.0, -1.0], len(girdles)),
+        girdle=np.repeat(np.arange(len(girdles)), 2),
+        hip_offset=hip_offset,
+        abduction=abduction,
+        splay=np.radians(per_leg("splay")),
+        girdle_position=np.array([p for _, p in girdles]),
+        girdle_rest_height=rest_height,
+        body=shape,
+        gait=resolve_gait(spec.gait, spec.foot_names, hip_height, bob=spec.motion.bob),
+        motion=SecondaryMotion(yaw=math.radians(spec.motion.yaw), tail_sway=math.radians(spec.motion.tail_sway),
+                               bob_phase=spec.motion.bob_phase),
+        look=Look(spec.look.body_color, spec.look.left_color, spec.look.right_color),
+        speed=_speed_gaits(spec, hip_height),
+    )
+
