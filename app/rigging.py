@@ -19,6 +19,9 @@ from .kinematics.rig import BodyShape, Look, Rig, SecondaryMotion, SpeedGaits, l
 from .spec import CreatureSpec, GaitSpec, resolve_phases
 
 
+OUT_KNEE_POLE = np.array([0.6, 1.0])  # sprawled legs' knees bend up, and a little out (leg frame: forward=out, up)
+
+
 def resolve_duty(gait: GaitSpec) -> float:
     """The duty factor: given directly, from the bias, or the preset's."""
     if gait.duty_factor is not None:
@@ -95,6 +98,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
         l_min=l_min,
         knee_sign=knee,
         knee_out=knee_out,
+        knee_pole=np.where(knee_out[:, None], OUT_KNEE_POLE, np.stack([knee, np.zeros_like(knee)], axis=-1)),
         swing_rest=swing_rest,
         bone_radius=per_leg("radius"),
         hip_side=np.tile([1.0, -1.0], len(girdles)),

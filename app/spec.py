@@ -323,8 +323,7 @@ class CreatureSpec:
         if self.description:
             doc["description"] = self.description
         doc["body"] = _table(self.body)
-        doc["legs"] = {leg.name: {k: v for k, v in _table(leg, skip=("name",)).items()
-                                  if (k, v) not in _LEG_DEFAULTS} for leg in self.legs}
+        doc["legs"] = {leg.name: _leg_table(leg) for leg in self.legs}
         gait = _table(self.gait)
         if self.gait.phases is not None:
             gait["phases"] = dict(self.gait.phases)
@@ -354,7 +353,14 @@ class CreatureSpec:
         return atomic_write_text(path, text)
 
 
-_LEG_DEFAULTS = {("count", 1), ("abduction", 0.0), ("splay", 0.0)}  # left out of saved files
+_LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0}  # left out of saved files
+
+
+def _leg_table(leg: LegSpec) -> dict[str, Any]:
+    table = {k: v for k, v in _table(leg, skip=("name",)).items() if _LEG_DEFAULTS.get(k, None) != v}
+    if leg.count > 1:
+        table.pop("position", None)  # repeated pairs are placed by their span
+    return table
 
 
 def _table(obj: Any, skip: tuple[str, ...] = ()) -> dict[str, Any]:

@@ -9,12 +9,12 @@ in vec3 v_world;
 in vec3 v_shadow;
 in vec3 v_ambient;
 in vec3 v_sun;
-in float v_focus_distance;
 
 uniform vec3 u_ground_color;   // linear
 uniform vec3 u_line_color;     // linear
 uniform vec3 u_horizon_color;  // linear
 uniform vec2 u_fog_range;
+uniform vec2 u_focus;  // world xz the fog is centred on (per pixel: terrain faces can be large)
 
 out vec4 frag_color;
 
@@ -22,6 +22,6 @@ void main() {
     float line = grid_line(v_world.xz);
     float lit = light_visibility_soft(v_shadow);
     vec3 color = mix(u_ground_color, u_line_color, line) * (v_ambient + v_sun * lit);
-    float fog = smoothstep(u_fog_range.x, u_fog_range.y, v_focus_distance);
+    float fog = smoothstep(u_fog_range.x, u_fog_range.y, length(v_world.xz - u_focus));
     frag_color = vec4(to_display(mix(color, u_horizon_color, fog)), 1.0);
 }

@@ -8,7 +8,6 @@ in vec3 in_position;
 in vec3 in_normal;
 
 uniform mat4 u_view_proj;
-uniform vec2 u_focus;  // world xz the fog is centred on
 
 #include "shadow_vertex.glsl"
 
@@ -16,7 +15,6 @@ out vec3 v_world;
 out vec3 v_shadow;
 out vec3 v_ambient;
 out vec3 v_sun;
-out float v_focus_distance;
 
 void main() {
     vec3 n = normalize(in_normal);
@@ -24,6 +22,5 @@ void main() {
     v_shadow = shadow_coord(in_position, n);
     v_ambient = ambient_light(n);
     v_sun = SUN_COLOR * max((dot(n, -u_light_dir) + 0.35) * (1.0 / 1.35), 0.0);
-    v_focus_distance = length(in_position.xz - u_focus);
     gl_Position = u_view_proj * vec4(in_position, 1.0);
 }

@@ -72,11 +72,15 @@ def tracks_from_motion(motion: Motion) -> FootTracks:
     """Gaitlab's motion in world space: a travelling creature as it is; an in-place one put
     on the ground it walks over (the ground moved back by ``ground_offset``, so in the
     ground's frame everything moves forward by it). The heel point is the ball (what a
-    digitigrade or unguligrade foot stands on) and the toe point the toe tip."""
+    digitigrade or unguligrade foot stands on) and the toe point the toe tip. On terrain
+    the feet's heights are measured above the ground under them."""
     shift = np.zeros((motion.frame_count, 3))
     shift[:, 2] = motion.ground_offset
     heel = motion.joints[:, :, 3] + shift[:, None, :]
     toe = motion.joints[:, :, 4] + shift[:, None, :]
     body = motion.root[:, :3, 3] + shift
+    if not motion.terrain.flat:  # heights above the ground under each point, as on a flat floor
+        for points in (heel, toe):
+            points[..., 1] -= motion.terrain.height(points[..., [0, 2]])
     return FootTracks(times=motion.times - motion.times[0], names=tuple(motion.leg_names), heel=heel, toe=toe,
                       body=body, source=f"gaitlab:{motion.rig.name}", hip_height=motion.rig.hip_height)

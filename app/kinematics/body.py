@@ -131,7 +131,7 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
 class Spine:
     """segments (T, S, 3) centres at equal arc length, tangents (T, S, 3), radius (S,);
     neck (T, 2, 3) base and top; head (T, 2, 3) back of skull and nose; tail (T, K+1, 3);
-    front, rear (T, 3) the trunk's ends with their outward directions."""
+    middle (T, 3) the trunk's middle and direction (T, 3) its unit tangent there."""
 
     segments: NDArray[np.float64]
     tangents: NDArray[np.float64]
@@ -140,7 +140,7 @@ class Spine:
     head: NDArray[np.float64]
     tail: NDArray[np.float64]
     middle: NDArray[np.float64]
-    chord: NDArray[np.float64]
+    direction: NDArray[np.float64]
 
 
 def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
@@ -153,32 +153,45 @@ def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
     heading = girdles.heading[:, order]
     yaw = girdles.yaw[:, order]
     extra_pos, extra_pts, extra_head, extra_yaw, where = [], [], [], [], []
+    # The trunk's ends carry on from the girdles at the pitch of the girdles' heights above
+    # their rest heights (a least-squares line over arc length): level on flat ground
+    # whatever the legs' lengths, pitched with the ground on a slope.
+    rest = rig.girdle_rest_height[order]
+    along = pos * rig.body_length
+    if len(pos) > 1:
+        centred = along - along.mean()
+        slope = ((points[..., 1] - rest) * centred).sum(axis=1) / (centred ** 2).sum()
+    else:
+        slope = np.zeros(points.shape[0])
     for end, side in ((0.0, 0), (1.0, -1)):
         if (end < pos[0] - 1e-9) if side == 0 else (end > pos[-1] + 1e-9):
             s_end = s + (end - 0.5) * rig.body_length
             xz, tangent = world.path.sample(s_end)
-            if len(pos) > 1:
-                i0, i1 = (0, 1) if side == 0 else (-2, -1)
-                slope = (points[:, i1, 1] - points[:, i0, 1]) / ((pos[i1] - pos[i0]) * rig.body_length)
-                y = points[:, side, 1] + slope * (end - pos[side]) * rig.body_length
-            else:
-                y = points[:, 0, 1]
+            y = points[:, side, 1] + slope * (end - pos[side]) * rig.body_length
+            if not world.terrain.flat:
+                # Never through the ground: above the highest ground under the overhang
+                # by the trunk's radius there.
+                between = np.linspace(end, pos[side], 5)[:-1]
+                xz_between, _ = world.path.sample(s[:, None] + (between - 0.5) * rig.body_length)
+                profile = rig.body.radius
+                overhang = profile[:max(2, profile.size // 3)] if side == 0 else profile[-max(2, profile.size // 3):]
+                y = np.maximum(y, world.terrain.height(xz_between).max(axis=1) + 1.05 * overhang.max())
             extra_pos.append(end)
             extra_pts.append(np.stack([xz[:, 0], y, xz[:, 1]], axis=-1))
             extra_head.append(_flat3(tangent))
             extra_yaw.append(yaw[:, side])
             where.append(side)
-    for end, p, h, y, side in zip(extra_pos, extra_pts, extra_head, extra_yaw, where):
+    for end, p, h, turn, side in zip(extra_pos, extra_pts, extra_head, extra_yaw, where):
         if side == 0:
             pos = np.concatenate([[end], pos])
             points = np.concatenate([p[:, None], points], axis=1)
             heading = np.concatenate([h[:, None], heading], axis=1)
-            yaw = np.concatenate([y[:, None], yaw], axis=1)
+            yaw = np.concatenate([turn[:, None], yaw], axis=1)
         else:
             pos = np.concatenate([pos, [end]])
             points = np.concatenate([points, p[:, None]], axis=1)
             heading = np.concatenate([heading, h[:, None]], axis=1)
-            yaw = np.concatenate([yaw, y[:, None]], axis=1)
+            yaw = np.concatenate([yaw, turn[:, None]], axis=1)
     return pos, points, heading, yaw
 
 
@@ -199,7 +212,8 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     dy[:, 1:-1] = (y[:, 2:] - y[:, :-2]) / (gap[1:] + gap[:-1])
     dy[:, 0] = (y[:, 1] - y[:, 0]) / gap[0]
     dy[:, -1] = (y[:, -1] - y[:, -2]) / gap[-1]
-    tangent = rotate_y(unit(heading + dy[..., None] * UP), yaw)
+    along_path = unit(heading + dy[..., None] * UP)
+    tangent = rotate_y(along_path, yaw)
     third = gap / 3.0
     ctrl = np.stack([knots[:, :-1], knots[:, :-1] + tangent[:, :-1] * third[:, None],
                      knots[:, 1:] - tangent[:, 1:] * third[:, None], knots[:, 1:]], axis=-2)  # (T, K-1, 4, 3)
@@ -250,23 +264,27 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     tail = np.concatenate([rear[:, None], rear[:, None] + np.cumsum(
         (body.tail_length / body.tail_segments) * tail_dirs, axis=1)], axis=1)
 
-    # The middle of the trunk (position 0.5) and its rear-to-front chord, for the root.
-    chord = unit(knots[:, -1] - knots[:, 0])
-    mid_seg = int(np.clip(np.searchsorted(pos, 0.5, side="right") - 1, 0, count - 2))
-    t_mid = (0.5 - pos[mid_seg]) / (pos[mid_seg + 1] - pos[mid_seg])
-    middle = bezier(ctrl[:, mid_seg], np.full((frames, 1), t_mid))[:, 0]
+    # The root: the middle of the trunk (position 0.5) and its direction there, on the
+    # spine as the path shapes it (the girdles' yaw, a sway of the trunk about the root,
+    # left out).
+    mid = int(np.clip(np.searchsorted(pos, 0.5, side="right") - 1, 0, count - 2))
+    t_mid = np.full((frames, 1), (0.5 - pos[mid]) / (pos[mid + 1] - pos[mid]))
+    a, b = knots[:, mid], knots[:, mid + 1]
+    mid_ctrl = np.stack([a, a + along_path[:, mid] * third[mid], b - along_path[:, mid + 1] * third[mid], b], axis=-2)
+    middle = bezier(mid_ctrl, t_mid)[:, 0]
+    direction = bezier_tangent(mid_ctrl, t_mid)[:, 0]
     return Spine(segments=segments, tangents=tangents, radius=spine_radius, neck=neck, head=head, tail=tail,
-                 middle=middle, chord=chord)
+                 middle=middle, direction=direction)
 
 
 def root_frames(spine: Spine) -> NDArray[np.float64]:
-    """Body transforms (T, 4, 4): at the middle of the trunk, Z along its chord, Y up-ish."""
+    """Body transforms (T, 4, 4): at the middle of the trunk, Z along it, Y up-ish."""
     frames = spine.middle.shape[0]
     root = np.zeros((frames, 4, 4))
-    x_axis = unit(np.cross(UP, spine.chord))
+    x_axis = unit(np.cross(UP, spine.direction))
     root[:, :3, 0] = x_axis
-    root[:, :3, 1] = np.cross(spine.chord, x_axis)
-    root[:, :3, 2] = spine.chord
+    root[:, :3, 1] = np.cross(spine.direction, x_axis)
+    root[:, :3, 2] = spine.direction
     root[:, :3, 3] = spine.middle
     root[:, 3, 3] = 1.0
     return root

@@ -30,7 +30,7 @@ from .world import World, WorldError
 
 SEARCH_RADIUS = 0.3  # of the leg rest length: how far from its ideal spot a foot may land
 CLEARANCE = 0.3  # of the step height: the least room under a swinging foot over the ground between footholds
-_CLEAR_SAMPLES = np.linspace(0.12, 0.88, 9)
+_CLEAR_SAMPLES = np.linspace(0.06, 0.94, 31)
 
 
 @dataclass(frozen=True)
@@ -94,11 +94,10 @@ def neutral_points(rig: Rig, world: World, s: NDArray[np.float64], legs: NDArray
 def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDArray[np.int64]) -> Footholds:
     """Footholds (N,) for legs ``legs`` whose stance is centred on body arc length ``s_mid``.
     Raises :class:`WorldError` when the ground offers a foot no acceptable spot."""
-    ideal, tangent = neutral_points(rig, world, s_mid, legs)
-    heading = foot_directions(rig, tangent, legs)
+    ideal, _ = neutral_points(rig, world, s_mid, legs)
     front, back, side = footprint(rig)
     search = np.maximum(SEARCH_RADIUS * rig.l_rest[legs], 3.0 * EDGE_MARGIN)
-    held = place_feet(world.terrain, ideal, heading, front[legs], back[legs], side[legs], search)
+    held = place_feet(world.terrain, ideal, front[legs], back[legs], side[legs], search)
     if not held.ok.all():
         i = int(np.argmin(held.ok))
         x, z = ideal[i]
@@ -109,12 +108,36 @@ def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDA
     return held
 
 
+def swing_support(rig: Rig, world: World, legs: NDArray[np.int64], start: NDArray[np.float64],
+                  end: NDArray[np.float64], lift_at: NDArray[np.float64], land_at: NDArray[np.float64],
+                  body_at: NDArray[np.float64], ease: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Where swinging feet are (without their lift), shape (N, M, 3): moving relative to
+    their hip's neutral point in the girdle's frame, from ``start`` relative to where that
+    point was at ``lift_at`` to ``end`` relative to where it will be at ``land_at`` (body
+    arc lengths, (N,)), eased by ``ease`` (N, M) while the body is at ``body_at`` (N, M).
+    The height eases between the footholds' heights in the world."""
+    n, m = ease.shape
+    at = np.concatenate([np.stack([lift_at, land_at], axis=-1), body_at], axis=1)  # (N, 2 + M)
+    point, tangent = neutral_points(rig, world, at.reshape(-1), np.repeat(legs, m + 2))
+    point, tangent = point.reshape(n, m + 2, 2), tangent.reshape(n, m + 2, 2)
+    left = left_of(tangent)
+    rel_start = start[:, [0, 2]] - point[:, 0]
+    rel_end = end[:, [0, 2]] - point[:, 1]
+    a0 = np.stack([np.sum(rel_start * tangent[:, 0], -1), np.sum(rel_start * left[:, 0], -1)], -1)[:, None]
+    a1 = np.stack([np.sum(rel_end * tangent[:, 1], -1), np.sum(rel_end * left[:, 1], -1)], -1)[:, None]
+    a = a0 + (a1 - a0) * ease[..., None]  # (N, M, 2)
+    xz = point[:, 2:] + tangent[:, 2:] * a[..., :1] + left[:, 2:] * a[..., 1:]
+    y = start[:, None, 1] + (end[:, None, 1] - start[:, None, 1]) * ease
+    return np.stack([xz[..., 0], y, xz[..., 1]], axis=-1)
+
+
 def swing_apex(rig: Rig, world: World, start: NDArray[np.float64], end: NDArray[np.float64],
                legs: NDArray[np.int64], step_height: NDArray[np.float64], duty: NDArray[np.float64],
-               wave: str) -> NDArray[np.float64]:
+               wave: str, lift_at: NDArray[np.float64], land_at: NDArray[np.float64]) -> NDArray[np.float64]:
     """The apex height (m) of swings from ``start`` to ``end`` (N, 3): the step height, or
     more where the ground along the way (under the ball and the toe tip) would otherwise
-    come within CLEARANCE of the foot. step_height (N,) in metres; duty (N,)."""
+    come within CLEARANCE of the foot. step_height (N,) in metres; duty (N,); the body
+    moves from arc length ``lift_at`` to ``land_at`` (N,) during the swing."""
     n = start.shape[0]
     if n == 0 or world.terrain.flat:
         return np.asarray(step_height, dtype=np.float64) * np.ones(n)
@@ -122,13 +145,15 @@ def swing_apex(rig: Rig, world: World, start: NDArray[np.float64], end: NDArray[
     phase = duty[:, None] + s[None, :] * (1.0 - duty[:, None])
     shape = foot_wave(phase, duty[:, None], wave).lift  # (N, M)
     ease = swing_ease(np.broadcast_to(s, shape.shape), wave)
-    base = start[:, None, :] + (end - start)[:, None, :] * ease[..., None]  # (N, M, 3)
+    body_at = lift_at[:, None] + (land_at - lift_at)[:, None] * s[None, :]
+    base = swing_support(rig, world, legs, start, end, lift_at, land_at, body_at, ease)  # (N, M, 3)
     chord = end[:, [0, 2]] - start[:, [0, 2]]
     ahead = chord / np.maximum(np.linalg.norm(chord, axis=-1, keepdims=True), 1e-9)
-    toe = (rig.toe[legs] + 0.5 * rig.bone_radius[legs])[:, None, None] * ahead[:, None, :]
+    reach = (rig.toe[legs] + 0.5 * rig.bone_radius[legs])[:, None, None]
     xz = base[..., [0, 2]]
-    ground = np.maximum(world.terrain.height(xz), world.terrain.height(xz + toe))
-    ground = np.maximum(ground, world.terrain.height(xz - toe))
+    ground = world.terrain.height(xz)
+    for k in (-1.0, -0.5, 0.5, 1.0):  # under the toe tip and the heel, whichever way the foot turns
+        ground = np.maximum(ground, world.terrain.height(xz + k * reach * ahead[:, None, :]))
     need = (ground + CLEARANCE * step_height[:, None] - base[..., 1]) / np.maximum(shape, 0.2)
     apex = np.maximum(step_height, need.max(axis=1))
     return np.minimum(apex, 1.5 * rig.l_rest[legs])
@@ -159,9 +184,11 @@ def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], trave
     points = held.points.reshape(count, rig.leg_count, 3)
     normals = held.normals.reshape(count, rig.leg_count, 3)
     step_m = np.broadcast_to(gait.step_height * rig.l_rest, (count - 1, rig.leg_count))
+    lift_steps = origin + travel_per_cycle * (steps[:-1, None] + offsets[None, :] + duty)  # (K-1, L)
     apex = swing_apex(rig, world, points[:-1].reshape(-1, 3), points[1:].reshape(-1, 3),
                       leg_index[:-1].reshape(-1), step_m.reshape(-1), np.full(step_m.size, duty),
-                      gait.wave).reshape(count - 1, rig.leg_count)
+                      gait.wave, lift_steps.reshape(-1),
+                      (lift_steps + travel_per_cycle * (1.0 - duty)).reshape(-1)).reshape(count - 1, rig.leg_count)
     index = (k - k_min).astype(np.int64)  # (T, L)
     contact = phase < duty
     swing = np.where(contact, 0.0, (phase - duty) / (1.0 - duty))
@@ -192,16 +219,12 @@ def landing_points(rig: Rig, world: World, legs: NDArray[np.int64], start: NDArr
     (expected at ``land_at``) really land when the body is at ``touch_at`` (N,) at
     touchdown: ``end`` moved with the hip if the body ran ahead of or behind the plan,
     on the ground. Equal to ``end`` when the plan held."""
-    at = np.stack([land_at, touch_at], axis=-1)
-    point, tangent = neutral_points(rig, world, at.reshape(-1), np.repeat(legs, 2))
-    point, tangent = point.reshape(-1, 2, 2), tangent.reshape(-1, 2, 2)
-    left = left_of(tangent)
-    rel = end[:, [0, 2]] - point[:, 0]
-    a = np.stack([np.sum(rel * tangent[:, 0], -1), np.sum(rel * left[:, 0], -1)], -1)
-    xz = point[:, 1] + tangent[:, 1] * a[:, :1] + left[:, 1] * a[:, 1:]
-    moved = np.linalg.norm(xz - end[:, [0, 2]], axis=-1) > 1e-9
-    y = np.where(moved, world.terrain.height(xz), end[:, 1])
-    return np.column_stack([xz[:, 0], y, xz[:, 1]])
+    point = swing_support(rig, world, legs, start, end, lift_at, land_at, touch_at[:, None],
+                          np.ones((len(legs), 1)))[:, 0]
+    moved = np.linalg.norm(point[:, [0, 2]] - end[:, [0, 2]], axis=-1) > 1e-9
+    point[:, 1] = np.where(moved, world.terrain.height(point[:, [0, 2]]), end[:, 1])
+    point[~moved] = end[~moved]
+    return point
 
 
 def foot_targets(plan: FootPlan, lift_shape: NDArray[np.float64], wave: str, rig: Rig, world: World,
@@ -220,21 +243,9 @@ def foot_targets(plan: FootPlan, lift_shape: NDArray[np.float64], wave: str, rig
     support = plan.start.copy()
     if swinging.any():
         rows = np.nonzero(swinging)
-        s_now = np.broadcast_to(travel[:, None], plan.swing.shape)
-        at = np.stack([plan.lift_at[rows], plan.land_at[rows], s_now[rows]], axis=-1)  # (N, 3)
-        legs = rows[1]
-        point, tangent = neutral_points(rig, world, at.reshape(-1), np.repeat(legs, 3))
-        point, tangent = point.reshape(-1, 3, 2), tangent.reshape(-1, 3, 2)
-        left = left_of(tangent)
-        rel_start = plan.start[rows][:, [0, 2]] - point[:, 0]
-        rel_end = plan.end[rows][:, [0, 2]] - point[:, 1]
-        a0 = np.stack([np.sum(rel_start * tangent[:, 0], -1), np.sum(rel_start * left[:, 0], -1)], -1)
-        a1 = np.stack([np.sum(rel_end * tangent[:, 1], -1), np.sum(rel_end * left[:, 1], -1)], -1)
-        e = ease[rows]
-        a = a0 + (a1 - a0) * e
-        xz = point[:, 2] + tangent[:, 2] * a[:, :1] + left[:, 2] * a[:, 1:]
-        y = plan.start[rows][:, 1] + (plan.end[rows][:, 1] - plan.start[rows][:, 1]) * e[:, 0]
-        support[rows] = np.column_stack([xz[:, 0], y, xz[:, 1]])
+        body_at = np.broadcast_to(travel[:, None], plan.swing.shape)[rows][:, None]
+        support[rows] = swing_support(rig, world, rows[1], plan.start[rows], plan.end[rows], plan.lift_at[rows],
+                                      plan.land_at[rows], body_at, ease[rows])[:, 0]
     normal = plan.start_normal + (plan.end_normal - plan.start_normal) * ease
     normal = normal / np.linalg.norm(normal, axis=-1, keepdims=True)
     averaged = plan.start_normal + plan.end_normal

@@ -5,10 +5,11 @@ each ideal (x, z) a disc of candidate spots (rings of points) is tested, and the
 acceptable one wins. A spot is acceptable when
 
 - the ground there is no steeper than the terrain's ``max_slope``, and
-- the foot's footprint lies on one plane: probes from the heel to beyond the toe tip and
-  to both sides, at least ``EDGE_MARGIN`` away, all sit within a small tolerance of the
-  tangent plane at the spot. This keeps a foot off a riser and away from a step's edge,
-  on any terrain (an exact staircase or a heightmap alike).
+- the foot's footprint lies on one plane: probes on a ring around the spot as wide as the
+  foot's reach (its toe or heel, whichever is longer, at least ``EDGE_MARGIN``), in
+  every direction — the body may turn the foot while it stands — all sit within a small
+  tolerance of the tangent plane at the spot. This keeps a foot off a riser and away
+  from a step's edge, on any terrain (an exact staircase or a heightmap alike).
 
 Feet are placed on the surface itself (y = ground height there), never under or above it.
 """
@@ -27,6 +28,7 @@ RINGS = 5
 RING_POINTS = 16
 PLANE_TOLERANCE = 0.004  # m, plus PLANE_SLACK of the probe distance (room for curved ground)
 PLANE_SLACK = 0.04
+PROBES = 8
 
 
 @dataclass(frozen=True)
@@ -48,46 +50,57 @@ def _candidates(radius: NDArray[np.float64]) -> NDArray[np.float64]:
     return radius[:, None, None] * offsets[None]
 
 
-def place_feet(terrain: Terrain, ideal: NDArray[np.float64], heading: NDArray[np.float64],
-               front: NDArray[np.float64], back: NDArray[np.float64], side: NDArray[np.float64],
-               search: NDArray[np.float64]) -> Footholds:
+def place_feet(terrain: Terrain, ideal: NDArray[np.float64], front: NDArray[np.float64],
+               back: NDArray[np.float64], side: NDArray[np.float64], search: NDArray[np.float64]) -> Footholds:
     """Acceptable footholds nearest to ideal ground spots.
 
-    ideal (N, 2) x, z; heading (N, 2) unit direction the foot points; front, back, side
-    (N,) the footprint's reach (m) ahead of the ball (toe), behind it (heel) and to each
-    side; search (N,) the largest distance (m) to look from the ideal spot.
+    ideal (N, 2) x, z; front, back, side (N,) the footprint's reach (m) ahead of the ball
+    (toe), behind it (heel) and to each side; search (N,) the largest distance (m) to look
+    from the ideal spot.
     """
     n = ideal.shape[0]
     if n == 0:
         return Footholds(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, dtype=bool))
-    offsets = _candidates(search)  # (N, C, 2)
-    spots = ideal[:, None, :] + offsets
-    count = spots.shape[1]
+    reach = np.maximum.reduce([front, back, side, np.full(n, EDGE_MARGIN)])  # (N,)
+    # Most ideal spots are fine as they are: test them first, search only around the rest.
+    centre = _judge(terrain, ideal[:, None, :], reach)
+    held = Footholds(points=centre[0][:, 0], normals=centre[1][:, 0], ok=centre[2][:, 0])
+    redo = np.nonzero(~held.ok)[0]
+    if redo.size:
+        offsets = _candidates(search[redo])  # (M, C, 2)
+        points, normals, ok = _judge(terrain, ideal[redo, None, :] + offsets, reach[redo])
+        distance = np.linalg.norm(offsets, axis=-1) + np.where(ok, 0.0, np.inf)
+        best = distance.argmin(axis=1)
+        rows = np.arange(redo.size)
+        found = ok[rows, best]
+        choice = np.where(found, best, 0)
+        held.points[redo] = points[rows, choice]
+        held.normals[redo] = normals[rows, choice]
+        held.ok[redo] = found
+    return held
+
+
+def _judge(terrain: Terrain, spots: NDArray[np.float64], reach: NDArray[np.float64]):
+    """Ground points (N, C, 3), normals (N, C, 3) and acceptability (N, C) of candidate
+    spots (N, C, 2) for feet reaching ``reach`` (N,) m around their ball."""
+    n, count = spots.shape[:2]
     flat_spots = spots.reshape(-1, 2)
     height = terrain.height(flat_spots).reshape(n, count)
     normal = terrain.normal(flat_spots).reshape(n, count, 3)
     steep_ok = normal[..., 1] >= np.cos(terrain.max_slope) - 1e-12
-
-    # Footprint probes: toe, heel, both sides, each at least EDGE_MARGIN from the ball.
-    lateral = np.stack([heading[:, 1], -heading[:, 0]], axis=-1)
-    reach = np.stack([np.maximum(front, EDGE_MARGIN), np.maximum(back, EDGE_MARGIN),
-                      np.maximum(side, EDGE_MARGIN), np.maximum(side, EDGE_MARGIN)], axis=-1)  # (N, 4)
-    direction = np.stack([heading, -heading, lateral, -lateral], axis=1)  # (N, 4, 2)
-    probe_offsets = direction * reach[..., None]  # (N, 4, 2)
-    probes = spots[:, :, None, :] + probe_offsets[:, None, :, :]  # (N, C, 4, 2)
-    probe_h = terrain.height(probes.reshape(-1, 2)).reshape(n, count, 4)
+    # Footprint probes: a ring of the foot's reach (toe or heel), and half of it, in every
+    # direction, at least EDGE_MARGIN from the ball.
+    angles = 2.0 * np.pi * np.arange(PROBES) / PROBES
+    ring = np.stack([np.sin(angles), np.cos(angles)], axis=-1)  # (P, 2)
+    probe_offsets = np.concatenate([ring[None] * reach[:, None, None], 0.5 * ring[None] * reach[:, None, None]],
+                                   axis=1)  # (N, 2P, 2)
+    probe_count = probe_offsets.shape[1]
+    probes = spots[:, :, None, :] + probe_offsets[:, None, :, :]  # (N, C, 2P, 2)
+    probe_h = terrain.height(probes.reshape(-1, 2)).reshape(n, count, probe_count)
     # Tangent plane at the spot: dh = -(nx dx + nz dz) / ny.
     slope = -normal[..., [0, 2]] / np.maximum(normal[..., 1:2], 1e-6)  # (N, C, 2)
     predicted = height[..., None] + np.einsum("ncd,nkd->nck", slope, probe_offsets)
-    tolerance = PLANE_TOLERANCE + PLANE_SLACK * reach[:, None, :]
+    tolerance = PLANE_TOLERANCE + PLANE_SLACK * np.linalg.norm(probe_offsets, axis=-1)[:, None, :]
     plane_ok = np.all(np.abs(probe_h - predicted) <= tolerance, axis=-1)
-
-    ok = steep_ok & plane_ok
-    distance = np.linalg.norm(offsets, axis=-1) + np.where(ok, 0.0, np.inf)
-    best = distance.argmin(axis=1)
-    rows = np.arange(n)
-    found = ok[rows, best]
-    choice = np.where(found, best, 0)
-    xz = spots[rows, choice]
-    points = np.column_stack([xz[:, 0], height[rows, choice], xz[:, 1]])
-    return Footholds(points=points, normals=normal[rows, choice], ok=found)
+    points = np.stack([spots[..., 0], height, spots[..., 1]], axis=-1)
+    return points, normal, steep_ok & plane_ok

@@ -68,6 +68,7 @@ def solve_legs(
     knee_sign: NDArray[np.float64],
     swing_rest: NDArray[np.float64] | float = 0.0,
     ground_height: NDArray[np.float64] | float = 0.0,
+    knee_pole: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
     """Solve legs for hip and ball positions.
 
@@ -78,6 +79,9 @@ def solve_legs(
     femur..knee_sign: (L,) rig arrays (m, radians, +1 knee forward / -1 back)
     swing_rest:    (L,) the rest angle (rad) of the hip-to-ball line from the frame's down
                    axis (a sprawled leg's abduction in its own plane; 0 for upright legs)
+    knee_pole:     (L, 2) the direction the knee bends towards, as (forward, up) in the leg
+                   frame (default (knee_sign, 0): forward or back); sprawled legs bend up
+                   and out
     ground_height: height (m) of the ground under each ball, for keeping the toe above it
 
     Returns joints (..., L, 5, 3): hip, knee, ankle, ball, toe tip. Bone lengths are
@@ -85,8 +89,10 @@ def solve_legs(
     [L_min, L_max] of the hip; a farther target pulls it in along the hip-target line, a
     nearer one slides it away horizontally at the target's height.
     """
+    if knee_pole is None:
+        knee_pole = np.stack([np.asarray(knee_sign, dtype=np.float64), np.zeros(np.shape(knee_sign))], axis=-1)
     rig = dict(femur=femur, tibia=tibia, metatarsus=metatarsus, toe=toe, ankle_lift=ankle_lift, l_max=l_max,
-               l_rest=l_rest, l_min=l_min, knee_sign=knee_sign, swing_rest=swing_rest)
+               l_rest=l_rest, l_min=l_min, knee_sign=knee_sign, swing_rest=swing_rest, knee_pole=knee_pole)
     hip = np.asarray(hip, dtype=np.float64)
     target = np.asarray(target, dtype=np.float64)
     shape = np.broadcast_shapes(hip.shape, target.shape)
@@ -111,7 +117,7 @@ def solve_legs(
 
 
 def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, metatarsus, toe, ankle_lift,
-           l_max, l_rest, l_min, knee_sign, swing_rest=0.0) -> NDArray[np.float64]:
+           l_max, l_rest, l_min, knee_sign, swing_rest=0.0, knee_pole=None) -> NDArray[np.float64]:
     """:func:`solve_legs` on one block (see there)."""
     shape = np.broadcast_shapes(hip.shape, target.shape)
     hip = np.broadcast_to(hip, shape)
@@ -187,7 +193,12 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, m
     ef, eu, el = af / d, au / d, al / d
     along = (d * d + f * f - t * t) / (2.0 * d)
     off = np.sqrt(np.maximum((f + t - d) * (d + t - f) * (d + f - t) * (d + f + t), 0.0)) / (2.0 * d)
-    pf, pu, pl = knee_sign * (1.0 - ef * ef), knee_sign * (-ef * eu), knee_sign * (-ef * el)
+    if knee_pole is None:
+        pole_f, pole_u = knee_sign, 0.0
+    else:
+        pole_f, pole_u = knee_pole[..., 0], knee_pole[..., 1]
+    dot = pole_f * ef + pole_u * eu  # the pole made perpendicular to the hip-ankle line
+    pf, pu, pl = pole_f - dot * ef, pole_u - dot * eu, -dot * el
     pn = _norm3(pf, pu, pl)
     degenerate = pn <= 1e-12
     if np.any(degenerate):  # hip-ankle line along the pole: bend towards up instead
@@ -199,8 +210,8 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, m
     # 5. Toe: flat on the ground while planted, dropping by the ankle lift in the air, its
     #    tip never lower than half the ball's height (so it never touches down before
     #    the ball: it lands and lifts off flat, together with the ball).
-    hip_height = hip @ upv if shared_frame else np.einsum("...i,...i->...", hip, upv)
-    height = hip_height + hu - ground_height
+    # The ball's height (world y) above the ground under it.
+    height = hip[..., 1] + hf * fwd[..., 1] + hu * upv[..., 1] + hl * lat[..., 1] - ground_height
     room = np.arcsin(np.clip(0.5 * height / np.maximum(toe, 1e-12), 0.0, 1.0))
     drop = np.minimum(ankle_lift * np.clip(toe_curl, 0.0, 1.0), room)
     tf, tu = hf + toe * np.cos(drop), hu - toe * np.sin(drop)

@@ -328,7 +328,7 @@ class LiveMotion:
         self.end_normal[legs] = held.normals
         step_m = self.step_height[legs] * self.rig.l_rest[legs]
         self.apex[legs] = swing_apex(self.rig, self.world, self.start[legs], self.end[legs], legs, step_m,
-                                     self.duty[legs], self._wave_now())
+                                     self.duty[legs], self._wave_now(), self.lift_at[legs], self.land_at[legs])
 
     def set_phase(self, phase: float) -> None:
         """Scrub: put the clock at ``phase`` (cycle fraction) within the current cycle; the

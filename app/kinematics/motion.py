@@ -179,12 +179,15 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     hips = girdles.centre[:, rig.girdle] + (rig.hip_side * rig.hip_offset)[None, :, None] * \
         girdles.lateral[:, rig.girdle]
     forward, up = _leg_frames(rig, girdles.heading[:, rig.girdle], feet.normal)
-    ground = world.terrain.height(feet.ball[..., [0, 2]]) if not world.terrain.flat else 0.0
+    ground = 0.0
+    if not world.terrain.flat:  # the ground under the ball and under the toe tip, whichever is higher
+        toe_tip = feet.ball[..., [0, 2]] + np.broadcast_to(forward, feet.ball.shape)[..., [0, 2]] * rig.toe[:, None]
+        ground = np.maximum(world.terrain.height(feet.ball[..., [0, 2]]), world.terrain.height(toe_tip))
     joints = solve_legs(
         hips, feet.ball, forward, up, np.sin(np.pi * wave.swing),
         femur=rig.femur, tibia=rig.tibia, metatarsus=rig.metatarsus, toe=rig.toe,
         ankle_lift=rig.ankle_lift, l_max=rig.l_max, l_rest=rig.l_rest, l_min=rig.l_min,
-        knee_sign=rig.knee_sign, swing_rest=rig.swing_rest, ground_height=ground,
+        knee_sign=rig.knee_sign, swing_rest=rig.swing_rest, ground_height=ground, knee_pole=rig.knee_pole,
     )
     root = root_frames(spine)
 

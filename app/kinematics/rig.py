@@ -102,7 +102,7 @@ class Rig:
 
     Lengths in metres, angles in radians. ``hip_side`` is +1 for left legs (+X) and -1 for
     right legs; ``girdle`` is each leg's girdle index (0 = front pair); ``knee_out`` marks
-    sprawled legs whose knee points up and out; ``swing_rest`` is the angle (rad) of a
+    sprawled legs whose knee points up and out (``knee_pole``); ``swing_rest`` is the angle (rad) of a
     leg's rest hip-to-foot direction from its frame's down axis (the abduction of a
     sprawled leg, 0 for the others).
     """
@@ -119,6 +119,7 @@ class Rig:
     l_min: NDArray[np.float64]
     knee_sign: NDArray[np.float64]
     knee_out: NDArray[np.bool_]
+    knee_pole: NDArray[np.float64]  # (L, 2) where the knee bends, as (forward, up) in the leg frame
     swing_rest: NDArray[np.float64]
     bone_radius: NDArray[np.float64]
     hip_side: NDArray[np.float64]

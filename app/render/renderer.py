@@ -329,10 +329,12 @@ class SceneRenderer:
         """The body's path as a thin ribbon draped over the ground, around the body."""
         assert ground.path is not None
         width = 0.012 * radius + 0.004
-        pts = ground.path.polyline(ground.travel - reach, ground.travel + reach, reach / 120.0)
-        _, tangents = ground.path.sample(np.linspace(ground.travel - reach, ground.travel + reach, len(pts)))
+        pts, tangents = ground.path.sample(np.arange(ground.travel - reach, ground.travel + reach, reach / 120.0))
         side = left_of(tangents) * width
-        y = terrain.height(pts) + 0.004 * radius + 0.002
+        # Draped over the ground: each point as high as the ground around it, so the ribbon
+        # never dips under a step between two points.
+        step = tangents * (reach / 120.0)
+        y = np.maximum.reduce([terrain.height(pts + k * step) for k in (-1.0, 0.0, 1.0)]) + 0.004 * radius + 0.002
         left, right = pts + side, pts - side
         strip = np.empty((2 * len(pts), 3), dtype="f4")
         strip[0::2] = np.column_stack([left[:, 0], y, left[:, 1]])

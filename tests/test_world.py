@@ -1,0 +1,194 @@
+"""Creatures that travel: along paths, over terrain, with any number of leg pairs.
+
+The acceptance of the world issue: planted feet never slip and stand on the ground,
+swinging feet stay above it, bones keep their lengths, the body follows its path, turns
+shorten the inner strides, stairs are climbed without standing on an edge, and the gaits
+measure true.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from app import build_rig, load_creature, simulate
+from app.analysis import analyze_tracks, tracks_from_motion
+from app.analysis.metrics import cyclic_distance, path_error, wave_lag
+from app.kinematics.clip import clip_motion
+from app.kinematics.live import LiveMotion
+from app.kinematics.motion import simulate as simulate_rig
+from app.kinematics.terrain import StairsTerrain
+from app.resources import preset_creature_names
+from app.scenes import make_world
+
+PRESETS = preset_creature_names()
+
+
+def terrains(rig) -> dict[str, str]:
+    """The issue's terrains, sized to the creature (hills and steps it can walk)."""
+    h, length = rig.hip_height, rig.body_length
+    return {"flat": "flat", "slope": "slope:angle=15,dir=30",
+            "hills": f"hills:amp={0.12 * h:.4f},wavelength={3 * length:.3f}",
+            "stairs": f"stairs:rise={0.2 * h:.4f},run={max(0.6 * rig.leg_scale, 0.12):.3f},steps=6,"
+                      f"start={0.8 * length:.3f}"}
+
+
+def paths(rig) -> dict[str, str]:
+    """Straight, a circle of radius two body lengths, a figure-eight, four waypoints."""
+    L = rig.body_length
+    return {"straight": "straight", "circle": f"circle:r={2 * L:.3f}", "figure-eight": f"figure-eight:r={2 * L:.3f}",
+            "waypoints": f"waypoints:0,0,{2.25 * L:.3f},{4.5 * L:.3f},0,{9 * L:.3f},{2.25 * L:.3f},{13.5 * L:.3f}"}
+
+
+def planted_steps(motion) -> np.ndarray:
+    """(T-1, L) True where a foot is planted in both frames of the same stance."""
+    c = motion.contact
+    return c[1:] & c[:-1] & (motion.phase[1:] > motion.phase[:-1])
+
+
+@pytest.mark.parametrize("terrain", ["flat", "slope", "hills", "stairs"])
+@pytest.mark.parametrize("creature", PRESETS)
+def test_feet_plant_without_slip_on_every_path(creature: str, terrain: str) -> None:
+    rig = build_rig(load_creature(creature))
+    for path_name, path in paths(rig).items():
+        motion = simulate_rig(rig, 4.0, 60.0, world=make_world(path, terrains(rig)[terrain]))
+        where = f"{creature} on {terrain} along {path_name}"
+        joints = motion.joints
+        assert np.all(np.isfinite(joints)), where
+        ball = joints[:, :, 3]
+        slip = np.linalg.norm(ball[1:] - ball[:-1], axis=-1)[planted_steps(motion)]
+        assert slip.max() < 1e-6, where  # a planted foot is a constant in the world
+        ground = motion.terrain.height(ball[..., [0, 2]])
+        assert np.abs(ball[..., 1] - ground)[motion.contact].max() <= 1e-3, where
+        swinging = ~motion.contact
+        for k in (2, 3, 4):  # ankle, ball, toe tip of a swinging foot stay above the ground
+            under = motion.terrain.height(joints[:, :, k][..., [0, 2]]) - joints[:, :, k, 1]
+            assert under[swinging].max() <= 1e-3, (where, k)
+        bones = np.linalg.norm(np.diff(joints, axis=2), axis=-1)
+        expected = np.stack([rig.femur, rig.tibia, rig.metatarsus, rig.toe], axis=-1)
+        assert np.abs(bones - expected).max() < 1e-9, where
+        error = path_error(motion)
+        assert error is not None and error.max_body_lengths <= 0.02, where
+        assert error.heading_max_deg <= 5.0, where
+
+
+def test_distance_is_speed_times_time_on_a_straight_path() -> None:
+    for name in ("dog", "horse", "ant", "centipede"):
+        rig = build_rig(load_creature(name))
+        motion = simulate(rig, seconds=6.0, fps=60.0)
+        travelled = np.linalg.norm(motion.root[-1, [0, 2], 3] - motion.root[0, [0, 2], 3])
+        expected = rig.ground_speed * (motion.times[-1] - motion.times[0])
+        assert travelled == pytest.approx(expected, rel=0.01), name
+        # The planted feet really carry it: a stance covers speed x stance time relative to the hip.
+        assert not motion.in_place and np.all(motion.ground_offset == 0.0)
+
+
+def test_inner_feet_take_shorter_strides_on_a_turn() -> None:
+    rig = build_rig(load_creature("dog"))
+    radius = 2.0 * rig.body_length
+    motion = simulate_rig(rig, 8.0, 60.0, world=make_world(f"circle:r={radius},dir=left"))
+    lateral = rig.neutral_feet[:, 0]  # + left of the path: the inside of a left turn
+    for inner, outer in ((0, 1), (2, 3)):  # LF/RF, LH/RH
+        strides = []
+        for leg in (inner, outer):
+            touch = np.nonzero(motion.contact[1:, leg] & ~motion.contact[:-1, leg])[0] + 1
+            spots = motion.joints[touch, leg, 3][:, [0, 2]]
+            strides.append(np.median(np.linalg.norm(np.diff(spots, axis=0), axis=1)))
+        expected = (radius - lateral[inner]) / (radius - lateral[outer])
+        assert strides[0] / strides[1] == pytest.approx(expected, rel=0.10)
+        assert strides[0] < strides[1]
+
+
+@pytest.mark.parametrize("creature", PRESETS)
+def test_stairs_are_climbed_without_standing_on_an_edge(creature: str) -> None:
+    rig = build_rig(load_creature(creature))
+    rise, run, steps, start = 0.2 * rig.hip_height, max(0.6 * rig.leg_scale, 0.12), 6, 0.8 * rig.body_length
+    stairs = StairsTerrain(rise, run, steps=steps, start=start)
+    seconds = (start + steps * run + 1.5 * rig.body_length) / rig.ground_speed
+    motion = simulate_rig(rig, seconds, 60.0, world=make_world("straight", stairs))
+    ball = motion.joints[:, :, 3]
+    planted = ball[motion.contact]
+    along = planted[:, 2] - start
+    on_flight = (along > -run) & (along < steps * run + run)
+    assert np.all(stairs.edge_distance(planted[on_flight][:, [0, 2]]) >= 0.01)  # not on a riser, not on an edge
+    # The body climbs the flight: at the end it stands on the landing, a whole flight up.
+    ground_end = float(stairs.height(motion.root[-1:, [0, 2], 3])[0])
+    assert ground_end == pytest.approx(steps * rise)
+    assert motion.root[-1, 1, 3] - motion.root[0, 1, 3] == pytest.approx(steps * rise, rel=0.1)
+
+
+def _measured(creature: str, **overrides):
+    spec = load_creature(creature).with_overrides(overrides) if overrides else load_creature(creature)
+    rig = build_rig(spec)
+    fps = max(120.0, math.ceil(200 * rig.gait.frequency))
+    motion, _ = clip_motion(rig, fps, cycles=4.0)
+    return rig, analyze_tracks(tracks_from_motion(motion))
+
+
+@pytest.mark.parametrize("creature, gait", [("ant", "tripod"), ("ant", "tetrapod"), ("spider", "metachronal"),
+                                            ("centipede", "metachronal")])
+def test_many_legged_gaits_measure_true(creature: str, gait: str) -> None:
+    rig, report = _measured(creature, **{"gait.preset": gait})
+    requested = dict(zip(rig.leg_names, rig.gait.offsets))
+    reference = requested[f"L{len(rig.leg_names) // 2}"]  # the rearmost left foot touches down at 0
+    for foot in report.feet:
+        assert foot.duty_factor == pytest.approx(rig.gait.duty_factor, abs=0.02), foot.name
+        assert cyclic_distance(foot.phase, (requested[foot.name] - reference) % 1.0) <= 0.02, foot.name
+    assert report.gait_match == gait
+
+
+def test_the_ant_tripods_touch_down_together() -> None:
+    _, report = _measured("ant")
+    phases = {f.name: f.phase for f in report.feet}
+    for group in (("L1", "R2", "L3"), ("R1", "L2", "R3")):
+        for a in group:
+            for b in group:
+                assert cyclic_distance(phases[a], phases[b]) <= 0.02, (a, b)
+    assert cyclic_distance(phases["L1"], phases["R1"]) == pytest.approx(0.5, abs=0.02)
+
+
+@pytest.mark.parametrize("creature, lag", [("spider", 0.25), ("centipede", 0.12)])
+def test_metachronal_waves_have_the_requested_lag(creature: str, lag: float) -> None:
+    rig, report = _measured(creature)
+    assert float(load_creature(creature).gait.front_back) == lag
+    measured = wave_lag({f.name: f.phase for f in report.feet})
+    assert measured is not None and cyclic_distance(measured, lag) <= 0.02
+
+
+def test_live_motion_travels_with_planted_feet() -> None:
+    """The viewer's real-time path: along a circle over hills, planted feet stay put."""
+    rig = build_rig(load_creature("dog"))
+    live = LiveMotion(rig, make_world("circle:r=1.5", "hills:amp=0.05,wavelength=2"))
+    balls, contact, phase = [], [], []
+    for _ in range(240):
+        live.step(1.0 / 60.0)
+        pose = live.pose()
+        balls.append(pose.joints[:, 3].copy())
+        contact.append(pose.contact.copy())
+        phase.append(pose.phase.copy())
+    balls, contact, phase = np.array(balls), np.array(contact), np.array(phase)
+    planted = contact[1:] & contact[:-1] & (phase[1:] > phase[:-1])
+    assert np.linalg.norm(np.diff(balls, axis=0), axis=-1)[planted].max() < 1e-9
+    assert live.travel == pytest.approx(rig.ground_speed * 4.0, rel=1e-6)
+
+
+def test_speed_ramp_travels_the_path() -> None:
+    from app.kinematics.speed import simulate_speed
+
+    rig = build_rig(load_creature("dog"))
+    fps = 60.0
+    speeds = np.linspace(0.5, 3.0, int(6 * fps))
+    motion, gaits = simulate_speed(rig, speeds, fps, world=make_world("circle:r=3"))
+    assert gaits[0] == "walk" and gaits[-1] == "trot"
+    slip = np.linalg.norm(np.diff(motion.joints[:, :, 3], axis=0), axis=-1)[planted_steps(motion)]
+    assert slip.max() < 1e-9
+    # The body follows the speed with the feet (strides change at lift-off): a little behind.
+    assert motion.travel[-1] == pytest.approx(np.sum(speeds[1:]) / fps, rel=0.05)
+
+
+def test_in_place_keeps_the_body_at_the_origin() -> None:
+    motion = simulate("dog", seconds=2.0, fps=30.0, in_place=True)
+    assert np.abs(motion.root[:, 2, 3]).max() < 0.05  # bob and sway only
+    assert motion.ground_offset[-1] == pytest.approx(motion.travel[-1]) and motion.travel[-1] > 0.5

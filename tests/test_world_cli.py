@@ -1,0 +1,196 @@
+"""Paths, terrains and scenes from the command line and files: parsing, loading, every
+bad input (one line, exit 2, nothing written), and the Python API."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from app import simulate
+from app.kinematics.path import CirclePath, FigureEightPath, StraightPath, WaypointPath
+from app.kinematics.terrain import HeightGrid, HillsTerrain, SlopeTerrain, StairsTerrain
+from app.kinematics.world import WorldError
+from app.scenes import load_heightmap, load_mesh_terrain, load_scene, parse_path, parse_terrain
+
+ROOT = Path(__file__).parents[1]
+
+
+def gaitlab(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True, cwd=cwd,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300)
+
+
+def test_path_text_forms() -> None:
+    assert isinstance(parse_path("straight"), StraightPath)
+    circle = parse_path("circle:r=3,dir=right")
+    assert isinstance(circle, CirclePath) and circle.radius == 3 and circle.direction == "right"
+    assert isinstance(parse_path("figure-eight:r=2"), FigureEightPath)
+    waypoints = parse_path("waypoints:0,0,2,1,4,0")
+    assert isinstance(waypoints, WaypointPath) and waypoints.points.shape == (3, 2)
+    # Arc length really is arc length, and every path starts at the origin heading +Z.
+    for path in (circle, parse_path("figure-eight:r=2"), waypoints):
+        s = np.linspace(0.0, min(path.length, 6.0), 3001)
+        points, tangents = path.sample(s)
+        assert np.allclose(points[0], 0.0, atol=1e-9) and np.allclose(tangents[0], [0, 1], atol=1e-6) \
+            or isinstance(path, WaypointPath)
+        steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
+        assert np.allclose(steps, np.diff(s), rtol=1e-3)
+        assert np.allclose(np.linalg.norm(tangents, axis=1), 1.0)
+
+
+def test_terrain_queries_are_vectorised_with_the_documented_shapes() -> None:
+    rng = np.random.default_rng(3)
+    xz = rng.uniform(-5, 5, size=(1000, 2))
+    for text in ("flat", "slope:angle=15,dir=30", "hills:amp=0.2,wavelength=3,seed=2", "stairs:rise=0.1,run=0.3"):
+        terrain = parse_terrain(text)
+        h, n = terrain.height(xz), terrain.normal(xz)
+        assert h.shape == (1000,) and n.shape == (1000, 3)
+        assert np.allclose(np.linalg.norm(n, axis=1), 1.0) and np.all(n[:, 1] > 0)
+        assert terrain.height(xz.reshape(10, 100, 2)).shape == (10, 100)  # any leading shape
+    slope = parse_terrain("slope:angle=15,dir=0")
+    assert slope.height(np.array([[0.0, 1.0]]))[0] == pytest.approx(math.tan(math.radians(15)))
+    # Hills: the analytic normal is the finite-difference one.
+    hills = parse_terrain("hills:amp=0.3,wavelength=2")
+    e = 1e-6
+    gx = (hills.height(xz + [e, 0]) - hills.height(xz - [e, 0])) / (2 * e)
+    gz = (hills.height(xz + [0, e]) - hills.height(xz - [0, e])) / (2 * e)
+    expected = np.stack([-gx, np.ones_like(gx), -gz], axis=1)
+    expected /= np.linalg.norm(expected, axis=1, keepdims=True)
+    assert np.allclose(hills.normal(xz), expected, atol=1e-6)
+
+
+def test_heightmap_image_becomes_ground(tmp_path: Path) -> None:
+    ramp = (np.linspace(0, 65535, 64)[None, :] * np.ones((32, 1))).astype(np.uint16)
+    Image.fromarray(ramp).save(tmp_path / "ramp.png")
+    grid = load_heightmap(tmp_path / "ramp.png", size=6.3, height=2.0)
+    assert isinstance(grid, HeightGrid)
+    assert grid.height(np.array([[-3.15, 0.0], [3.15, 0.0], [0.0, 0.0]])) == pytest.approx([0.0, 2.0, 1.0], abs=1e-4)
+    n = grid.normal(np.array([[0.0, 0.0]]))[0]
+    assert n == pytest.approx(np.array([-2.0 / 6.3, 1.0, 0.0]) / np.linalg.norm([-2.0 / 6.3, 1.0, 0.0]), abs=1e-3)
+
+
+def test_mesh_file_becomes_a_height_grid(tmp_path: Path) -> None:
+    trimesh = pytest.importorskip("trimesh")
+    stairs = StairsTerrain(0.1, 0.35, steps=4, start=0.5)
+    positions, _, indices = stairs.surface((-1.0, -1.0), (1.0, 3.0), 0.1)
+    trimesh.Trimesh(vertices=positions, faces=indices.reshape(-1, 3)).export(tmp_path / "stairs.obj")
+    grid = load_mesh_terrain(tmp_path / "stairs.obj", cell=0.02)
+    xz = np.random.default_rng(1).uniform([-0.9, -0.9], [0.9, 2.9], size=(2000, 2))
+    near_riser = stairs.edge_distance(xz) < 0.03
+    assert np.allclose(grid.height(xz)[~near_riser], stairs.height(xz)[~near_riser], atol=1e-6)
+    # And a creature climbs it.
+    motion = simulate("dog", seconds=4.0, fps=30.0, terrain=f"mesh:file={tmp_path / 'stairs.obj'},cell=0.02")
+    assert motion.root[-1, 1, 3] - motion.root[0, 1, 3] > 0.3
+
+
+def test_python_api_keeps_the_world() -> None:
+    motion = simulate("cat", seconds=1.0, fps=30.0, path="circle:r=1", terrain="hills:amp=0.05")
+    assert isinstance(motion.path, CirclePath) and isinstance(motion.terrain, HillsTerrain)
+    assert motion.terrain.height(np.zeros((5, 2))).shape == (5,)
+    assert motion.terrain.normal(np.zeros((5, 2))).shape == (5, 3)
+    assert isinstance(simulate("ant", 0.5, 30.0, terrain=SlopeTerrain(0.1)).terrain, SlopeTerrain)
+
+
+def test_scene_files_load() -> None:
+    for path in sorted((ROOT / "scenes").glob("*.toml")):
+        scene = load_scene(path)
+        assert scene.creatures, path
+    garden = load_scene(ROOT / "scenes" / "garden.toml")
+    assert len(garden.creatures) == 2 and isinstance(garden.creatures[0].world.path, WaypointPath)
+
+
+@pytest.mark.gl
+def test_render_travels_and_follows(tmp_path: Path) -> None:
+    out = gaitlab("render", "spider", "--path", "circle:r=1.5", "--terrain", "hills:amp=0.05", "-o", "s.gif",
+                  "--seconds", "0.8", "--fps", "10", "--size", "96x72", "--msaa", "0", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    with Image.open(tmp_path / "s.gif") as gif:
+        assert gif.n_frames == 8
+    out = gaitlab("render", str(ROOT / "scenes" / "hillside.toml"), "-o", "h.png", "--size", "96x72", "-q",
+                  cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    image = np.asarray(Image.open(tmp_path / "h.png").convert("RGB"))
+    assert image.std() > 10  # a creature and the ground, not an empty frame
+
+
+@pytest.mark.gl
+def test_analyze_reports_speed_slip_and_path_error() -> None:
+    out = gaitlab("analyze", "dog", "--path", "circle:r=1.5", "--terrain", "slope:angle=8", "--json")
+    assert out.returncode == 0, out.stderr
+    import json
+
+    report = json.loads(out.stdout)
+    assert report["speed"] > 0.3
+    assert all(foot["max_stance_slip"] < 1e-6 for foot in report["feet"])
+    assert report["path_error"]["max_body_lengths"] < 0.02
+    table = gaitlab("analyze", "ant", "--path", "figure-eight:r=1")
+    assert table.returncode == 0 and "path         off by" in table.stdout and "tripod" in table.stdout
+
+
+BAD_WORLD = {
+    "unknown path kind": (["--path", "spiral:r=2"], "unknown kind 'spiral'"),
+    "unknown terrain kind": (["--terrain", "lava"], "unknown kind 'lava'"),
+    "malformed path": (["--path", "circle:r"], "is not KEY=VALUE"),
+    "unknown path key": (["--path", "circle:radious=3"], "unknown key 'radious'"),
+    "malformed terrain": (["--terrain", "hills:amp=high"], "amp='high' is not a number"),
+    "one waypoint": (["--path", "waypoints:1,2"], "at least two points"),
+    "odd waypoints": (["--path", "waypoints:1,2,3"], "x,z pairs"),
+    "zero radius": (["--path", "circle:r=0"], "r=0 must be > 0"),
+    "negative radius": (["--path", "figure-eight:r=-1"], "must be > 0"),
+    "nan radius": (["--path", "circle:r=nan"], "not a finite number"),
+    "nan terrain": (["--terrain", "slope:angle=nan"], "not a finite number"),
+    "no foothold": (["--terrain", "slope:angle=60"], "no acceptable foothold"),
+    "in place on hills": (["--terrain", "hills", "--in-place"], "in place needs flat ground"),
+    "missing heightmap": (["--terrain", "heightmap:file=nowhere.png"], "no such file"),
+}
+
+
+@pytest.mark.parametrize("case", list(BAD_WORLD))
+def test_bad_world_input_is_one_line_exit_2_nothing_written(tmp_path: Path, case: str) -> None:
+    args, expected = BAD_WORLD[case]
+    out = gaitlab("render", "dog", *args, "-o", "x.gif", "--seconds", "0.2", cwd=tmp_path)
+    assert out.returncode == 2, (case, out.stderr)
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in out.stderr, out.stderr
+    assert expected in lines[0], lines[0]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_bad_files(tmp_path: Path) -> None:
+    (tmp_path / "notimage.png").write_text("this is not a PNG")
+    (tmp_path / "empty.obj").write_text("# no faces\nv 0 0 0\nv 1 0 0\n")
+    (tmp_path / "scene.toml").write_text('terain = "flat"\n[[creatures]]\ncreature = "dog"\n')
+    (tmp_path / "noncreature.toml").write_text('[[creatures]]\ncreature = "dog"\nspeed = -1\n')
+    cases = {
+        ("--terrain", f"heightmap:file={tmp_path / 'notimage.png'}"): "not an image",
+        ("--terrain", f"mesh:file={tmp_path / 'empty.obj'}"): "no faces",
+    }
+    for args, expected in cases.items():
+        out = gaitlab("render", "dog", *args, "-o", "x.gif", cwd=tmp_path)
+        assert out.returncode == 2 and expected in out.stderr and len(out.stderr.strip().splitlines()) == 1, \
+            out.stderr
+    out = gaitlab("render", str(tmp_path / "scene.toml"), "-o", "x.gif", cwd=tmp_path)
+    assert out.returncode == 2 and "unknown key 'terain'" in out.stderr and "did you mean 'terrain'" in out.stderr
+    out = gaitlab("render", str(tmp_path / "noncreature.toml"), "-o", "x.gif", cwd=tmp_path)
+    assert out.returncode == 2 and "speed = -1" in out.stderr
+    assert not (tmp_path / "x.gif").exists()
+    with pytest.raises(WorldError, match="no faces"):
+        load_mesh_terrain(tmp_path / "empty.obj")
+
+
+def test_gaits_that_do_not_fit_are_refused() -> None:
+    out = gaitlab("render", "ant", "--gait", "gallop", "-o", "x.gif")
+    assert out.returncode == 2
+    assert "is a gait for 2 pairs; this creature has 3 leg pairs: use one of tripod, tetrapod, metachronal" \
+        in out.stderr
+    listing = gaitlab("creatures")
+    assert listing.returncode == 0
+    for word in ("ant", "spider", "centipede", "15 leg pairs", "tripod", "metachronal", "for 3 pairs"):
+        assert word in listing.stdout
