@@ -113,8 +113,11 @@ Without --seconds the clip is two whole gait cycles, which loop without a seam.
 
 VIEW_EPILOG = """\
 examples:
-  gaitlab view                                  the dog, walking
+  gaitlab view                                  the dog, walking ahead (the camera follows)
   gaitlab view horse --gait gallop
+  gaitlab view spider --path circle:r=2 --terrain hills:amp=0.1
+  gaitlab view scenes/hillside.toml             a scene file
+  gaitlab view dog --in-place                   on the spot, the ground moving under it
   xvfb-run -s "-screen 0 1280x800x24" gaitlab view --frames 120 --screenshot shot.png
   gaitlab view --no-vsync --report-fps --frames 600     measure the frame rate
 
@@ -127,12 +130,14 @@ keys: Space play/pause, Right step, R reset view, F12 screenshot, G record,
 ANALYZE_EPILOG = """\
 examples:
   gaitlab analyze dog --gait trot                 Gaitlab's own trot: measured vs requested
+  gaitlab analyze ant --path circle:r=2           a tripod on a turn: also the path error
   gaitlab analyze horse --speed 0.5:8 --seconds 10     walk -> trot -> gallop, gait per time span
   gaitlab analyze walk.bvh --plot walk.png        motion capture (feet found by joint names)
   gaitlab analyze dog.bvh --feet LH=b_LeftAnkle:b_LeftToe,RH=b_RightAnkle:b_RightToe,...
   gaitlab analyze feet.csv --json                 CSV columns: time, NAME_x, NAME_y, NAME_z [, NAME_toe_x ...]
 
-Phases follow Hildebrand: the left hind foot (or the left foot) touches down at 0.
+Phases follow Hildebrand: the left hind foot (the left foot of a biped, the rearmost left
+foot of a many-legged creature) touches down at 0.
 """
 
 
@@ -149,8 +154,9 @@ def _world_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="gaitlab", description="Procedural tetrapod locomotion: parametric legs driven by "
-                     "gait oscillators and analytic IK, rendered headless or live.",
+    parser = _Parser(prog="gaitlab", description="Procedural legged locomotion: tetrapods, insects, spiders and "
+                     "centipedes walking paths over terrain, their legs driven by gait oscillators and analytic "
+                     "IK, rendered headless or live.",
                      epilog="Run 'gaitlab COMMAND --help' for a command's options.")
     parser.add_argument("--version", action="version", version=f"gaitlab {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)

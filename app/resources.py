@@ -1,8 +1,9 @@
-"""Locating the files that ship with Gaitlab: GLSL shaders and preset creatures.
+"""Locating the files that ship with Gaitlab: GLSL shaders, preset creatures, example scenes.
 
-In a source checkout (or an editable install) they are the top-level ``shaders/`` and
-``creatures/`` folders; in an installed wheel they are copied to ``app/shaders`` and
-``app/creatures`` (see ``pyproject.toml``). Either way callers ask this module.
+In a source checkout (or an editable install) they are the top-level ``shaders/``,
+``creatures/`` and ``scenes/`` folders; in an installed wheel they are copied to
+``app/shaders``, ``app/creatures`` and ``app/scenes`` (see ``pyproject.toml``). Either way
+callers ask this module.
 """
 
 from __future__ import annotations
@@ -29,6 +30,11 @@ def shaders_dir() -> Path:
 def creatures_dir() -> Path:
     """The folder holding one TOML file per preset creature."""
     return _data_dir("creatures")
+
+
+def scenes_dir() -> Path:
+    """The folder holding the example scene files."""
+    return _data_dir("scenes")
 
 
 def preset_creature_names() -> list[str]:

@@ -356,7 +356,7 @@ class LiveMotion:
         """This frame's inputs for :func:`solve_motion` (stackable over frames)."""
         plan = self.frame_plan()
         swing = plan.swing[0]
-        ease = swing * swing * (3.0 - 2.0 * swing)
+        ease = smoothstep(swing)
         stride = np.where(plan.contact[0], self.stride, self.stride_lift + (self.stride - self.stride_lift) * ease)
         return {"clock": self.clock, "time": self.time, "travel": self.travel, "bob": self.bob,
                 "stride": stride * self.rig.leg_scale, "plan": plan, "wave": self._wave_now()}

@@ -279,8 +279,10 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     changed_s, shadow = imgui.checkbox("shadow", options.shadow)
     imgui.same_line()
     changed_j, joints = imgui.checkbox("joints", options.joints)
-    if changed_g or changed_s or changed_j:
-        state.options = replace(options, grid=grid, shadow=shadow, joints=joints)
+    imgui.same_line()
+    changed_p, path = imgui.checkbox("path", options.path)
+    if changed_g or changed_s or changed_j or changed_p:
+        state.options = replace(options, grid=grid, shadow=shadow, joints=joints, path=path)
 
 
 def playback_panel(state: ViewerState, pc: PanelContext) -> None:

@@ -315,7 +315,7 @@ class ViewerState:
         cycles = r.length if r.unit == "cycles" else None
         view = ViewSettings(size=(int(r.width), int(r.height)), camera=r.camera,  # type: ignore[arg-type]
                             options=replace(RenderOptions(), grid=self.options.grid, shadow=self.options.shadow,
-                                            joints=self.options.joints))
+                                            joints=self.options.joints, path=self.options.path))
         return RecordRequest(spec=self.spec, output=r.path(self.spec.name), fps=float(r.fps), seconds=seconds,
                              cycles=cycles, view=view, world=self.world)
 

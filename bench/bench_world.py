@@ -1,0 +1,101 @@
+"""Gaitlab world benchmarks: travelling over terrain, terrain queries, heightmap loading.
+
+    python bench/bench_world.py            # full run (about half a minute)
+    python bench/bench_world.py --quick    # fewer repeats
+
+Prints medians over repeats (these machines are shared and noisy: read the medians and
+the ratios, not single runs). Goals (2-core machine, no GPU): 60 s of a dog on hills along
+a figure-eight at 60 fps simulates >= 300x faster than real time and costs < 2x the same
+gait in place; terrain height + normal queries >= 1,000,000 points/s; a 1024x1024
+heightmap loads in < 1 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import platform
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from app import build_rig, load_creature  # noqa: E402
+from app.kinematics.motion import simulate  # noqa: E402
+from app.scenes import load_heightmap, make_world, parse_terrain  # noqa: E402
+
+
+def median_time(fn, repeats: int) -> float:
+    fn()  # warm up
+    times = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def bench_travel(repeats: int) -> list[tuple[str, str]]:
+    rows = []
+    seconds, fps = 60.0, 60.0
+    dog = build_rig(load_creature("dog"))
+    in_place = median_time(lambda: simulate(dog, seconds, fps, world=make_world(in_place=True)), repeats)
+    world = make_world("figure-eight:r=1.5", "hills:amp=0.1,wavelength=2")
+    hills = median_time(lambda: simulate(dog, seconds, fps, world=world), repeats)
+    rows.append(("dog walk in place, 60 s at 60 fps", f"{in_place * 1000:.0f} ms ({seconds / in_place:,.0f}x real time)"))
+    rows.append(("dog walk on hills along a figure-eight, 60 s at 60 fps",
+                 f"{hills * 1000:.0f} ms ({seconds / hills:,.0f}x real time; {hills / in_place:.2f}x in place)"))
+    stairs = make_world("straight", "stairs:rise=0.08,run=0.35,steps=40")
+    t = median_time(lambda: simulate(dog, seconds, fps, world=stairs), repeats)
+    rows.append(("dog walk up 40 stairs, 60 s at 60 fps", f"{t * 1000:.0f} ms ({seconds / t:,.0f}x real time)"))
+    centipede = build_rig(load_creature("centipede"))
+    t = median_time(lambda: simulate(centipede, seconds, fps, world=world), repeats)
+    rows.append(("centipede (30 legs) on hills along a figure-eight, 60 s at 60 fps",
+                 f"{t * 1000:.0f} ms ({seconds / t:,.0f}x real time)"))
+    return rows
+
+
+def bench_queries(repeats: int) -> list[tuple[str, str]]:
+    rows = []
+    points = np.random.default_rng(0).uniform(-20, 20, size=(1_000_000, 2))
+    with tempfile.TemporaryDirectory() as folder:
+        heightmap = Path(folder) / "map.png"
+        _write_heightmap(heightmap, 1024)
+        load = median_time(lambda: load_heightmap(heightmap, 40.0, 3.0), repeats)
+        rows.append(("load a 1024x1024 16-bit heightmap (heights + normals)", f"{load * 1000:.0f} ms"))
+        grid = load_heightmap(heightmap, 40.0, 3.0)
+    for name, terrain in (("hills", parse_terrain("hills:amp=0.2,wavelength=3")),
+                          ("slope", parse_terrain("slope:angle=15")),
+                          ("stairs", parse_terrain("stairs:rise=0.1,run=0.3")), ("1024^2 heightmap", grid)):
+        t = median_time(lambda terrain=terrain: (terrain.height(points), terrain.normal(points)), repeats)
+        rows.append((f"terrain height + normal, 1M points: {name}", f"{points.shape[0] / t / 1e6:.1f} M points/s"))
+    return rows
+
+
+def _write_heightmap(path: Path, size: int) -> None:
+    from PIL import Image
+
+    y, x = np.mgrid[0:size, 0:size] / size
+    heights = 0.5 + 0.25 * np.sin(6 * x) * np.cos(4 * y) + 0.2 * np.sin(17 * x + 5 * y)
+    Image.fromarray((np.clip(heights, 0, 1) * 65535).astype(np.uint16)).save(path)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--quick", action="store_true", help="fewer repeats")
+    args = parser.parse_args()
+    repeats = 3 if args.quick else 7
+    print(f"machine: {platform.machine()}, {platform.python_implementation()} {platform.python_version()}, "
+          f"numpy {np.__version__}; median of {repeats} runs")
+    rows = bench_travel(repeats) + bench_queries(repeats)
+    width = max(len(name) for name, _ in rows)
+    for name, value in rows:
+        print(f"  {name:<{width}}  {value}")
+
+
+if __name__ == "__main__":
+    main()
