@@ -66,7 +66,7 @@ def test_motion_is_finite_exact_and_above_ground(spec, fps) -> None:
     expected = np.stack([rig.femur, rig.tibia, rig.metatarsus, rig.toe], axis=-1)
     with np.errstate(invalid="ignore", divide="ignore"):
         rel = np.where(expected > 0, np.abs(bones / expected - 1.0), bones)
-    assert rel.max() < 1e-9
+    assert rel.max() < 1e-9, (np.unravel_index(rel.argmax(), rel.shape), bones.reshape(-1, 4)[:2], expected)
     assert motion.joints[..., 3:5, 1].min() >= -1e-12  # ball and toe tip never below the ground
 
 
@@ -78,3 +78,61 @@ def test_measured_duty_factor_matches_request_within_one_frame(spec, fps) -> Non
     frames = motion.frame_count
     stance = motion.contact.sum(axis=0)
     assert np.all(np.abs(stance - rig.gait.duty_factor * frames) <= 1.0), (stance, rig.gait.duty_factor * frames)
+
+
+@st.composite
+def many_legged(draw):
+    """Random body plans: 1 to 6 leg pairs, upright or sprawled, with the gaits that fit."""
+    pairs = draw(st.integers(1, 6))
+    positions = sorted(draw(st.lists(st.floats(0.0, 1.0), min_size=pairs, max_size=pairs, unique=True)))
+    assume(all(b - a > 0.02 for a, b in zip(positions, positions[1:])))
+    sprawled = draw(st.booleans())
+    legs = {}
+    for i, position in enumerate(positions):
+        table = draw(leg_tables())
+        table["position"] = position
+        table["natural_bend"] = max(table["natural_bend"], 0.05)  # room to walk: not locked straight at rest
+        if sprawled:
+            table.update(knee="out", abduction=draw(st.floats(20.0, 70.0)), splay=draw(st.floats(-60.0, 60.0)))
+        else:
+            table["knee"] = draw(st.sampled_from(["forward", "back"]))
+        legs[f"pair{i}"] = table
+    gait = {"preset": draw(st.sampled_from(gaits_for(pairs))), "duty_factor": draw(st.floats(0.3, 0.85)),
+            "step_height": draw(st.floats(0.05, 0.4)), "stride": draw(st.floats(0.1, 1.0))}
+    data = {"name": "random", "body": {"length": draw(st.floats(0.2, 2.0)), "width": draw(st.floats(0.1, 0.6)),
+                                       "radius": [0.05, 0.08, 0.06]},
+            "legs": legs, "gait": gait}
+    try:
+        return creature_from_dict(data)
+    except SpecError:
+        assume(False)
+
+
+@SETTINGS
+@given(spec=many_legged(), terrain=st.sampled_from(["flat", "slope:angle=10,dir=40", "hills:amp=0.03,wavelength=3"]),
+       path=st.sampled_from(["straight", "circle:r=3", "figure-eight:r=4"]))
+def test_any_body_plan_travels_with_planted_feet(spec, terrain, path) -> None:
+    from app.kinematics.motion import simulate
+    from app.kinematics.world import WorldError
+    from app.scenes import make_world
+
+    rig = build_rig(spec)
+    # Feet can stay planted only where the stride is within the legs' reach (otherwise the
+    # body crouches as far as it may and the IK pulls the foot in: no NaN, exact bones).
+    feasible = bool(np.all(rig.stance_extent(0.5 * rig.stride_length) < 0.6 * rig.l_max)
+                    and np.all(rig.l_min < 0.5 * rig.l_max))  # and legs that can bend (not stilts)
+    try:
+        motion = simulate(rig, 1.0 / rig.gait.frequency, 30.0, world=make_world(path, terrain))
+    except WorldError:
+        assume(False)
+    arrays = [motion.joints, motion.spine, motion.neck, motion.head, motion.tail, motion.root]
+    assert all(np.isfinite(a).all() for a in arrays)
+    bones = np.linalg.norm(np.diff(motion.joints, axis=2), axis=-1)
+    expected = np.stack([rig.femur, rig.tibia, rig.metatarsus, rig.toe], axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel = np.where(expected > 0, np.abs(bones / expected - 1.0), bones)
+    assert rel.max() < 1e-9
+    ball = motion.joints[:, :, 3]
+    same = motion.contact[1:] & motion.contact[:-1] & (motion.phase[1:] > motion.phase[:-1])
+    if same.any() and feasible:
+        assert np.linalg.norm(np.diff(ball, axis=0), axis=-1)[same].max() < 1e-9  # planted feet never slip

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .path import left_of
-from .rig import Rig
+from .rig import MIN_CROUCH, Rig
 from .spine import bezier, bezier_tangent
 from .world import World
 
@@ -30,7 +30,6 @@ TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
 REACH_LIMIT = 0.985  # ... and never beyond this one, wherever the ground is
-MIN_CROUCH = 0.6  # ... by lowering the body, but never below this fraction of its rest height
 MAX_ROLL = 0.5  # rad
 ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
 
@@ -75,8 +74,7 @@ def standing_height(rig: Rig, stride_m: NDArray[np.float64], bob: NDArray[np.flo
     """Each girdle's standing height above its feet's ground (T, G): its rest height,
     lowered when the stride would carry a planted foot beyond REACH_MARGIN of full
     extension (bob included), never below MIN_CROUCH of rest. stride_m (T, L); bob (T, 1)."""
-    sideways = rig.l_rest * np.sin(rig.abduction)
-    reach = np.sqrt(np.maximum((REACH_MARGIN * rig.l_max) ** 2 - (0.5 * stride_m) ** 2 - sideways ** 2, 0.0))
+    reach = np.sqrt(np.maximum((REACH_MARGIN * rig.l_max) ** 2 - rig.stance_extent(0.5 * stride_m) ** 2, 0.0))
     left, right = reach[:, 0::2], reach[:, 1::2]
     rest = rig.girdle_rest_height
     bob_room = 0.5 * bob * rest
@@ -115,7 +113,13 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
     allowed = ball[..., 1] + np.sqrt(np.maximum((REACH_LIMIT * rig.l_max) ** 2 - horizontal ** 2, 0.0))
     allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
-    height = np.minimum(height, np.minimum(allowed[:, 0::2], allowed[:, 1::2]))
+    # ... nor so low that a planted foot comes nearer than the leg can fold (the uphill foot
+    # on a slope), nor crouched below MIN_CROUCH.
+    near = ball[..., 1] + np.sqrt(np.maximum((1.02 * rig.l_min) ** 2 - horizontal ** 2, 0.0))
+    near = near - (1.0 - planted) * 2.0 * rig.l_max
+    lowest = np.maximum(ground + np.maximum(MIN_CROUCH * rest, 1.05 * np.maximum(rig.l_min[0::2], rig.l_min[1::2])),
+                        np.maximum(near[:, 0::2], near[:, 1::2]))
+    height = np.maximum(np.minimum(height, np.minimum(allowed[:, 0::2], allowed[:, 1::2])), lowest)
 
     # Roll towards the higher foot; yaw with the feet (secondary motion).
     across = np.linalg.norm(support[:, 0::2, [0, 2]] - support[:, 1::2, [0, 2]], axis=-1)

@@ -40,6 +40,11 @@ def _reach_rotation(wf, wu, wl, hf, hu, hl, length, cos_target):
     sf = np.where(weak, -1.0 - back * tf, sf)
     su = np.where(weak, -back * tu, su)
     sl = np.where(weak, -back * tl, sl)
+    # ... and when that is the hip direction too (a horizontal leg), towards up.
+    flat = _norm3(sf, su, sl) <= 1e-3
+    sf = np.where(flat, -tu * tf, sf)
+    su = np.where(flat, 1.0 - tu * tu, su)
+    sl = np.where(flat, -tu * tl, sl)
     n = np.maximum(_norm3(sf, su, sl), 1e-300)
     sin_t = np.sqrt(np.maximum(1.0 - cos_target * cos_target, 0.0))
     df, du, dl = cos_target * tf + sin_t * sf / n, cos_target * tu + sin_t * su / n, cos_target * tl + sin_t * sl / n

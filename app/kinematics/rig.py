@@ -19,6 +19,9 @@ from numpy.typing import NDArray
 
 from .gait import GaitParams, ground_speed
 
+MIN_CROUCH = 0.6  # a girdle never stands lower than this fraction of its rest height
+SPRAWL_MARGIN = 0.95  # a sprawled foot's rest spot stays within this fraction of full reach, striding
+
 
 def leg_lengths(femur: NDArray, tibia: NDArray, metatarsus: NDArray, ankle_lift: NDArray,
                 natural_bend: NDArray, swing_rest: NDArray | float = 0.0) -> tuple[NDArray, NDArray, NDArray]:
@@ -177,11 +180,31 @@ class Rig:
         return float(ground_speed(self.gait.stride * self.leg_scale, self.gait.duty_factor, self.gait.frequency))
 
     @property
+    def sideways_reach(self) -> NDArray[np.float64]:
+        """How far (m) each foot's rest spot lies out from its hip, (L,): the abducted rest
+        length, brought in where a stride from there would need more than the leg can
+        reach even with the body crouched (a sprawled leg at full stretch)."""
+        reach = self.l_rest * np.sin(self.abduction)
+        half = 0.5 * self.stride_length
+        low = MIN_CROUCH * self.l_rest * np.cos(self.abduction)
+        lean = np.abs(np.sin(self.splay))
+        # The farthest a planted foot gets, horizontally: r^2 + half^2 + 2 r half |sin splay|.
+        limit = (SPRAWL_MARGIN * self.l_max) ** 2 - low ** 2 - half ** 2
+        room = -half * lean + np.sqrt(np.maximum((half * lean) ** 2 + limit, 0.0))
+        return np.clip(np.minimum(reach, room), 0.0, None)
+
+    def stance_extent(self, half_stride: NDArray[np.float64]) -> NDArray[np.float64]:
+        """The farthest (m) a planted foot gets from its hip horizontally, for planted feet
+        travelling ``half_stride`` (..., L) m either side of their rest spot."""
+        reach = self.sideways_reach
+        return np.sqrt(reach ** 2 + half_stride ** 2 + 2.0 * reach * half_stride * np.abs(np.sin(self.splay)))
+
+    @property
     def neutral_feet(self) -> NDArray[np.float64]:
         """Each foot's rest position relative to its girdle's centre on the ground, in the
         body frame (x left, z forward), shape (L, 2): the hip's lateral offset plus the
         leg's abducted reach, turned forward or back by its splay."""
-        reach = self.l_rest * np.sin(self.abduction)
+        reach = self.sideways_reach
         lateral = self.hip_side * (self.hip_offset + reach * np.cos(self.splay))
         return np.stack([lateral, reach * np.sin(self.splay)], axis=-1)
 
