@@ -276,6 +276,11 @@ def cmd_creatures(args: argparse.Namespace) -> int:
     print("\nGaits (--gait NAME):")
     _print_rows([(g.name, f"{g.description}  [duty factor {g.duty_factor:.2f}; for {g.fits_text}]")
                  for g in GAIT_PRESETS.values()])
+    from .resources import scenes_dir
+    from .scenes import scene_description
+
+    print("\nExample scenes (gaitlab render PATH, gaitlab view PATH):")
+    _print_rows([(str(path), scene_description(path)) for path in sorted(scenes_dir().glob("*.toml"))])
     if args.keys:
         from .spec import override_keys, rule_for
 
@@ -364,13 +369,16 @@ def _creature_and_world(args: argparse.Namespace):
             raise GaitlabError(f"{', '.join(given)}: a scene file sets its own path and terrain")
         scene = load_scene(args.creature)
         first = scene.creatures[0]
-        if len(scene.creatures) > 1 and not getattr(args, "quiet", False):
-            print(f"note: {args.creature} has {len(scene.creatures)} creatures; this version renders the first "
-                  f"({Path(first.creature).stem})", file=sys.stderr)
-        overrides = {**first.overrides}
-        if first.gait:
-            overrides["gait.preset"] = first.gait
-        spec = _load_with_overrides(args, first.creature, overrides)
+        specs = []
+        for entry in scene.creatures:  # every creature must load, even those not filmed yet
+            overrides = {**entry.overrides}
+            if entry.gait:
+                overrides["gait.preset"] = entry.gait
+            specs.append(_load_with_overrides(args, entry.creature, overrides, origin=args.creature))
+        spec = specs[0]
+        if len(specs) > 1 and not getattr(args, "quiet", False):
+            print(f"note: {args.creature} has {len(specs)} creatures; this version films the first ({spec.name})",
+                  file=sys.stderr)
         if speed is None and first.speed is not None:
             speed = (first.speed, first.speed)
         return spec, first.world, speed
@@ -379,12 +387,15 @@ def _creature_and_world(args: argparse.Namespace):
 
 
 def _load_with_overrides(args: argparse.Namespace, creature: str | None = None,
-                         base_overrides: dict[str, object] | None = None):
-    """The creature named on the command line with --gait and --set applied."""
+                         base_overrides: dict[str, object] | None = None, origin: str = "--set"):
+    """The creature named on the command line (or in a scene) with the scene's settings,
+    --gait and --set applied."""
     from .spec import did_you_mean, load_creature, parse_override
 
     spec = load_creature(creature or args.creature)
-    overrides: dict[str, object] = dict(base_overrides or {})
+    if base_overrides:
+        spec = spec.with_overrides(base_overrides, origin=origin)
+    overrides: dict[str, object] = {}
     if args.gait is not None:
         if args.gait not in GAIT_PRESETS:
             raise GaitlabError(f"--gait {args.gait!r}: unknown gait{did_you_mean(args.gait, GAIT_PRESETS)}; "
@@ -420,7 +431,6 @@ def cmd_view(args: argparse.Namespace) -> int:
 
 def cmd_analyze(args: argparse.Namespace) -> int:
     import json
-    import math as _math
 
     from .analysis import analyze_tracks, tracks_from_motion
     from .analysis.metrics import path_error
@@ -466,7 +476,7 @@ def cmd_analyze(args: argparse.Namespace) -> int:
             from .kinematics.speed import gait_at_speed
 
             frequency = max(gait_at_speed(rig, v).gait.frequency for v in args.speed)
-        fps = float(max(120, _math.ceil(200 * frequency)))  # ~200 frames per stride: sub-percent timing
+        fps = float(max(120, math.ceil(200 * frequency)))  # ~200 frames per stride: sub-percent timing
         seconds = args.seconds
         if args.speed is None and seconds is None:
             cycles = args.cycles or 4.0

@@ -40,6 +40,7 @@ TERRAIN_KINDS = {
     "mesh": "a mesh file (OBJ, PLY, STL, glTF) sampled into a height grid; file=PATH, cell=M (grid spacing)",
 }
 COMMON_TERRAIN_KEYS = ("max_slope",)
+FAR = 1e4  # m: no path or terrain size beyond this (ten kilometres)
 
 
 def _split(text: str, what: str) -> tuple[str, list[str]]:
@@ -99,7 +100,8 @@ def parse_path(text: str) -> Path:
     kind = _kind(kind, PATH_KINDS, "--path", text)
     if kind == "waypoints":
         closed = "closed" in [i.lower() for i in items]
-        numbers = [_number(i, "waypoint coordinate", what) for i in items if i.lower() != "closed"]
+        numbers = [_number(i, "waypoint coordinate", what, lo=-FAR, hi=FAR, unit=" m") for i in items
+                   if i.lower() != "closed"]
         if len(numbers) % 2:
             raise WorldError(f"{what}: waypoints are x,z pairs; got an odd count of numbers ({len(numbers)})")
         points = np.array(numbers).reshape(-1, 2)
@@ -114,6 +116,8 @@ def parse_path(text: str) -> Path:
     if radius_text is None:
         raise WorldError(f"{what}: give the radius, e.g. {kind}:r=3 (metres, > 0)")
     radius = _number(radius_text, "r", what, lo=0.0, lo_open=True, unit=" m")
+    if radius > FAR:
+        raise WorldError(f"{what}: r={radius:g} must be <= {FAR:g} m")
     if kind == "circle":
         direction = values.get("dir", "left").lower()
         if direction not in ("left", "right"):
@@ -158,14 +162,16 @@ def parse_terrain(text: str, base: FilePath | None = None) -> Terrain:
         seed = num("seed", 1.0, lo=0.0)
         if seed != int(seed):
             raise WorldError(f"{what}: seed={seed:g} must be a whole number")
-        return HillsTerrain(num("amp", 0.2, lo=0.0), num("wavelength", 3.0, lo=0.0, lo_open=True, unit=" m"),
+        return HillsTerrain(num("amp", 0.2, lo=0.0, hi=100.0, unit=" m"),
+                            num("wavelength", 3.0, lo=0.0, lo_open=True, hi=FAR, unit=" m"),
                             int(seed), max_slope)
     if kind == "stairs":
         steps = num("steps", 12.0, lo=1.0, hi=1000.0)
         if steps != int(steps):
             raise WorldError(f"{what}: steps={steps:g} must be a whole number")
-        return StairsTerrain(num("rise", 0.1, hi=10.0), num("run", 0.35, lo=0.0, lo_open=True, unit=" m"),
-                             int(steps), num("start", 1.0), direction, max_slope)
+        return StairsTerrain(num("rise", 0.1, lo=-10.0, hi=10.0, unit=" m"),
+                             num("run", 0.35, lo=0.005, hi=FAR, unit=" m"), int(steps),
+                             num("start", 1.0, lo=-FAR, hi=FAR, unit=" m"), direction, max_slope)
     if "file" not in values or not values["file"]:
         raise WorldError(f"{what}: give the file, e.g. {kind}:file=ground.{'png' if kind == 'heightmap' else 'obj'}")
     file = FilePath(values["file"])
@@ -173,7 +179,7 @@ def parse_terrain(text: str, base: FilePath | None = None) -> Terrain:
         file = base / file
     if kind == "heightmap":
         return load_heightmap(file, num("size", 20.0, lo=0.0, lo_open=True, unit=" m"),
-                              num("height", 2.0, lo=0.0), max_slope)
+                              num("height", 2.0, lo=0.0, hi=FAR, unit=" m"), max_slope)
     return load_mesh_terrain(file, num("cell", 0.0, lo=0.0), max_slope)
 
 
@@ -250,8 +256,9 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
     heights = np.full(gx.size, lo[1])
     locations, index_ray, _ = loaded.ray.intersects_location(origins, directions, multiple_hits=False)
     if len(index_ray):
-        np.maximum.at(heights, index_ray, locations[:, 1])
-        heights[np.setdiff1d(np.arange(gx.size), index_ray)] = lo[1]
+        hit = np.full(gx.size, -np.inf)
+        np.maximum.at(hit, index_ray, locations[:, 1])
+        heights = np.where(np.isfinite(hit), hit, lo[1])  # no surface above a point: the mesh's lowest
     grid = heights.reshape(len(zs), len(xs))
     return HeightGrid(grid, (float(lo[0]), float(lo[2])), (float(hi[0] - lo[0]), float(hi[2] - lo[2])),
                       label=f"mesh:file={file}", max_slope=max_slope)
@@ -301,7 +308,9 @@ def _text_or_table(value: Any, key: str, where: str) -> str:
                 parts += [f"{c:g}" if isinstance(c, (int, float)) else str(c) for pt in v for c in
                           (pt if isinstance(pt, list) else [pt])]
             elif k == "closed":
-                if v is True:
+                if not isinstance(v, bool):
+                    raise WorldError(f"{where}: {key}.closed = {v!r}: expected true or false")
+                if v:
                     parts.append("closed")
             else:
                 parts.append(f"{k}={v}")
@@ -331,7 +340,8 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
         try:
             return fn()
         except WorldError as exc:
-            raise WorldError(f"{where}: {key}: {exc}") from None
+            text = str(exc)
+            raise WorldError(text if text.startswith(where) else f"{where}: {key}: {text}") from None
 
     terrain = wrap(lambda: parse_terrain(_text_or_table(data.get("terrain", "flat"), "terrain", where), base),
                    "terrain")
@@ -379,6 +389,15 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
                                        speed=None if speed is None else float(speed), overrides=dict(overrides)))
     name = data.get("name", path.stem)
     return Scene(name=str(name), terrain=terrain, creatures=tuple(creatures), source=str(path))
+
+
+def scene_description(file: FilePath) -> str:
+    """A scene file's one-line description (its ``description`` key), or its name."""
+    try:
+        data = tomllib.loads(FilePath(file).read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return FilePath(file).stem
+    return str(data.get("description", data.get("name", FilePath(file).stem)))
 
 
 def make_world(path: str | Path | None = None, terrain: str | Terrain | None = None,

@@ -418,7 +418,7 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
     body_t = _subtable(data, "body", where, required=True)
     body = BodySpec(**_read_table(body_t, BODY_RULES, "body", where, required=("length", "width", "radius")))
 
-    legs = _read_legs(_subtable(data, "legs", where, required=True), body, where)
+    legs = _read_legs(_subtable(data, "legs", where, required=True), where)
     pairs = sum(leg.count for leg in legs)
 
     gait = _read_gait(_subtable(data, "gait", where, required=False), foot_names(pairs), where)
@@ -438,7 +438,7 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
 _BONES = ("femur", "tibia", "metatarsus", "toe", "ankle_lift")
 
 
-def _read_legs(legs_t: Mapping[str, Any], body: BodySpec, where: str) -> list[LegSpec]:
+def _read_legs(legs_t: Mapping[str, Any], where: str) -> list[LegSpec]:
     """The leg tables: ``[legs.fore]`` and ``[legs.hind]`` (the tetrapod form, positions 1
     and 0 by default) or any names, each with a ``position`` (or ``count`` and ``span``)."""
     if not legs_t:

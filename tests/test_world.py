@@ -192,3 +192,13 @@ def test_in_place_keeps_the_body_at_the_origin() -> None:
     motion = simulate("dog", seconds=2.0, fps=30.0, in_place=True)
     assert np.abs(motion.root[:, 2, 3]).max() < 0.05  # bob and sway only
     assert motion.ground_offset[-1] == pytest.approx(motion.travel[-1]) and motion.travel[-1] > 0.5
+
+
+@pytest.mark.parametrize("creature", PRESETS)
+def test_tight_turns_keep_feet_planted(creature: str) -> None:
+    """A circle of half a body length: the inner feet almost mark time, none slips."""
+    rig = build_rig(load_creature(creature))
+    motion = simulate_rig(rig, 3.0, 60.0, world=make_world(f"circle:r={0.5 * rig.body_length:.4f}"))
+    assert np.all(np.isfinite(motion.joints))
+    slip = np.linalg.norm(np.diff(motion.joints[:, :, 3], axis=0), axis=-1)[planted_steps(motion)]
+    assert slip.max() < 1e-6

@@ -149,6 +149,9 @@ BAD_WORLD = {
     "no foothold": (["--terrain", "slope:angle=60"], "no acceptable foothold"),
     "in place on hills": (["--terrain", "hills", "--in-place"], "in place needs flat ground"),
     "missing heightmap": (["--terrain", "heightmap:file=nowhere.png"], "no such file"),
+    "huge radius": (["--path", "figure-eight:r=1e300"], "must be <= 10000 m"),
+    "path too tight": (["--path", "circle:r=0.01"], "too tight for the dog"),
+    "steps out of reach": (["--terrain", "stairs:rise=1,start=0"], "cannot reach its foothold"),
 }
 
 
@@ -183,6 +186,38 @@ def test_bad_files(tmp_path: Path) -> None:
     assert not (tmp_path / "x.gif").exists()
     with pytest.raises(WorldError, match="no faces"):
         load_mesh_terrain(tmp_path / "empty.obj")
+
+
+def test_every_scene_creature_is_checked(tmp_path: Path) -> None:
+    scene = tmp_path / "two.toml"
+    scene.write_text('[[creatures]]\ncreature = "dog"\n[[creatures]]\ncreature = "cat"\n'
+                     'set = { "legs.hind.femr" = 1 }\n')
+    out = gaitlab("render", str(scene), "-o", "x.gif", cwd=tmp_path)
+    assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1
+    assert "did you mean 'legs.hind.femur'" in out.stderr and not (tmp_path / "x.gif").exists()
+    (tmp_path / "closed.toml").write_text('[paths.p]\nkind = "waypoints"\npoints = [[0, 0], [1, 1], [2, 0]]\n'
+                                          'closed = "yes"\n[[creatures]]\ncreature = "dog"\npath = "p"\n')
+    with pytest.raises(WorldError, match="closed = 'yes': expected true or false"):
+        load_scene(tmp_path / "closed.toml")
+
+
+def test_the_viewer_pauses_where_the_ground_offers_no_foothold() -> None:
+    from app import load_creature
+    from app.scenes import make_world
+    from app.ui.state import ViewerState
+
+    state = ViewerState(load_creature("dog"), world=make_world("straight", "hills:amp=0.28,seed=5"))
+    for _ in range(600):
+        state.advance(1.0 / 60.0)
+        if not state.playing:
+            break
+    assert not state.playing and state.error is not None and "no acceptable foothold" in state.error
+    before = state.live.clock
+    state.step_frame()  # still there, still paused, no traceback
+    assert state.live.clock == before and not state.playing
+    # A path too tight for a newly chosen creature keeps the old one.
+    tight = ViewerState(load_creature("cat"), world=make_world("circle:r=0.1"))
+    assert tight.load_preset("horse") is False and tight.spec.name == "cat" and "too tight" in tight.error
 
 
 def test_gaits_that_do_not_fit_are_refused() -> None:

@@ -32,6 +32,7 @@ REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full 
 REACH_LIMIT = 0.985  # ... and never beyond this one, wherever the ground is
 MAX_ROLL = 0.5  # rad
 ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
+MAX_END_SLOPE = 0.35  # the trunk's ends beyond the girdles pitch at most this much (rise over run)
 
 
 def unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -93,7 +94,6 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     stride_m (T, L) m; bob (T,) leg rest lengths; bob_lift, forward (T, L): the oscillator's
     lift for the bob and fore-aft offset for the yaw.
     """
-    frames = s.shape[0]
     s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
     point, tangent = world.path.sample(s_g)
     heading = _flat3(tangent)
@@ -127,7 +127,6 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     yaw = -rig.motion.yaw * (forward[:, 0::2] - forward[:, 1::2])
     lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
     centre = np.stack([point[..., 0], height, point[..., 1]], axis=-1)
-    del frames
     return Girdles(centre=centre, heading=heading, lateral=lateral, yaw=yaw, s=s_g)
 
 
@@ -165,6 +164,7 @@ def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
     if len(pos) > 1:
         centred = along - along.mean()
         slope = ((points[..., 1] - rest) * centred).sum(axis=1) / (centred ** 2).sum()
+        slope = np.clip(slope, -MAX_END_SLOPE, MAX_END_SLOPE)  # girdles close together: a short, shaky baseline
     else:
         slope = np.zeros(points.shape[0])
     for end, side in ((0.0, 0), (1.0, -1)):

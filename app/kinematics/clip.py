@@ -10,7 +10,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from .motion import Motion, constant_gait_inputs, frame_count, solve_motion
+from .motion import Motion, check_reach, check_world, constant_gait_inputs, frame_count, solve_motion
 from .rig import Rig
 from .world import World
 
@@ -31,8 +31,12 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
     flat ground, travelling).
     """
     world = world or World()
+    check_world(rig, world)
     if speed is not None:
-        return _speed_clip(rig, fps, seconds, cycles, speed, world)
+        motion, cycles = _speed_clip(rig, fps, seconds, cycles, speed, world)
+        if not world.terrain.flat:
+            check_reach(motion)
+        return motion, cycles
     f = rig.gait.frequency
     start_clock = f * start
     if seconds is None:
@@ -44,7 +48,10 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
         clock = start_clock + f * np.arange(frames) / fps
         cycles = None
     times = start + np.arange(frames) / fps
-    return solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps), cycles
+    motion = solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps)
+    if not world.terrain.flat:
+        check_reach(motion)
+    return motion, cycles
 
 
 def frame_at(rig: Rig, time: float, fps: float, world: World | None = None) -> Motion:
@@ -59,7 +66,7 @@ def _speed_clip(rig: Rig, fps: float, seconds: float | None, cycles: float | Non
     from .speed import gait_at_speed, simulate_speed
 
     if seconds is None:
-        if cycles is not None:  # a constant speed: its frequency turns cycles into seconds
+        if cycles is not None:  # cycles need a constant speed (checked by the caller): its frequency
             seconds = cycles / gait_at_speed(rig, speed[0]).gait.frequency
         else:
             seconds = DEFAULT_SPEED_SECONDS

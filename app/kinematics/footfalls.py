@@ -29,6 +29,7 @@ from .rig import Rig
 from .world import World, WorldError
 
 SEARCH_RADIUS = 0.3  # of the leg rest length: how far from its ideal spot a foot may land
+MAX_LIFT = 1.5  # of the leg's rest length: the highest a swing may rise
 CLEARANCE = 0.3  # of the step height: the least room under a swinging foot over the ground between footholds
 _CLEAR_SAMPLES = np.linspace(0.06, 0.94, 31)
 
@@ -156,7 +157,7 @@ def swing_apex(rig: Rig, world: World, start: NDArray[np.float64], end: NDArray[
         ground = np.maximum(ground, world.terrain.height(xz + k * reach * ahead[:, None, :]))
     need = (ground + CLEARANCE * step_height[:, None] - base[..., 1]) / np.maximum(shape, 0.2)
     apex = np.maximum(step_height, need.max(axis=1))
-    return np.minimum(apex, 1.5 * rig.l_rest[legs])
+    return np.minimum(apex, MAX_LIFT * rig.l_rest[legs])
 
 
 def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], travel_per_cycle: float,
@@ -204,7 +205,7 @@ def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], trave
 class FootTargets:
     """Per frame and foot (T, L, ...): the ball target, the foot's ground support (the
     point it stands on, sliding from one foothold to the next in swing, no lift) with its
-    normal, and the ground height under the ball."""
+    normal, and the lift above the support (m)."""
 
     ball: NDArray[np.float64]
     support: NDArray[np.float64]

@@ -92,7 +92,7 @@ def solve_legs(
     Returns joints (..., L, 5, 3): hip, knee, ankle, ball, toe tip. Bone lengths are
     preserved exactly; the ball reaches the target when the target is within
     [L_min, L_max] of the hip; a farther target pulls it in along the hip-target line, a
-    nearer one slides it away horizontally at the target's height.
+    nearer one is lowered straight down to L_min (continuous as the target passes under the hip).
     """
     if knee_pole is None:
         knee_pole = np.stack([np.asarray(knee_sign, dtype=np.float64), np.zeros(np.shape(knee_sign))], axis=-1)
@@ -138,17 +138,14 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, m
     else:
         hf, hu, hl = (np.einsum("...i,...i->...", h, axis) for axis in (fwd, upv, lat))
 
-    # 1. Clamp the hip-to-ball distance into the leg's range. Too near: slide the ball
-    #    away along the ground, keeping its height. Too far: pull it in along the line.
+    # 1. Clamp the hip-to-ball distance into the leg's range. Too near: lower the ball
+    #    straight down onto the sphere of radius L_min (continuous wherever the target
+    #    goes, also when it passes under the hip). Too far: pull it in along the line.
     dist = _norm3(hf, hu, hl)
     near = dist < l_min
     if np.any(near):
-        flat = np.hypot(hf, hl)
-        need = np.sqrt(np.maximum(l_min * l_min - hu * hu, 0.0))
-        tiny = flat <= 1e-12
-        scale = np.maximum(need, flat) / np.where(tiny, 1.0, flat)
-        hf = np.where(near, np.where(tiny, -need, hf * scale), hf)
-        hl = np.where(near & ~tiny, hl * scale, hl)
+        flat2 = hf * hf + hl * hl
+        hu = np.where(near, -np.sqrt(np.maximum(l_min * l_min - flat2, 0.0)), hu)
         dist = _norm3(hf, hu, hl)
     length = np.clip(dist, l_min, l_max)
     zero = dist <= 1e-12

@@ -38,12 +38,10 @@ def solve_leg(hip: Vec, target: Vec, fwd: Vec, up: Vec, toe_curl: float, femur: 
     """Joints [hip, knee, ankle, ball, toe tip] of one leg (see ``solve_legs``)."""
     h = _add(target, hip, -1.0)
     dist = math.sqrt(_dot(h, h))
-    if dist < l_min:  # slide away along the ground at the target's height
-        vert = _scale(up, _dot(h, up))
-        flat = _add(h, vert, -1.0)
-        flat_len = math.sqrt(_dot(flat, flat))
-        need = math.sqrt(max(l_min ** 2 - _dot(h, up) ** 2, 0.0))
-        h = _add(vert, _unit(flat, _scale(fwd, -1.0)), max(need, flat_len))
+    if dist < l_min:  # lower the ball straight down onto the sphere of radius L_min
+        vert = _dot(h, up)
+        flat = _add(h, up, -vert)
+        h = _add(flat, up, -math.sqrt(max(l_min ** 2 - _dot(flat, flat), 0.0)))
         dist = math.sqrt(_dot(h, h))
     direction = _unit(h, _scale(up, -1.0))
     length = min(max(dist, l_min), l_max)

@@ -30,10 +30,10 @@ from numpy.typing import NDArray
 from .easing import smoothstep
 from .footfalls import FootPlan, landing_points, neutral_points, plan_constant_gait, plan_footholds, swing_apex
 from .gait import ground_speed
-from .motion import MotionInputs, Pose, oscillators, solve_motion
+from .motion import MotionInputs, Pose, check_world, oscillators, solve_motion
 from .oscillator import FootWave
 from .rig import Rig
-from .world import World
+from .world import World, WorldError
 
 BLEND_CYCLES = 0.35
 SWING_RETIME = 0.6
@@ -65,6 +65,7 @@ class LiveMotion:
     def __init__(self, rig: Rig, world: World | None = None) -> None:
         self.rig: Rig = rig
         self.world: World = world or World()
+        check_world(rig, self.world)
         self.clock = 0.0  # cycles
         self.time = 0.0  # seconds of animation time
         self.travel = 0.0  # metres the body has moved along its path
@@ -188,16 +189,46 @@ class LiveMotion:
     def _nominal_travel(self) -> float:
         return self.rig.gait.stride * self.rig.leg_scale
 
+    def _travel_tolerance(self, straight: float) -> float:
+        """How far (relative) a foot's swing may differ from the nominal one and still count
+        as steady: on a curved path inner and outer feet step shorter and longer by their
+        distance from the path over its radius."""
+        lateral = float(np.abs(self.rig.neutral_feet[:, 0]).max())
+        return straight + lateral / self.world.path.curvature_radius()
+
     def _update_settled(self) -> None:
         g = self.rig.gait
         offset_error = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max()
         self._feet_settled = bool(
             offset_error <= 1e-12 and np.all(self.duty == g.duty_factor) and np.all(self.stride == g.stride)
             and np.all(self.stride_lift == g.stride) and np.all(self.step_height == g.step_height)
-            and np.allclose(self._swing_travel(), self._nominal_travel(), rtol=1e-3, atol=1e-6))
+            and np.allclose(self._swing_travel(), self._nominal_travel(), rtol=self._travel_tolerance(1e-3),
+                            atol=1e-6))
 
     def set_rig(self, rig: Rig, blend: bool = True) -> None:
-        """Switch to a new rig (creature and gait); gait changes blend unless ``blend`` is False."""
+        """Switch to a new rig (creature and gait); gait changes blend unless ``blend`` is
+        False. On a :class:`WorldError` (a body the world cannot take) nothing changes."""
+        saved = dict(self.__dict__)
+        try:
+            self._set_rig(rig, blend)
+        except WorldError:
+            self.__dict__.clear()
+            self.__dict__.update(saved)
+            raise
+
+    def step(self, dt: float) -> None:
+        """Advance by ``dt`` seconds of animation time (0 or negative does nothing). On a
+        :class:`WorldError` (no foothold ahead) the motion stays where it was."""
+        saved = {k: (v.copy() if isinstance(v, np.ndarray) else v) for k, v in self.__dict__.items()}
+        try:
+            self._step(dt)
+        except WorldError:
+            self.__dict__.clear()
+            self.__dict__.update(saved)
+            raise
+
+    def _set_rig(self, rig: Rig, blend: bool) -> None:
+        check_world(rig, self.world)
         frequency, bob, wave = self.frequency, self.bob, self._wave_now()
         speed_now = max(self._speed_cap, float(np.max(self._swing_speed(
             frequency, self.duty, self._swing_travel(), self.step_height, self.travel_per_cycle() * frequency, wave))))
@@ -235,15 +266,9 @@ class LiveMotion:
             self._freq_to, self._bob_to, self._wave_to = g.frequency, g.bob, g.wave
             self._blend = 0.0
 
-    def set_world(self, world: World) -> None:
-        """Walk somewhere else: the feet stand anew where the new world puts them."""
-        self.world = world
-        self._adopt_all()
-
     # -- time -------------------------------------------------------------------------
 
-    def step(self, dt: float) -> None:
-        """Advance by ``dt`` seconds of animation time (0 or negative does nothing)."""
+    def _step(self, dt: float) -> None:
         if dt <= 0:
             return
         g = self.rig.gait
@@ -294,7 +319,7 @@ class LiveMotion:
             need = np.where((need < 0) & (room >= 0), need + 1.0, need)
             settled = (np.isclose(self.duty, g.duty_factor) & np.isclose(self.stride, g.stride)
                        & np.isclose(self.stride_lift, g.stride) & np.isclose(self.step_height, g.step_height)
-                       & np.isclose(self._swing_travel(), self._nominal_travel(), rtol=1e-3))
+                       & np.isclose(self._swing_travel(), self._nominal_travel(), rtol=self._travel_tolerance(1e-3)))
             # A foot still in its old stride is slowed if its swing would be too fast; a
             # settled foot is never forced slower than its own gait.
             low = np.where(settled, np.minimum(room, 0.0), room)
@@ -308,7 +333,7 @@ class LiveMotion:
         self.offsets = np.mod(self.offsets + np.where(airborne, change, 0.0), 1.0)
         self._update_settled()
         offsets_done = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max() <= 1e-9
-        travel_done = np.allclose(self._swing_travel(), self._nominal_travel(), rtol=0.03)
+        travel_done = np.allclose(self._swing_travel(), self._nominal_travel(), rtol=self._travel_tolerance(0.03))
         if self._guard and offsets_done and self._stepped.all() and travel_done:
             self._guard = False
         if not self._guard:
@@ -347,10 +372,25 @@ class LiveMotion:
         swing = np.where(contact, 0.0, (phase - self.duty) / (1.0 - self.duty))
         end = np.where(contact[:, None], self.start, self.end)
         end_normal = np.where(contact[:, None], self.start_normal, self.end_normal)
+        land_at = self.land_at.copy()
+        airborne = np.nonzero(~contact)[0]
+        if airborne.size:
+            # Aim each swing at where it will really land if the body keeps its present speed
+            # (the same spot as planned while it does), on the ground there: the foot's height
+            # eases towards that, so it meets the ground without a jump even when the speed
+            # or the gait changed mid-swing.
+            predicted = self.travel + self.travel_per_cycle() * (1.0 - phase[airborne])
+            landing = landing_points(self.rig, self.world, airborne, self.start[airborne], self.end[airborne],
+                                     self.lift_at[airborne], self.land_at[airborne], predicted)
+            moved = np.any(landing != self.end[airborne], axis=1)
+            end[airborne] = landing
+            end_normal[airborne] = np.where(moved[:, None], self.world.terrain.normal(landing[:, [0, 2]]),
+                                            self.end_normal[airborne])
+            land_at[airborne] = predicted
         return FootPlan(phase=phase[None], duty=self.duty[None].copy(), contact=contact[None], swing=swing[None],
                         start=self.start[None].copy(), end=end[None], start_normal=self.start_normal[None].copy(),
                         end_normal=end_normal[None], apex=self.apex[None].copy(), lift_at=self.lift_at[None].copy(),
-                        land_at=self.land_at[None].copy())
+                        land_at=land_at[None])
 
     def frame_inputs(self) -> dict:
         """This frame's inputs for :func:`solve_motion` (stackable over frames)."""

@@ -28,7 +28,10 @@ from .oscillator import FootWave, foot_wave
 from .path import Path
 from .rig import Rig
 from .terrain import Terrain
-from .world import World
+from .world import World, WorldError
+
+TIGHTEST_TURN = 0.2  # body lengths: the smallest turning radius a path may ask for
+REACH_TOLERANCE = 0.01  # m a planted foot may miss its foothold before the ground counts as out of reach
 
 
 @dataclass(frozen=True)
@@ -86,6 +89,7 @@ class Motion:
     rig: Rig
     world: World = field(default_factory=World)
     gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
+    reach_error: NDArray[np.float64] | None = None  # (T, L) m between each ball and its target
 
     @property
     def frame_count(self) -> int:
@@ -190,6 +194,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
         knee_sign=rig.knee_sign, swing_rest=rig.swing_rest, ground_height=ground, knee_pole=rig.knee_pole,
     )
     root = root_frames(spine)
+    reach_error = np.linalg.norm(joints[:, :, 3] - feet.ball, axis=-1)
 
     spine_pts, spine_tan, neck, head, tail = spine.segments, spine.tangents, spine.neck, spine.head, spine.tail
     ground_offset = np.zeros(frames)
@@ -205,7 +210,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     return Motion(times=inputs.times, clock=inputs.clock, joints=joints, contact=plan.contact, phase=plan.phase,
                   spine=spine_pts, spine_tangent=spine_tan, spine_radius=spine.radius, neck=neck, head=head,
                   tail=tail, root=root, ground_offset=ground_offset, travel=inputs.travel,
-                  leg_names=rig.leg_names, fps=fps, rig=rig, world=world)
+                  leg_names=rig.leg_names, fps=fps, rig=rig, world=world, reach_error=reach_error)
 
 
 def frame_count(seconds: float, fps: float) -> int:
@@ -229,13 +234,40 @@ def constant_gait_inputs(rig: Rig, world: World, clock: NDArray[np.float64],
                         wave=rig.gait.wave)
 
 
+def check_world(rig: Rig, world: World) -> None:
+    """Refuse a path the body cannot follow: turns tighter than TIGHTEST_TURN body lengths."""
+    radius = world.path.curvature_radius()
+    if radius < TIGHTEST_TURN * rig.body_length:
+        raise WorldError(f"path {world.path.describe()}: turns with a radius of {radius:.3g} m, too tight for the "
+                         f"{rig.name} (body {rig.body_length:.3g} m long); give a radius of at least "
+                         f"{TIGHTEST_TURN * rig.body_length:.3g} m")
+
+
+def check_reach(motion: Motion) -> None:
+    """Refuse ground that asks more than the legs can reach: a planted foot that misses its
+    foothold by more than a centimetre (steps too high, hills too steep for the creature)."""
+    if motion.reach_error is None:
+        return
+    miss = np.where(motion.contact, motion.reach_error, 0.0)
+    if miss.max() > REACH_TOLERANCE:
+        frame, leg = np.unravel_index(int(miss.argmax()), miss.shape)
+        raise WorldError(f"terrain {motion.terrain.describe()}: the {motion.rig.name}'s foot {motion.leg_names[leg]} "
+                         f"cannot reach its foothold at t = {motion.times[frame]:.2f} s (short by "
+                         f"{miss[frame, leg] * 100:.1f} cm); lower the steps or hills, or choose a bigger creature")
+
+
 def simulate(rig: Rig, seconds: float = 4.0, fps: float = 60.0, *, world: World | None = None,
              start_phase: float = 0.0) -> Motion:
     """A creature walking its gait for ``seconds`` at ``fps`` (fixed dt = 1/fps) in
     ``world`` (default: straight ahead on flat ground). Deterministic: the clock is
-    ``start_phase + frequency * i / fps`` for frame i."""
+    ``start_phase + frequency * i / fps`` for frame i. Raises :class:`WorldError` for a
+    path too tight or ground the legs cannot reach."""
     world = world or World()
+    check_world(rig, world)
     times = np.arange(frame_count(seconds, fps)) / fps
     clock = start_phase + rig.gait.frequency * times
-    return solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps)
+    motion = solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps)
+    if not world.terrain.flat:
+        check_reach(motion)
+    return motion
 

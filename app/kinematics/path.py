@@ -23,12 +23,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 
-def heading_vector(heading: ArrayLike) -> NDArray[np.float64]:
-    """Unit (x, z) directions of headings (radians from +Z towards +X), shape (..., 2)."""
-    h = np.asarray(heading, dtype=np.float64)
-    return np.stack([np.sin(h), np.cos(h)], axis=-1)
-
-
 def left_of(tangent: NDArray[np.float64]) -> NDArray[np.float64]:
     """The unit (x, z) direction to the left of tangents (..., 2): +X for a +Z heading."""
     return np.stack([tangent[..., 1], -tangent[..., 0]], axis=-1)
@@ -84,11 +78,6 @@ class Path(ABC):
         points = _rotate(points, self.heading) + np.asarray(self.start)
         tangents = _rotate(tangents, self.heading)
         return points.reshape(s.shape + (2,)), tangents.reshape(s.shape + (2,))
-
-    def polyline(self, s0: float, s1: float, spacing: float) -> NDArray[np.float64]:
-        """Points (N, 2) along the path from arc length s0 to s1, about ``spacing`` apart."""
-        count = max(2, int(math.ceil(abs(s1 - s0) / max(spacing, 1e-6))) + 1)
-        return self.sample(np.linspace(s0, s1, count))[0]
 
     def curvature_radius(self) -> float:
         """The smallest turning radius along the path (m); ``inf`` for a straight line."""

@@ -143,10 +143,6 @@ class Rig:
         return len(self.leg_names)
 
     @property
-    def girdle_count(self) -> int:
-        return int(self.girdle_position.shape[0])
-
-    @property
     def hip_height(self) -> float:
         """Mean rest hip height over the girdles (m): the ``h`` of the Froude number."""
         return float(self.girdle_rest_height.mean())

@@ -5,7 +5,7 @@ Every terrain answers :meth:`Terrain.height` ((N, 2) -> (N,)) and :meth:`Terrain
 procedural kinds are exact functions (flat, slope, hills from a sum of smooth waves with
 analytic normals, stairs with vertical risers); heightmap images and mesh files become a
 :class:`HeightGrid` (bilinear heights, normals from central differences). Loading files
-lives in :mod:`app.world`; this module only does numbers.
+lives in :mod:`app.scenes`; this module only does numbers.
 
 ``max_slope`` (radians) is the steepest ground a foot may stand on (see
 :mod:`app.kinematics.footholds`).
@@ -171,11 +171,6 @@ class HillsTerrain(Terrain):
     def normal(self, xz):
         c = np.cos(self._arg(xz)) * self._a  # (..., W)
         return _normal_from_gradient(c @ self._k[:, 0], c @ self._k[:, 1])
-
-    def height_normal(self, xz) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        arg = self._arg(xz)
-        c = np.cos(arg) * self._a
-        return np.sin(arg) @ self._a, _normal_from_gradient(c @ self._k[:, 0], c @ self._k[:, 1])
 
     def describe(self) -> str:
         return f"hills:amp={self.amplitude:g},wavelength={self.wavelength:g},seed={self.seed}"

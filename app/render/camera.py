@@ -115,3 +115,24 @@ def frame_points(points: NDArray[np.float64], preset: CameraPreset | str = DEFAU
     else:
         need = max((np.abs(x) / tan_h + z).max(), (np.abs(y) / tan_v + z).max())
     return replace(cam, distance=float(max(need, 1e-3) * margin))
+
+
+def clear_elevations(targets: NDArray[np.float64], azimuths: NDArray[np.float64], elevation: float,
+                     distance: float, height_at, margin: float, step: float = 4.0,
+                     highest: float = 70.0) -> NDArray[np.float64]:
+    """For cameras looking at ``targets`` (T, 3) from ``azimuths`` (T,) degrees at
+    ``distance`` m: the lowest elevation (degrees, from ``elevation`` up in ``step``s, at
+    most ``highest``) at which the sight line from the eye to the target stays ``margin``
+    m above the ground (``height_at``: (N, 2) -> (N,)), so hills never hide the creature."""
+    frames = targets.shape[0]
+    candidates = np.arange(elevation, max(highest, elevation) + 1e-9, step)  # (C,)
+    az = np.radians(azimuths)[:, None]
+    el = np.radians(candidates)[None, :]
+    direction = np.stack(np.broadcast_arrays(-np.cos(el) * np.cos(az), np.sin(el), np.cos(el) * np.sin(az)),
+                         axis=-1)  # (T, C, 3)
+    along = np.linspace(0.2, 1.0, 17)  # from near the target out to the eye
+    points = targets[:, None, None, :] + distance * along[None, None, :, None] * direction[:, :, None, :]
+    ground = height_at(points[..., [0, 2]].reshape(-1, 2)).reshape(points.shape[:-1])
+    clear = np.all(points[..., 1] >= ground + margin, axis=-1)  # (T, C)
+    first = np.where(clear.any(axis=1), clear.argmax(axis=1), len(candidates) - 1)
+    return candidates[first] if frames else np.zeros(0)

@@ -6,7 +6,6 @@ so the same settings give the same pixels.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, replace
 from typing import Iterator
 
@@ -15,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..kinematics.motion import Motion
-from .camera import DEFAULT_CAMERA, Camera, CameraPreset, frame_points
+from .camera import DEFAULT_CAMERA, Camera, CameraPreset, clear_elevations, frame_points
 from .context import create_headless_context
 from .renderer import GroundView, RenderOptions, SceneRenderer, nice_grid_spacing
 from .scene import SceneInstances, box_corners, creature_points, motion_bounds, motion_instances
@@ -68,12 +67,21 @@ def clip_cameras(motion: Motion, view: ViewSettings) -> list[Camera]:
     lo[1] = min(lo[1], 0.0)
     base = frame_points(box_corners(lo, hi), view.camera, aspect=aspect)
     tx, ty, tz = base.target
-    cameras = []
-    for i in range(motion.frame_count):
-        target = anchor[i] + np.array([c[i] * tx + s[i] * tz, ty, -s[i] * tx + c[i] * tz])
-        cameras.append(replace(base, target=tuple(float(v) for v in target),
-                               azimuth=base.azimuth + math.degrees(heading[i])))
-    return cameras
+    targets = anchor + np.stack([c * tx + s * tz, np.full_like(c, ty), -s * tx + c * tz], axis=-1)
+    azimuths = base.azimuth + np.degrees(heading)
+    elevations = np.full(motion.frame_count, base.elevation)
+    if not motion.terrain.flat and not base.top_down:
+        # Rise over hills that would hide the creature; smoothly (the highest need within
+        # a second either side, then averaged), and never lower than the preset.
+        from scipy.ndimage import maximum_filter1d, uniform_filter1d
+
+        need = clear_elevations(targets, azimuths, base.elevation, base.distance, motion.terrain.height,
+                                margin=0.1 * motion.rig.hip_height)
+        window = max(1, int(round(FOLLOW_SMOOTHING * motion.fps)))
+        elevations = np.maximum(uniform_filter1d(maximum_filter1d(need, 2 * window + 1, mode="nearest"), window,
+                                                 mode="nearest"), base.elevation)
+    return [replace(base, target=tuple(float(v) for v in targets[i]), azimuth=float(azimuths[i]),
+                    elevation=float(elevations[i])) for i in range(motion.frame_count)]
 
 
 def loop_grid_spacing(motion: Motion, cycles: float | None) -> float:

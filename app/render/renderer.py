@@ -212,7 +212,7 @@ class SceneRenderer:
 
         centre, radius = self._bounds(scene, terrain)
         ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
-        light_vp, shadow_texel = self._light_view_proj(scene, ground_level)
+        light_vp, shadow_texel = self._light_view_proj(scene, None if terrain.flat else ground_level)
         ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         ctx.disable(moderngl.BLEND)
         ctx.depth_func = "<"
@@ -263,6 +263,7 @@ class SceneRenderer:
         if terrain.flat:
             self._draw_floor(scene, centre, reach, shadow_texel, radius, options)
         else:
+            self._set(self.terrain_prog, "u_contour", 0.5 * float(options.grid_spacing) if options.grid else 0.0)
             self._draw_terrain(terrain, centre, reach)
         if options.path and ground.path is not None:
             self._draw_path(ground, terrain, reach, radius, options)
@@ -385,7 +386,7 @@ class SceneRenderer:
         return centre, float(np.linalg.norm(hi - lo) * 0.5 + 0.05)
 
     @staticmethod
-    def _light_view_proj(scene: SceneInstances, ground: float = 0.0) -> tuple[glm.mat4, float]:
+    def _light_view_proj(scene: SceneInstances, ground: float | None = None) -> tuple[glm.mat4, float]:
         """Orthographic key-light matrix fitted tightly around the shadow casters, and the
         world size (m) of one shadow-map texel.
 
@@ -404,8 +405,9 @@ class SceneRenderer:
         local = points @ m[:3, :3].T + m[:3, 3]
         lo = local.min(axis=0) - pads.max()
         hi = local.max(axis=0) + pads.max()
-        # From the highest caster down to the ground (and as far again below it on terrain).
-        drop = height - ground if ground == 0.0 else 2.0 * (height - ground) + 0.5 * float(np.ptp(points[:, 0]))
+        # From the highest caster down to the flat floor (y = 0), or on terrain (``ground``:
+        # its height under the creature) as far again below it, for slopes falling away.
+        drop = height if ground is None else 2.0 * (height - ground) + 0.5 * float(np.ptp(points[:, 0]))
         reach = drop / max(-LIGHT_DIR[1], 1e-3) + 0.01
         near, far = -hi[2] - 0.01, -lo[2] + reach
         proj = glm.ortho(float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1]), float(near), float(far))

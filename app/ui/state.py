@@ -20,7 +20,7 @@ from ..kinematics.live import LiveMotion
 from ..kinematics.motion import Pose
 from ..kinematics.world import World
 from ..recording import RecordRequest
-from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, frame_points
+from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, clear_elevations, frame_points
 from ..render.clip import ViewSettings
 from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
 from ..rigging import build_rig
@@ -81,8 +81,11 @@ class ViewerState:
     widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     _follow_height: float | None = field(default=None, init=False, repr=False)  # camera target above the root
     _heading: float | None = field(default=None, init=False, repr=False)  # path heading last frame (degrees)
+    _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
 
     def __post_init__(self) -> None:
+        if not self.world.in_place:  # a travelling creature: show where it is going
+            self.options = replace(self.options, path=True)
         self.spec = self.base
         self.live = LiveMotion(build_rig(self.base), self.world)
         self.file_path = self.base.source if self.base.source.endswith(".toml") else f"{self.base.name}.toml"
@@ -120,10 +123,17 @@ class ViewerState:
 
     # -- editing ----------------------------------------------------------------------
 
-    def _apply(self, spec: CreatureSpec, blend: bool = True) -> None:
+    def _apply(self, spec: CreatureSpec, blend: bool = True) -> bool:
+        """Walk with ``spec`` from now on; a creature the world cannot take (a path too tight
+        for it) keeps the current one and shows why."""
+        try:
+            self.live.set_rig(build_rig(spec), blend=blend)
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
         self.spec = spec
-        self.live.set_rig(build_rig(spec), blend=blend)
         self.error = None
+        return True
 
     def set(self, key: str, value: Any) -> bool:
         """Set a creature key; on a rejected value keep the creature and show why."""
@@ -135,8 +145,7 @@ class ViewerState:
         except GaitlabError as exc:
             self.error = str(exc)
             return False
-        self._apply(spec)
-        return True
+        return self._apply(spec)
 
     def reset(self, key: str) -> bool:
         """Give ``key`` its value from the loaded creature."""
@@ -148,8 +157,7 @@ class ViewerState:
         except GaitlabError as exc:
             self.error = str(exc)
             return False
-        self._apply(spec)
-        return True
+        return self._apply(spec)
 
     def reset_all(self) -> None:
         """Back to the loaded creature, blending the gait."""
@@ -191,8 +199,9 @@ class ViewerState:
         except GaitlabError as exc:
             self.error = str(exc)
             return False
+        if not self._apply(spec, blend=False):
+            return False
         self.base = spec
-        self._apply(spec, blend=False)
         self.file_path = spec.source if str(name_or_path).endswith(".toml") else f"{spec.name}.toml"
         self.status = f"loaded {spec.name}"
         self.frame_view()
@@ -222,12 +231,19 @@ class ViewerState:
     def advance(self, dt: float) -> None:
         """Move the animation on by ``dt`` seconds of wall time (if playing)."""
         if self.playing:
-            self.live.step(dt * self.time_scale)
+            self._step(dt * self.time_scale)
 
     def step_frame(self) -> None:
         """One frame forward (pauses playback)."""
         self.playing = False
-        self.live.step(FRAME_DT * max(self.time_scale, 1e-3))
+        self._step(FRAME_DT * max(self.time_scale, 1e-3))
+
+    def _step(self, dt: float) -> None:
+        try:
+            self.live.step(dt)
+        except GaitlabError as exc:  # ground with no foothold ahead: stop there and say why
+            self.playing = False
+            self.error = f"paused: {exc}"
 
     def scrub(self, phase: float) -> None:
         """Put the gait clock at ``phase`` of the current cycle (pauses playback)."""
@@ -261,6 +277,7 @@ class ViewerState:
             cam = replace(cam, target=target, azimuth=cam.azimuth + heading)
         self.camera = replace(cam, ortho=self.camera.ortho if ortho is None else ortho)
         self._follow_height = None
+        self._elevation = self.camera.elevation
         self.options = replace(self.options, grid_spacing=nice_grid_spacing(self.live.rig.hip_height * 1.6))
 
     def side_ortho(self) -> None:
@@ -272,6 +289,7 @@ class ViewerState:
 
     def orbit(self, dx_pixels: float, dy_pixels: float) -> None:
         self.camera = self.camera.orbit(-0.3 * dx_pixels, 0.3 * dy_pixels)
+        self._elevation = self.camera.elevation
 
     def pan(self, dx_pixels: float, dy_pixels: float, view_height: float) -> None:
         self.camera = self.camera.pan(dx_pixels / max(view_height, 1.0), dy_pixels / max(view_height, 1.0))
@@ -303,8 +321,16 @@ class ViewerState:
             offset = self._follow_height = ty - float(root[1])
         ty = ty + (float(root[1]) + offset - ty) * 0.08
         turn = (heading - previous + 180.0) % 360.0 - 180.0
-        self.camera = replace(self.camera, target=(float(root[0]), ty, float(root[2])),
-                              azimuth=self.camera.azimuth + (0.0 if self.world.in_place else turn))
+        camera = replace(self.camera, target=(float(root[0]), ty, float(root[2])),
+                         azimuth=self.camera.azimuth + (0.0 if self.world.in_place else turn))
+        if not self.world.terrain.flat and not camera.top_down:
+            # Rise over hills that would hide the creature, easing back down after them.
+            base = camera.elevation if self._elevation is None else self._elevation
+            self._elevation = base
+            need = clear_elevations(np.array([camera.target]), np.array([camera.azimuth]), base, camera.distance,
+                                    self.world.terrain.height, margin=0.1 * self.live.rig.hip_height)[0]
+            camera = replace(camera, elevation=camera.elevation + (max(base, need) - camera.elevation) * 0.08)
+        self.camera = camera
 
     # -- recording --------------------------------------------------------------------
 
