@@ -122,6 +122,22 @@ def test_window_opens_with_the_dog_walking_and_the_panels(display: str, tmp_path
     assert creature_pixels(scene, look.left_color) > 200 and creature_pixels(scene, look.right_color) > 200
 
 
+def test_the_camera_follows_a_travelling_creature(display: str, tmp_path: Path) -> None:
+    """Five seconds along a circle over hills: the spider is still in the middle of the view."""
+    shot, dump = tmp_path / "shot.png", tmp_path / "state.json"
+    out = subprocess.run([*GAITLAB, "view", "spider", "--path", "circle:r=2", "--terrain", "hills:amp=0.05",
+                          "--frames", "300", "--screenshot", str(shot), "--size", "1024x640", "--hide-ui",
+                          "--dump-state", str(dump)],
+                         env=env_for(display), capture_output=True, text=True, timeout=180, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    state = json.loads(dump.read_text())
+    assert state["time"] == pytest.approx(5.0) and state["error"] is None
+    image = np.asarray(Image.open(shot).convert("RGB"))
+    middle = image[160:480, 256:768]
+    look = load_creature("spider").look
+    assert creature_pixels(middle, look.body_color) > 2000  # the body, in the middle of the frame
+
+
 def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path) -> None:
     with running_viewer(display, tmp_path, "--size", "1024x640") as (proc, dump, window):
         state = read_state(dump, until=lambda s: s["frame"] >= 20 and "leg_type.hind.unguligrade" in s["widgets"])

@@ -131,7 +131,7 @@ class LiveMotion:
         factor (every foot's when none is planted)."""
         planted = self.foot_phase() < self.duty
         feet = planted if planted.any() else np.ones_like(planted)
-        return float(np.mean((self.stride / self.duty)[feet])) * self.rig.leg_scale
+        return float(np.mean(ground_speed(self.stride, self.duty)[feet])) * self.rig.leg_scale
 
     # -- swing speeds -----------------------------------------------------------------
 
