@@ -14,16 +14,16 @@ from __future__ import annotations
 import argparse
 import os
 import platform
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from timing import median_time  # noqa: E402  (bench/timing.py)
 
 from app import build_rig, load_creature  # noqa: E402
 from app.kinematics.leg import solve_legs  # noqa: E402
@@ -32,16 +32,6 @@ from app import simulate  # noqa: E402
 
 UP = np.array([0.0, 1.0, 0.0])
 FWD = np.array([0.0, 0.0, 1.0])
-
-
-def median_time(fn, repeats: int) -> float:
-    fn()  # warm up
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
 def leg_inputs(frames: int):

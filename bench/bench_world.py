@@ -14,29 +14,19 @@ from __future__ import annotations
 
 import argparse
 import platform
-import statistics
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from timing import median_time  # noqa: E402  (bench/timing.py)
+
 from app import build_rig, load_creature  # noqa: E402
 from app.kinematics.motion import simulate  # noqa: E402
 from app.scenes import load_heightmap, make_world, parse_terrain  # noqa: E402
-
-
-def median_time(fn, repeats: int) -> float:
-    fn()  # warm up
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
 def bench_travel(repeats: int) -> list[tuple[str, str]]:
