@@ -196,7 +196,8 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
     render.add_argument("--no-shadow", action="store_true", help="no shadow")
     render.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
-    render.add_argument("--no-path", action="store_true", help="do not draw the path on the ground")
+    render.add_argument("--no-path", action="store_true",
+                        help="do not draw a turning path on the ground (a straight one never is)")
     render.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
 
     analyze = sub.add_parser("analyze", help="measure a gait: foot events, duty factor, phase, slip, gait name",
@@ -305,9 +306,12 @@ def cmd_render(args: argparse.Namespace) -> int:
     output = args.output or Path(f"{Path(args.creature).stem}.gif")
     fmt = output_format(output)
     spec, world, speed = _creature_and_world(args)
+    from .kinematics.path import StraightPath
+
+    turns = not isinstance(world.path, StraightPath)  # a straight line under the body says little
     view = ViewSettings(size=args.size, camera=args.camera, samples=args.msaa,
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
-                                              joints=not args.no_joints, path=not args.no_path))
+                                              joints=not args.no_joints, path=turns and not args.no_path))
     request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,
                             start=args.time, view=view, speed=speed, world=world)
     if fmt == "gif" and (warning := gif_fps_warning(args.fps)) and not args.quiet:

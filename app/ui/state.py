@@ -18,6 +18,7 @@ from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
 from ..kinematics.live import LiveMotion
 from ..kinematics.motion import Pose
+from ..kinematics.path import StraightPath
 from ..kinematics.world import World
 from ..recording import RecordRequest
 from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, clear_elevations, frame_points
@@ -84,7 +85,7 @@ class ViewerState:
     _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
 
     def __post_init__(self) -> None:
-        if not self.world.in_place:  # a travelling creature: show where it is going
+        if not isinstance(self.world.path, StraightPath):  # a turning path: show where it is going
             self.options = replace(self.options, path=True)
         self.spec = self.base
         self.live = LiveMotion(build_rig(self.base), self.world)
