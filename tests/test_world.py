@@ -202,3 +202,17 @@ def test_tight_turns_keep_feet_planted(creature: str) -> None:
     assert np.all(np.isfinite(motion.joints))
     slip = np.linalg.norm(np.diff(motion.joints[:, :, 3], axis=0), axis=-1)[planted_steps(motion)]
     assert slip.max() < 1e-6
+
+
+def test_speed_ramp_up_a_slope_has_no_foot_jumps() -> None:
+    """Speed and gait changes mid-swing: a swing aims at where it will really land, so on
+    a slope no foot moves further in a frame than on flat ground (within 25%)."""
+    rig = build_rig(load_creature("dog"))
+
+    def largest_step(terrain: str) -> float:
+        motion, _ = clip_motion(rig, 300.0, seconds=5.0, speed=(0.5, 6.0), world=make_world("straight", terrain))
+        assert np.abs(motion.joints[:, :, 3, 1] - motion.terrain.height(motion.joints[:, :, 3][..., [0, 2]])
+                      )[motion.contact].max() <= 1e-3  # planted feet on the ground
+        return float(np.linalg.norm(np.diff(motion.joints[:, :, 3], axis=0), axis=-1).max())
+
+    assert largest_step("slope:angle=10,dir=20") <= 1.25 * largest_step("flat")
