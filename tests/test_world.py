@@ -216,3 +216,11 @@ def test_speed_ramp_up_a_slope_has_no_foot_jumps() -> None:
         return float(np.linalg.norm(np.diff(motion.joints[:, :, 3], axis=0), axis=-1).max())
 
     assert largest_step("slope:angle=10,dir=20") <= 1.25 * largest_step("flat")
+
+
+def test_a_speed_ramp_clip_can_start_later() -> None:
+    """--time with --speed: the creature has walked at the first speed until then."""
+    rig = build_rig(load_creature("dog"))
+    motion, _ = clip_motion(rig, 25.0, seconds=2.0, speed=(1.0, 2.0), start=3.0)
+    assert motion.frame_count == 50 and motion.times[0] == pytest.approx(3.0)
+    assert motion.travel[0] == pytest.approx(3.0, rel=0.02) and len(motion.gaits) == 50

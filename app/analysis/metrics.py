@@ -96,6 +96,7 @@ class GaitReport:
     foot_events: list[FootEvents] = field(repr=False, default_factory=list)
     tracks: FootTracks | None = field(repr=False, default=None)
     path_error: PathError | None = None
+    wave_lag: float | None = None  # many-legged creatures: a foot's lag behind the foot behind it
 
     def foot(self, name: str) -> FootReport:
         for f in self.feet:
@@ -113,6 +114,7 @@ class GaitReport:
             "cycle_seconds": num(self.cycle_seconds),
             "speed": num(self.speed),
             "limb_phase": num(self.limb_phase),
+            "wave_lag": num(self.wave_lag),
             "gait_match": self.gait_match,
             "feet": [{"name": f.name, "duty_factor": num(f.duty_factor), "phase": num(f.phase),
                       "stride_length": num(f.stride_length), "max_stance_slip": num(f.max_stance_slip, 5),
@@ -278,7 +280,7 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
     spans = gait_spans(times, events, strikes, ref)
     return GaitReport(source=tracks.source, gait=requested_gait, cycle_seconds=cycle, speed=tracks.speed(),
                       limb_phase=limb_phase, gait_match=gait_match, feet=feet, spans=spans, foot_events=events,
-                      tracks=tracks)
+                      tracks=tracks, wave_lag=wave_lag(phases))
 
 
 def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, np.ndarray], ref: str) -> list[GaitSpan]:

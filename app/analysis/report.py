@@ -29,7 +29,8 @@ def format_table(report: GaitReport, requested: dict[str, tuple[float, float]] |
     else:
         lines.append(f"gait         {report.gait_match}")
     lines.append(f"cycle        {_fmt(report.cycle_seconds, 3, ' s')}   speed {_fmt(report.speed, 2, ' m/s')}"
-                 + (f"   limb phase {_fmt(report.limb_phase, 3)}" if report.limb_phase is not None else ""))
+                 + (f"   limb phase {_fmt(report.limb_phase, 3)}" if report.limb_phase is not None else "")
+                 + (f"   wave lag {_fmt(report.wave_lag, 3)} per pair" if report.wave_lag is not None else ""))
     if report.path_error is not None:
         e = report.path_error
         lines.append(f"path         off by {_fmt(e.rms * 1000, 1)} mm RMS, {_fmt(e.max * 1000, 1)} mm at most "

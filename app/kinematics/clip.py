@@ -33,7 +33,7 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
     world = world or World()
     check_world(rig, world)
     if speed is not None:
-        motion, cycles = _speed_clip(rig, fps, seconds, cycles, speed, world)
+        motion, cycles = _speed_clip(rig, fps, seconds, cycles, speed, world, start)
         if not world.terrain.flat:
             check_reach(motion)
         return motion, cycles
@@ -62,7 +62,7 @@ def frame_at(rig: Rig, time: float, fps: float, world: World | None = None) -> M
 
 
 def _speed_clip(rig: Rig, fps: float, seconds: float | None, cycles: float | None,
-                speed: tuple[float, float], world: World) -> tuple[Motion, float | None]:
+                speed: tuple[float, float], world: World, start: float = 0.0) -> tuple[Motion, float | None]:
     from .speed import gait_at_speed, simulate_speed
 
     if seconds is None:
@@ -71,5 +71,9 @@ def _speed_clip(rig: Rig, fps: float, seconds: float | None, cycles: float | Non
         else:
             seconds = DEFAULT_SPEED_SECONDS
     frames = frame_count(seconds, fps)
-    motion, gaits = simulate_speed(rig, np.linspace(speed[0], speed[1], frames), fps, world=world)
-    return replace(motion, gaits=tuple(gaits)), None
+    # A clip that starts at ``start`` s: the creature has walked at the first speed until
+    # then (and is that far along its path); the ramp runs over the clip itself.
+    before = int(round(start * fps))
+    speeds = np.concatenate([np.full(before, speed[0]), np.linspace(speed[0], speed[1], frames)])
+    motion, gaits = simulate_speed(rig, speeds, fps, world=world)
+    return replace(motion, gaits=tuple(gaits)).frames(before), None

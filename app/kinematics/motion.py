@@ -15,7 +15,7 @@ it, so planted feet keep still relative to the ground.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -106,6 +106,17 @@ class Motion:
     @property
     def in_place(self) -> bool:
         return self.world.in_place
+
+    def frames(self, first: int) -> "Motion":
+        """The clip from frame ``first`` on."""
+        per_frame = {"times", "clock", "joints", "contact", "phase", "spine", "spine_tangent", "neck", "head", "tail",
+                     "root", "ground_offset", "travel"}
+        values = {name: getattr(self, name)[first:] for name in per_frame}
+        if self.reach_error is not None:
+            values["reach_error"] = self.reach_error[first:]
+        if self.gaits:
+            values["gaits"] = self.gaits[first:]
+        return replace(self, **values)
 
     def pose(self, index: int) -> Pose:
         """Frame ``index`` as a :class:`Pose`."""
