@@ -49,6 +49,12 @@ def check_output_dir(path: str | os.PathLike[str]) -> None:
                           f"({exc.strerror or exc})") from None
 
 
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
 def cannot_write(path: str | os.PathLike[str], exc: OSError) -> OutputError:
     """The one-line error for an OS failure while writing ``path``."""
     return OutputError(f"{os.fspath(path)}: cannot write: {exc.strerror or exc}")
@@ -77,7 +83,7 @@ class AtomicPath:
 
     def commit(self) -> Path:
         try:
-            os.chmod(self.tmp, 0o644)
+            os.chmod(self.tmp, 0o666 & ~_umask())  # as a plain open() would (mkstemp makes 0600)
             os.replace(self.tmp, self.final)
         except OSError as exc:
             self.discard()

@@ -131,3 +131,38 @@ def test_record_request_matches_the_cli_defaults(state: ViewerState, tmp_path: P
     state.record.format, state.record.unit, state.record.length = "mp4", "seconds", 3.0
     request = state.record_request()
     assert request.output.suffix == ".mp4" and request.seconds == 3.0
+
+
+def test_save_never_overwrites_a_preset_or_a_file_unasked(state: ViewerState, tmp_path: Path,
+                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    """Issue 12, item 1: the path starts as <name>.toml in the working folder; a shipped
+    preset is refused; an existing file is overwritten only when asked twice."""
+    from app.resources import creatures_dir
+
+    monkeypatch.chdir(tmp_path)
+    assert state.file_path == f"{state.spec.name}.toml"  # not the preset's own file
+    preset = creatures_dir() / f"{state.spec.name}.toml"
+    before = preset.read_bytes()
+    assert not state.save(str(preset)) and "preset creatures" in state.error
+    assert preset.read_bytes() == before
+    state.set("gait.duty_factor", 0.6000000238418579)  # what a float32 slider hands over...
+    from app.ui.panels import shown
+
+    state.set("gait.duty_factor", shown(0.6000000238418579, "%.3f  (b = 1.0)"))  # ...as the panel rounds it
+    assert state.save() and (tmp_path / f"{state.spec.name}.toml").exists()
+    saved = tmp_path / f"{state.spec.name}.toml"
+    assert "duty_factor = 0.6\n" in saved.read_text()
+    assert saved.stat().st_mode & 0o777 == 0o666 & ~_umask()
+    state.set("body.length", 0.61)
+    assert not state.save() and "exists: save again to overwrite it" in state.error and state.overwrite_pending
+    assert "length = 0.61" not in saved.read_text()
+    assert state.save() and "length = 0.61" in saved.read_text()  # asked twice: overwritten
+    assert not state.overwrite_pending
+
+
+def _umask() -> int:
+    import os
+
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask

@@ -6,6 +6,7 @@ gives it back its value from the loaded creature. No logic lives here beyond lay
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -122,6 +123,12 @@ def _reset(state: ViewerState, key: str, pc: PanelContext) -> None:
                                else "reset to the gait preset's value")
 
 
+def shown(value: float, fmt: str) -> float:
+    """``value`` rounded to the decimals a printf format such as ``"%.3f m"`` shows."""
+    match = re.search(r"%\.(\d+)f", fmt)
+    return round(value, int(match.group(1))) if match else float(value)
+
+
 def slider(state: ViewerState, pc: PanelContext, key: str, label: str, lo: float, hi: float,
            fmt: str = "%.3f", setter=None) -> None:
     """A float row: label, slider (Ctrl+click to type), reset."""
@@ -130,10 +137,11 @@ def slider(state: ViewerState, pc: PanelContext, key: str, label: str, lo: float
     changed, new = imgui.slider_float(f"##{key}", value, lo, hi, fmt)
     _remember(state, key)
     if changed:
+        new = shown(float(new), fmt)  # the value as the slider shows it: no float32 noise in saved files
         if setter is None:
-            state.set(key, float(new))
+            state.set(key, new)
         else:
-            setter(float(new))
+            setter(new)
     _reset(state, key, pc)
 
 
@@ -236,7 +244,7 @@ def gait_panel(state: ViewerState, pc: PanelContext) -> None:
             changed, value = imgui.drag_float(f"##{key}", float(state.get(key)), 0.002, 0.0, 1.0, f"{foot} %.3f")
             _remember(state, key)
             if changed:
-                state.set(key, float(value) % 1.0)
+                state.set(key, shown(float(value) % 1.0, "%.3f"))
         imgui.end_table()
     if state.spec.gait.phases is not None and imgui.small_button("back to the preset's phases"):
         state.reset(f"gait.phases.{feet[0]}")
@@ -357,8 +365,13 @@ def file_panel(state: ViewerState, pc: PanelContext) -> None:
     _, state.file_path = imgui.input_text("##file", state.file_path)
     _remember(state, "file")
     width = (imgui.get_content_region_avail().x - 4 * pc.scale) / 2
-    if imgui.button(_icon(pc, ICON_SAVE, "save"), imgui.ImVec2(width, 0)):
+    label = "overwrite" if state.overwrite_pending else "save"
+    if state.overwrite_pending:
+        imgui.push_style_color(imgui.Col_.button, imgui.get_color_u32(imgui.ImVec4(0.7, 0.3, 0.2, 1.0)))
+    if imgui.button(_icon(pc, ICON_SAVE, label) + "##save", imgui.ImVec2(width, 0)):
         state.save()
+    if state.overwrite_pending:
+        imgui.pop_style_color()
     imgui.same_line()
     if imgui.button(_icon(pc, ICON_OPEN, "load"), imgui.ImVec2(width, 0)):
         state.load(state.file_path)

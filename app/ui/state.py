@@ -24,9 +24,18 @@ from ..recording import RecordRequest
 from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, clear_elevations, frame_points
 from ..render.clip import ViewSettings
 from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
+from ..resources import creatures_dir
 from ..rigging import build_rig
 from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, LegType, leg_type, load_creature, spec_value,
                     without_adjustment)
+
+def is_shipped(path: str | Path) -> bool:
+    """Whether ``path`` is one of the preset creature files that ship with Gaitlab."""
+    try:
+        return Path(path).resolve().parent == creatures_dir().resolve()
+    except OSError:
+        return False
+
 
 FRAME_DT = 1.0 / 60.0  # the single-step size, and the fixed step of scripted runs
 RecordFormat = Literal["gif", "mp4"]
@@ -83,13 +92,14 @@ class ViewerState:
     _follow_height: float | None = field(default=None, init=False, repr=False)  # camera target above the root
     _heading: float | None = field(default=None, init=False, repr=False)  # path heading last frame (degrees)
     _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
+    _confirm_overwrite: str | None = field(default=None, init=False, repr=False)  # asked once to overwrite this
 
     def __post_init__(self) -> None:
         if not isinstance(self.world.path, StraightPath):  # a turning path: show where it is going
             self.options = replace(self.options, path=True)
         self.spec = self.base
         self.live = LiveMotion(build_rig(self.base), self.world)
-        self.file_path = self.base.source if self.base.source.endswith(".toml") else f"{self.base.name}.toml"
+        self.file_path = self._save_path_for(self.base)
         self.frame_view()
 
     # -- reading values ---------------------------------------------------------------
@@ -203,14 +213,39 @@ class ViewerState:
         if not self._apply(spec, blend=False):
             return False
         self.base = spec
-        self.file_path = spec.source if str(name_or_path).endswith(".toml") else f"{spec.name}.toml"
+        self.file_path = self._save_path_for(spec)
         self.status = f"loaded {spec.name}"
         self.frame_view()
         return True
 
+    @property
+    def overwrite_pending(self) -> bool:
+        """True when *save* has been asked once for the existing file in the path field."""
+        return self._confirm_overwrite is not None and self._confirm_overwrite == str(Path(self.file_path).resolve())
+
+    @staticmethod
+    def _save_path_for(spec: CreatureSpec) -> str:
+        """Where *save* writes by default: the user's own file when one was loaded, else
+        ``<name>.toml`` in the working folder — never a shipped preset."""
+        if spec.source.endswith(".toml") and not is_shipped(spec.source):
+            return spec.source
+        return f"{spec.name}.toml"
+
     def save(self, path: str | None = None) -> bool:
-        """Save the current creature as TOML (atomically)."""
-        target = path or self.file_path
+        """Save the current creature as TOML (atomically). A shipped preset is never
+        overwritten; an existing file only when *save* is asked twice for it in a row
+        (the first time says so)."""
+        target = str(path or self.file_path)
+        if is_shipped(target):
+            self.error = (f"{Path(target).resolve()}: is one of Gaitlab's preset creatures; save under a name of "
+                          f"your own, e.g. my{self.spec.name}.toml")
+            return False
+        resolved = str(Path(target).resolve())
+        if Path(target).exists() and self._confirm_overwrite != resolved:
+            self._confirm_overwrite = resolved
+            self.error = f"{resolved} exists: save again to overwrite it"
+            return False
+        self._confirm_overwrite = None
         try:
             written = self.spec.save(target)
         except GaitlabError as exc:
@@ -220,7 +255,7 @@ class ViewerState:
             self.error = f"{target}: cannot write: {exc.strerror or exc}"
             return False
         self.file_path = str(written)
-        self.status = f"saved {written}"
+        self.status = f"saved {Path(written).resolve()}"
         self.error = None
         return True
 
