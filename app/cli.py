@@ -122,8 +122,8 @@ examples:
   gaitlab view --no-vsync --report-fps --frames 600     measure the frame rate
 
 mouse: left drag orbit, right/middle drag pan, wheel zoom, double-click focus.
-keys: Space play/pause, Right step, R reset view, F12 screenshot, G record,
-      Tab hide UI, F1 help, Ctrl+Q quit.
+keys: Space play/pause, Right step, R reset view, F12 screenshot (the 3-D view;
+      Shift+F12 the whole window), G record, Tab hide UI, F1 help, Ctrl+Q quit.
 """
 
 

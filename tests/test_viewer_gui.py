@@ -170,6 +170,30 @@ def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path
         quit_viewer(display, proc, window)
 
 
+def test_f12_takes_the_3d_view_and_paused_shows(display: str, tmp_path: Path) -> None:
+    """F12 saves the 3-D view alone; Shift+F12 the whole window; a paused viewer says so."""
+    with running_viewer(display, tmp_path, "--size", "1024x640") as (proc, dump, window):
+        read_state(dump, until=lambda s: s["frame"] >= 20)
+        xdotool(display, "mousemove", "--window", window, "700", "300")
+        xdotool(display, "key", "F12")
+        read_state(dump, until=lambda s: "screenshot saved" in (s["status"] or ""))
+        (scene,) = tmp_path.glob("gaitlab-dog-*.png")
+        image = np.asarray(Image.open(scene).convert("RGB"))
+        assert image.shape[0] == 640 and image.shape[1] < 1024 - 300  # no sidebar, no panels
+        assert np.median(image[:, :40]) > 120  # sky and ground where the dark sidebar would be
+        xdotool(display, "key", "space")
+        read_state(dump, until=lambda s: not s["playing"])
+        xdotool(display, "keydown", "shift", "sleep", "0.3", "key", "F12", "sleep", "0.3", "keyup", "shift")
+        read_state(dump, until=lambda s: len(list(tmp_path.glob("gaitlab-dog-*.png"))) == 2)
+        whole = max(tmp_path.glob("gaitlab-dog-*.png"), key=lambda p: p.stat().st_mtime_ns)
+        image = np.asarray(Image.open(whole).convert("RGB")).astype(int)
+        assert image.shape == (640, 1024, 3)
+        top = image[:60, 380:]  # the PAUSED sign: amber text at the top of the 3-D view
+        amber = (top[..., 0] > 200) & (top[..., 1] > 150) & (top[..., 2] < 140)
+        assert amber.sum() > 20
+        quit_viewer(display, proc, window)
+
+
 def gif_frames(path: Path) -> list[np.ndarray]:
     frames = []
     with Image.open(path) as gif:

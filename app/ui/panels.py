@@ -37,7 +37,8 @@ SHORTCUTS: tuple[tuple[str, str], ...] = (
     ("Space", "play / pause"),
     ("Right", "step one frame"),
     ("R", "reset the view"),
-    ("F12", "screenshot (PNG)"),
+    ("F12", "screenshot of the 3-D view (PNG)"),
+    ("Shift+F12", "screenshot of the whole window"),
     ("G", "record a GIF/MP4 (Record panel settings)"),
     ("Tab", "hide / show the UI"),
     ("F1", "this help"),
@@ -479,6 +480,23 @@ def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     imgui.end()
 
 
+def paused_marker(state: ViewerState, pc: PanelContext) -> None:
+    """A PAUSED sign over the 3-D view while the animation is stopped (issue 12, item 5)."""
+    io = imgui.get_io()
+    left = SIDEBAR_WIDTH * pc.scale if state.show_ui else 0.0
+    imgui.set_next_window_pos(imgui.ImVec2(left + 0.5 * (io.display_size.x - left), 14 * pc.scale), 0,
+                              imgui.ImVec2(0.5, 0.0))
+    imgui.set_next_window_bg_alpha(0.75)
+    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
+             | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
+             | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
+    imgui.begin("##paused", None, flags)
+    imgui.text_colored(imgui.ImVec4(1.0, 0.8, 0.35, 1.0), "PAUSED")
+    imgui.same_line()
+    imgui.text_disabled("Space to play, Right to step")
+    imgui.end()
+
+
 def hud(pc: PanelContext) -> None:
     io = imgui.get_io()
     s = pc.stats
@@ -519,5 +537,7 @@ def draw_ui(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     if state.show_ui:
         sidebar(state, pc, extra_panels)
         hud(pc)
+    if not state.playing:
+        paused_marker(state, pc)
     if state.show_help:
         help_overlay(state, pc)

@@ -87,6 +87,7 @@ class ViewerState:
     record: RecordSettings = field(default_factory=RecordSettings)
     aspect: float = 16.0 / 9.0
     screenshot_requested: bool = False
+    screenshot_with_ui: bool = False  # F12: the 3-D view alone; Shift+F12: the whole window
     record_requested: bool = False
     widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
     _follow_height: float | None = field(default=None, init=False, repr=False)  # camera target above the root

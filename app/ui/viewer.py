@@ -73,6 +73,23 @@ def _setup_style(scale: float) -> bool:
     style.grab_rounding = 3.0
     style.window_border_size = 0.0
     style.item_spacing = imgui.ImVec2(6, 5)
+    # Every input visible when it is off: framed boxes, checkboxes and radio buttons, a
+    # slider track that shows, a thin see-through knob that never hides the value, and
+    # opaque pop-ups (issue 12, item 3).
+    style.frame_border_size = 1.0
+    style.grab_min_size = 6.0
+    colors = {
+        imgui.Col_.border: (0.50, 0.52, 0.58, 0.80),
+        imgui.Col_.frame_bg: (0.20, 0.22, 0.27, 1.00),
+        imgui.Col_.frame_bg_hovered: (0.26, 0.30, 0.38, 1.00),
+        imgui.Col_.frame_bg_active: (0.30, 0.36, 0.46, 1.00),
+        imgui.Col_.slider_grab: (0.45, 0.65, 0.95, 0.55),
+        imgui.Col_.slider_grab_active: (0.55, 0.75, 1.00, 0.75),
+        imgui.Col_.check_mark: (0.55, 0.78, 1.00, 1.00),
+        imgui.Col_.popup_bg: (0.11, 0.11, 0.13, 1.00),
+    }
+    for index, rgba in colors.items():
+        style.set_color_(index, imgui.ImVec4(*rgba))
     style.scale_all_sizes(scale)
     return icons
 
@@ -124,6 +141,7 @@ class Viewer:
             state.frame_view()
         if pressed(imgui.Key.f12):
             state.screenshot_requested = True
+            state.screenshot_with_ui = io.key_shift
         if pressed(imgui.Key.g):
             state.record_requested = True
         if pressed(imgui.Key.tab):
@@ -180,26 +198,33 @@ class Viewer:
 
     # -- outputs ----------------------------------------------------------------------
 
-    def _read_window(self) -> np.ndarray:
+    def _read_window(self, viewport: tuple[int, int, int, int] | None = None) -> np.ndarray:
         fb_w, fb_h = self.window.framebuffer_size
-        data = self.ctx.screen.read(viewport=(0, 0, fb_w, fb_h), components=3, alignment=1)
-        return np.frombuffer(data, dtype=np.uint8).reshape(fb_h, fb_w, 3)[::-1]
+        x, y, w, h = viewport or (0, 0, fb_w, fb_h)
+        data = self.ctx.screen.read(viewport=(x, y, w, h), components=3, alignment=1)
+        return np.frombuffer(data, dtype=np.uint8).reshape(h, w, 3)[::-1]
 
-    def _screenshot(self, path: Path | None = None) -> None:
+    def _screenshot(self, path: Path | None = None, viewport: tuple[int, int, int, int] | None = None) -> None:
+        """Save the window (or just ``viewport``, the 3-D view) as PNG."""
         state = self.state
         state.screenshot_requested = False
+        state.screenshot_with_ui = False
         if path is None:
             stamp = time.strftime("%Y%m%d-%H%M%S")
             path = Path(state.record.folder) / f"gaitlab-{state.spec.name}-{stamp}.png"
+            count = 2
+            while path.exists():  # two in one second
+                path = path.with_name(f"gaitlab-{state.spec.name}-{stamp}-{count}.png")
+                count += 1
         fb_w, fb_h = self.window.framebuffer_size
         if fb_w <= 0 or fb_h <= 0:
             return
         try:
-            write_png(path, self._read_window())
+            write_png(path, self._read_window(viewport))
         except GaitlabError as exc:
             state.error = str(exc)
             return
-        state.status = f"screenshot saved: {path}"
+        state.status = f"screenshot saved: {Path(path).resolve()}"
 
     def _record_step(self) -> None:
         state = self.state
@@ -284,6 +309,8 @@ class Viewer:
                 self.scene.draw_instances(pose_instances(pose, state.live.rig, state.options.joints),
                                           state.ground(pose), state.camera, self.ctx.screen, state.options, viewport)
                 self._resolve_pick(viewport)
+                if state.screenshot_requested and not state.screenshot_with_ui:
+                    self._screenshot(viewport=viewport)  # the 3-D view alone, before the UI
                 if sync:
                     self.ctx.finish()
             t2 = clock()
