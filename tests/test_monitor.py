@@ -37,3 +37,28 @@ def test_monitor_follows_a_gait_change_and_reports_short_history() -> None:
     state.set_gait("pronk")
     feed(state, monitor, 8.0)
     assert monitor.measure(state.live.time, force=True).gait_match == "pronk"
+
+
+def feed_samples(state: ViewerState, monitor: GaitMonitor, seconds: float, fps: float) -> None:
+    """As the viewer does: one frame at a time, the monitor fed the frame's sub-steps."""
+    for _ in range(int(round(seconds * fps))):
+        state.advance(1.0 / fps)
+        monitor.record_samples(state.live.rig, state.world, state.take_samples(), state.live.frequency)
+
+
+@pytest.mark.parametrize("gait", ["walk", "diagonal-walk", "amble", "trot", "pace", "canter", "gallop",
+                                  "rotary-gallop", "half-bound", "bound", "pronk"])
+def test_live_measurement_is_true_at_20_fps(gait: str) -> None:
+    """Issue 12, item 2: the history is sampled at a fixed rate, not once per frame, so a
+    viewer running at 20 fps still measures the gait it shows within 0.02."""
+    from app.analysis.metrics import cyclic_distance
+
+    state = ViewerState(load_creature("dog").with_overrides({"gait.preset": gait}))
+    monitor = GaitMonitor()
+    feed_samples(state, monitor, 3.5 / state.live.frequency + 0.5, fps=20.0)
+    report = monitor.measure(state.live.time, force=True)
+    assert report is not None, monitor.error
+    asked = dict(zip(state.live.rig.leg_names, state.live.rig.gait.offsets))
+    for foot in report.feet:
+        assert foot.duty_factor == pytest.approx(state.live.rig.gait.duty_factor, abs=0.02), foot.name
+        assert cyclic_distance(foot.phase, (asked[foot.name] - asked["LH"]) % 1.0) <= 0.02, foot.name

@@ -331,11 +331,13 @@ class LiveMotion:
         # the stance it has just left (phase = duty).
         change = np.clip(change, after - 1.0 + 1e-9, after - self.duty)
         self.offsets = np.mod(self.offsets + np.where(airborne, change, 0.0), 1.0)
-        self._update_settled()
-        offsets_done = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max() <= 1e-9
-        travel_done = np.allclose(self._swing_travel(), self._nominal_travel(), rtol=self._travel_tolerance(0.03))
-        if self._guard and offsets_done and self._stepped.all() and travel_done:
-            self._guard = False
+        if not self._feet_settled:  # once settled, only a new gait (set_rig) unsettles the feet
+            self._update_settled()
+        if self._guard:
+            offsets_done = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max() <= 1e-9
+            if offsets_done and self._stepped.all() and np.allclose(
+                    self._swing_travel(), self._nominal_travel(), rtol=self._travel_tolerance(0.03)):
+                self._guard = False
         if not self._guard:
             self._speed_cap = self._steady_swing_speed()
 
@@ -374,7 +376,7 @@ class LiveMotion:
         end_normal = np.where(contact[:, None], self.start_normal, self.end_normal)
         land_at = self.land_at.copy()
         airborne = np.nonzero(~contact)[0]
-        if airborne.size:
+        if airborne.size and not self.world.terrain.flat:  # on flat ground the aim changes nothing
             # Aim each swing at where it will really land if the body keeps its present speed
             # (the same spot as planned while it does), on the ground there: the foot's height
             # eases towards that, so it meets the ground without a jump even when the speed
@@ -401,8 +403,13 @@ class LiveMotion:
         return {"clock": self.clock, "time": self.time, "travel": self.travel, "bob": self.bob,
                 "stride": stride * self.rig.leg_scale, "plan": plan, "wave": self._wave_now()}
 
+    @property
+    def cross_fading(self) -> bool:
+        """True while two wave shapes are being cross-faded (frame inputs alone do not say so)."""
+        return self._blend < 1.0 and self._wave_from != self._wave_to
+
     def _waves(self, plan: FootPlan) -> tuple[FootWave, FootWave] | None:
-        if not (self._blend < 1.0 and self._wave_from != self._wave_to):
+        if not self.cross_fading:
             return None
         w = float(smoothstep(self._blend))
         old = oscillators(self.rig, plan, self._wave_from)

@@ -10,9 +10,12 @@ from numpy.typing import NDArray
 
 from ..analysis import AnalysisError, FootTracks, analyze_tracks
 from ..analysis.metrics import GaitReport
-from ..kinematics.motion import Pose
+from ..kinematics.live import stack_inputs
+from ..kinematics.motion import Motion, Pose, solve_motion
+from ..kinematics.rig import Rig
+from ..kinematics.world import World
 
-ANALYSIS_FPS = 60.0  # the history is resampled to this rate before analysis
+ANALYSIS_FPS = 240.0  # the history is resampled to this rate before analysis (the sampling rate)
 
 
 class GaitMonitor:
@@ -40,22 +43,48 @@ class GaitMonitor:
         self.report = None
         self._last_measure = -np.inf
 
+    def record_samples(self, rig: Rig, world: World, samples: list[dict],
+                       frequency: float | None = None) -> Motion | None:
+        """Add sub-step samples (:meth:`LiveMotion.frame_inputs` dicts), solved in one
+        vectorised call: the history's rate is the simulation's, not the frame rate.
+        Returns the solved samples (None without any)."""
+        if not samples:
+            return None
+        motion = solve_motion(rig, world, stack_inputs(samples))
+        heel, toe = motion.joints[:, :, 3].copy(), motion.joints[:, :, 4].copy()
+        heel[..., 2] += motion.ground_offset[:, None]
+        toe[..., 2] += motion.ground_offset[:, None]
+        if not world.terrain.flat:  # heights above the ground under each foot, as on a flat floor
+            heel[..., 1] -= world.terrain.height(heel[..., [0, 2]])
+            toe[..., 1] -= world.terrain.height(toe[..., [0, 2]])
+        body = motion.root[:, :3, 3].copy()
+        body[:, 2] += motion.ground_offset
+        for i in range(motion.frame_count):
+            self._append(float(motion.times[i]), heel[i], toe[i], body[i], motion.contact[i], rig.leg_names,
+                         rig.hip_height, frequency)
+        return motion
+
     def record(self, pose: Pose, time: float, hip_height: float | None = None, frequency: float | None = None) -> None:
         """Add a frame (animation time ``time`` in seconds); repeated times are ignored.
         ``frequency`` (Hz) sizes the window to about three strides (1.5 to 6 s)."""
+        shift = np.array([0.0, 0.0, pose.ground_offset])
+        self._append(time, pose.joints[:, 3] + shift, pose.joints[:, 4] + shift, pose.root[:3, 3] + shift,
+                     pose.contact.copy(), pose.leg_names, hip_height, frequency)
+
+    def _append(self, time: float, heel: NDArray, toe: NDArray, body: NDArray, contact: NDArray,
+                names: tuple[str, ...], hip_height: float | None, frequency: float | None) -> None:
         if frequency:
             self.seconds = float(np.clip(3.0 / frequency, 1.5, 6.0))
-        if self.names != pose.leg_names:
-            self.names = pose.leg_names
+        if self.names != names:
+            self.names = names
             self.clear()
         if self._times and time <= self._times[-1]:
             return
-        shift = np.array([0.0, 0.0, pose.ground_offset])
         self._times.append(time)
-        self._heel.append(pose.joints[:, 3] + shift)
-        self._toe.append(pose.joints[:, 4] + shift)
-        self._body.append(pose.root[:3, 3] + shift)
-        self._contact.append(pose.contact.copy())
+        self._heel.append(heel)
+        self._toe.append(toe)
+        self._body.append(body)
+        self._contact.append(contact)
         self.hip_height = hip_height
         while self._times and self._times[-1] - self._times[0] > self.seconds:
             for buffer in (self._times, self._heel, self._toe, self._body, self._contact):

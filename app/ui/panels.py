@@ -395,6 +395,10 @@ def plots_panel(state: ViewerState, pc: PanelContext) -> None:
         if implot.begin_plot("foot heights (cm)", imgui.ImVec2(width, 150 * pc.scale)):
             implot.setup_axes("seconds", "", implot.AxisFlags_.no_label, 0)
             implot.setup_axis_limits(implot.ImAxis_.x1, -monitor.seconds, 0.0, implot.Cond_.always)
+            # The height axis fits the data (a gallop or a high step is never clipped).
+            low, high = float(np.nanmin(heights)), float(np.nanmax(heights))
+            pad = max(0.08 * (high - low), 0.5)
+            implot.setup_axis_limits(implot.ImAxis_.y1, min(low, 0.0) - pad, high + pad, implot.Cond_.always)
             for i, name in enumerate(names):
                 implot.plot_line(name, t, np.ascontiguousarray(heights[:, i]))
             implot.end_plot()

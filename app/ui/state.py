@@ -37,7 +37,8 @@ def is_shipped(path: str | Path) -> bool:
         return False
 
 
-FRAME_DT = 1.0 / 60.0  # the single-step size, and the fixed step of scripted runs
+FRAME_DT = 1.0 / 60.0
+SAMPLE_RATE = 240.0  # Hz: how often the live gait measurement samples the motion  # the single-step size, and the fixed step of scripted runs
 RecordFormat = Literal["gif", "mp4"]
 LengthUnit = Literal["cycles", "seconds"]
 
@@ -90,6 +91,8 @@ class ViewerState:
     screenshot_with_ui: bool = False  # F12: the 3-D view alone; Shift+F12: the whole window
     record_requested: bool = False
     widget_rects: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    samples: list[dict] = field(default_factory=list, repr=False)  # sub-step inputs for the gait monitor
+    fine_sampling: bool = True  # sub-step at SAMPLE_RATE (the viewer turns it off while nobody measures)
     _follow_height: float | None = field(default=None, init=False, repr=False)  # camera target above the root
     _heading: float | None = field(default=None, init=False, repr=False)  # path heading last frame (degrees)
     _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
@@ -276,11 +279,23 @@ class ViewerState:
         self._step(FRAME_DT * max(self.time_scale, 1e-3))
 
     def _step(self, dt: float) -> None:
+        """Step the motion in sub-steps of at most 1/SAMPLE_RATE s (with ``fine_sampling``),
+        keeping each sub-step's inputs in :attr:`samples`: the live gait measurement
+        samples the motion at this fixed rate, whatever the frame rate."""
+        rate = SAMPLE_RATE if self.fine_sampling else 0.0
+        steps = max(1, int(np.ceil(dt * rate - 1e-9))) if dt > 0 else 0
         try:
-            self.live.step(dt)
+            for _ in range(steps):
+                self.live.step(dt / steps)
+                self.samples.append(self.live.frame_inputs())
         except GaitlabError as exc:  # ground with no foothold ahead: stop there and say why
             self.playing = False
             self.error = f"paused: {exc}"
+
+    def take_samples(self) -> list[dict]:
+        """The sub-steps' inputs since the last call (see :meth:`_step`)."""
+        samples, self.samples = self.samples, []
+        return samples
 
     def scrub(self, phase: float) -> None:
         """Put the gait clock at ``phase`` of the current cycle (pauses playback)."""

@@ -293,10 +293,16 @@ class Viewer:
             # the other frames run freely and give the frame rate.
             sync = opts.report_fps and frame % 8 == 0
             t0 = clock()
+            # Sample the motion at a fixed rate while the Plots panel measures it (it asked
+            # last frame), once per frame otherwise.
+            state.fine_sampling = self.monitor.wanted or opts.dump_state is not None
             state.advance(dt)
-            pose = state.pose()
+            sampled = self.monitor.record_samples(state.live.rig, state.world, state.take_samples(),
+                                                  state.live.frequency)
+            # The last sample is this frame's pose (unless two wave shapes are cross-fading).
+            use_sample = sampled is not None and not state.live.cross_fading
+            pose = sampled.pose(sampled.frame_count - 1) if use_sample else state.pose()
             state.follow_creature(pose)
-            self.monitor.record(pose, state.live.time, state.live.rig.hip_height, state.live.frequency)
             if self.monitor.wanted or opts.dump_state is not None:
                 self.monitor.measure(state.live.time)
             self.monitor.wanted = False
