@@ -166,3 +166,29 @@ def _umask() -> int:
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+def test_reset_everything_asks_first_and_labels_show_edits(state: ViewerState) -> None:
+    state.set("legs.hind.femur", 0.3)
+    state.set("gait.duty_factor", 0.6)
+    assert state.creature_label == "dog*" and state.gait_label == "walk*"
+    assert not state.reset_all() and state.reset_pending and "press reset again" in state.error
+    assert state.spec.leg("hind").femur == 0.3  # nothing lost yet
+    assert state.reset_all() and state.spec == state.base and not state.reset_pending
+    assert state.creature_label == "dog" and state.gait_label == "walk"
+
+
+def test_leg_type_button_restores_the_creatures_own_values(state: ViewerState) -> None:
+    state.set_leg_type("fore", "plantigrade")
+    state.set_leg_type("fore", "digitigrade")
+    assert state.spec.leg("fore").ankle_lift == 72 and state.spec.leg("fore").toe == 0.05  # the dog's own
+
+
+def test_view_presets_set_their_own_projection_and_r_returns_home(state: ViewerState) -> None:
+    state.side_ortho()
+    assert state.camera.ortho
+    state.frame_view("front")
+    assert not state.camera.ortho and state.camera_preset == "front"
+    state.orbit(200, 40)
+    state.default_view()
+    assert state.camera_preset == "three-quarter" and not state.camera.ortho

@@ -87,8 +87,48 @@ def _remember(state: ViewerState, key: str) -> None:
 
 
 def _doc(key: str) -> str:
+    """A control's tooltip: what it means in plain words (its file key last, for the curious)."""
     rule = rule_for(key)
-    return f"{key}: {rule.doc}" if rule else key
+    if rule is None:
+        return ""
+    text = PLAIN_WORDS.get(key.rsplit(".", 1)[-1], rule.doc)
+    return f"{text}\n(creature file: {key})"
+
+
+LEG_LENGTHS = "x leg"  # step height, stride and bob are in units of the leg's rest length
+PLAIN_WORDS = {
+    "bias": "How long each foot stays down against how long it swings, as the source's wave skew b: "
+            "more b, longer on the ground. It sets the duty factor (duty = 1/2 + asin(ln(cosh b)/b)/pi).",
+    "duty_factor": "The share of each stride a foot spends on the ground: above 0.5 a walk, below a run.",
+    "step_height": "How high a foot lifts in its swing, in leg lengths (x leg: the leg's length standing at rest).",
+    "stride": "How far a planted foot travels back under its hip, in leg lengths (x leg: the leg's length "
+              "standing at rest). Longer strides make the creature faster.",
+    "bob": "How much the body rises and falls with the steps, in leg lengths (x leg: the leg's rest length).",
+    "front_back": "How far (a share of the stride) each foot lands after the foot behind it on its side.",
+    "left_right": "How far (a share of the stride) the right feet land after the left ones.",
+    "frequency": "Strides per second. Left to the gait, it follows the hip height: longer legs step slower.",
+}
+
+
+def _combo(name: str, items: list[str], current: str, preview: str) -> str | None:
+    """A drop-down showing ``preview`` (e.g. "dog*" once edited); returns the item chosen."""
+    chosen = None
+    if imgui.begin_combo(name, preview):
+        for item in items:
+            selected = item == current
+            if imgui.selectable(item, selected)[0]:
+                chosen = item
+            if selected:
+                imgui.set_item_default_focus()
+        imgui.end_combo()
+    return chosen
+
+
+def _wrapped_note(text: str) -> None:
+    """Greyed text wrapped at the panel's edge (never cut)."""
+    imgui.push_text_wrap_pos(0.0)
+    imgui.text_disabled(text)
+    imgui.pop_text_wrap_pos()
 
 
 def _begin_rows(name: str, pc: PanelContext) -> bool:
@@ -172,13 +212,12 @@ def choice(state: ViewerState, pc: PanelContext, key: str, label: str, options: 
 
 def creature_panel(state: ViewerState, pc: PanelContext) -> None:
     presets = pc.presets
-    name = state.spec.name
     imgui.set_next_item_width(-1)
-    changed, index = imgui.combo("##creature", presets.index(name) if name in presets else 0, presets)
+    choice_made = _combo("##creature", presets, state.spec.name, state.creature_label)
     _remember(state, "creature")
-    if changed:
-        state.load_preset(presets[index])
-    imgui.text_disabled(state.spec.description or state.spec.source)
+    if choice_made is not None:
+        state.load_preset(choice_made)
+    _wrapped_note(state.spec.description or state.spec.source)
     for pair in (leg.name for leg in state.spec.legs):
         imgui.separator_text(f"{pair.capitalize()} legs")
         current = state.leg_type(pair)
@@ -215,27 +254,30 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
 def gait_panel(state: ViewerState, pc: PanelContext) -> None:
     names = gaits_for(state.spec.pair_count)  # only the gaits that fit this body
     imgui.set_next_item_width(-1)
-    current = state.spec.gait.preset
-    changed, index = imgui.combo("##gait", names.index(current) if current in names else 0, names)
+    chosen = _combo("##gait", names, state.spec.gait.preset, state.gait_label)
     _remember(state, "gait")
-    if changed:
-        state.set_gait(names[index])
-    imgui.text_disabled(GAIT_PRESETS[state.spec.gait.preset].description)
+    if chosen is not None:
+        state.set_gait(chosen)
+    _wrapped_note(GAIT_PRESETS[state.spec.gait.preset].description)
     if _begin_rows("gait", pc):
         slider(state, pc, "gait.frequency", "frequency", 0.1, 6.0, "%.2f Hz")
-        if state.gait_is_symmetric:
-            slider(state, pc, "gait.front_back", "front / back", 0.0, 1.0, "%.3f")
-            slider(state, pc, "gait.left_right", "left / right", 0.0, 1.0, "%.3f")
+        # Rows that do not apply stay, disabled, so the layout never moves under the cursor.
+        imgui.begin_disabled(not state.gait_is_symmetric)
+        slider(state, pc, "gait.front_back", "front / back", 0.0, 1.0, "%.3f")
+        slider(state, pc, "gait.left_right", "left / right", 0.0, 1.0, "%.3f")
+        imgui.end_disabled()
         bias = float(state.get("gait.bias"))
-        slider(state, pc, "gait.bias", "bias b", -6.0, 6.0, f"%.2f  (duty {state.get('gait.duty_factor'):.3f})",
-               setter=state.set_bias)
-        slider(state, pc, "gait.duty_factor", "duty factor", 0.06, 0.94, f"%.3f  (b = {bias:.2f})",
-               setter=state.set_duty)
-        slider(state, pc, "gait.step_height", "step height", 0.0, 0.6, "%.3f L")
-        slider(state, pc, "gait.stride", "stride", 0.0, 1.5, "%.3f L")
+        slider(state, pc, "gait.duty_factor", "duty factor", 0.06, 0.94, "%.3f", setter=state.set_duty)
+        slider(state, pc, "gait.bias", "swing bias", -6.0, 6.0, f"%.2f  (b = {bias:.2f})", setter=state.set_bias)
+        slider(state, pc, "gait.step_height", "step height", 0.0, 0.6, f"%.3f {LEG_LENGTHS}")
+        slider(state, pc, "gait.stride", "stride", 0.0, 1.5, f"%.3f {LEG_LENGTHS}")
         choice(state, pc, "gait.wave", "wave shape", WAVE_SHAPES)
         imgui.end_table()
-    imgui.text("touchdown phase per foot (left hind = 0)")
+    if state.spec.gait.frequency is None:
+        _wrapped_note("frequency: from the gait and the hip height (it changes with the legs' lengths)")
+    else:
+        _wrapped_note("frequency: set by hand")
+    imgui.text(f"touchdown phase per foot ({state.live.rig.leg_names[-2]} = 0)")
     feet = state.live.rig.leg_names
     if imgui.begin_table("phases", min(4, len(feet))):
         for foot in feet:
@@ -247,19 +289,22 @@ def gait_panel(state: ViewerState, pc: PanelContext) -> None:
             if changed:
                 state.set(key, shown(float(value) % 1.0, "%.3f"))
         imgui.end_table()
-    if state.spec.gait.phases is not None and imgui.small_button("back to the preset's phases"):
+    imgui.begin_disabled(state.spec.gait.phases is None)
+    if imgui.small_button("back to the preset's phases"):
         state.reset(f"gait.phases.{feet[0]}")
-    if state.live.blending:
+    imgui.end_disabled()
+    if state.live.blending:  # always one line, so nothing below moves
         imgui.text_colored(_ACCENT, "blending into the new gait...")
+    else:
+        imgui.text_disabled("every foot in the gait")
 
 
 def body_panel(state: ViewerState, pc: PanelContext) -> None:
     if _begin_rows("body-motion", pc):
-        slider(state, pc, "motion.bob", "bob", 0.0, 0.2, "%.3f L")
+        slider(state, pc, "motion.bob", "bob", 0.0, 0.2, f"%.3f {LEG_LENGTHS}")
         slider(state, pc, "motion.bob_phase", "bob timing", -0.5, 0.5, "%.3f")
         slider(state, pc, "motion.yaw", "yaw", 0.0, 30.0, "%.1f deg")
         slider(state, pc, "motion.tail_sway", "tail sway", 0.0, 60.0, "%.1f deg")
-        int_slider(state, pc, "body.segments", "spine segments", 2, 24)
         slider(state, pc, "body.neck_angle", "neck angle", -60.0, 90.0, "%.0f deg")
         slider(state, pc, "body.tail_angle", "tail angle", -90.0, 90.0, "%.0f deg")
         imgui.end_table()
@@ -304,15 +349,25 @@ def playback_panel(state: ViewerState, pc: PanelContext) -> None:
         state.step_frame()
     imgui.same_line()
     imgui.text(f"t = {state.live.time:.2f} s")
-    imgui.set_next_item_width(-1)
-    changed, scale = imgui.slider_float("##time-scale", state.time_scale, 0.0, 3.0, "time scale %.2fx")
-    if changed:
-        state.time_scale = float(scale)
-    imgui.set_next_item_width(-1)
-    changed, phase = imgui.slider_float("##phase", state.live.phase, 0.0, 0.999, "cycle phase %.3f")
-    _remember(state, "phase")
-    if changed:
-        state.scrub(float(phase))
+    if _begin_rows("playback", pc):
+        _label("time scale", "How fast the animation runs against the clock (1 = real time).")
+        changed, scale = imgui.slider_float("##time-scale", state.time_scale, 0.0, 3.0, "%.2fx")
+        if changed:
+            state.time_scale = shown(float(scale), "%.2f")
+        imgui.table_next_column()
+        imgui.begin_disabled(state.time_scale == 1.0)
+        if imgui.small_button(f"{ICON_RESET if pc.icons else 'R'}##reset-time-scale"):
+            state.time_scale = 1.0
+        imgui.end_disabled()
+        _label("cycle phase", "Where the gait is within its cycle; dragging pauses the animation.")
+        changed, phase = imgui.slider_float("##phase", state.live.phase, 0.0, 0.999, "%.3f")
+        _remember(state, "phase")
+        if changed:
+            state.scrub(float(phase))
+        imgui.table_next_column()
+        if imgui.small_button(f"{ICON_RESET if pc.icons else 'R'}##reset-phase"):
+            state.scrub(0.0)
+        imgui.end_table()
 
 
 def record_panel(state: ViewerState, pc: PanelContext) -> None:
@@ -320,39 +375,48 @@ def record_panel(state: ViewerState, pc: PanelContext) -> None:
     if imgui.button(_icon(pc, ICON_CAMERA, "screenshot (F12)"), imgui.ImVec2(-1, 0)):
         state.screenshot_requested = True
     imgui.separator_text("clip")
-    for fmt in ("gif", "mp4"):
-        if imgui.radio_button(fmt, r.format == fmt):
-            r.format = fmt  # type: ignore[assignment]
+    if _begin_rows("record", pc):  # every field labelled
+        _label("format", "GIF loops forever; MP4 is H.264 video")
+        for fmt in ("gif", "mp4"):
+            if imgui.radio_button(fmt, r.format == fmt):
+                r.format = fmt  # type: ignore[assignment]
+            imgui.same_line()
+        imgui.table_next_column()
+        _label("length", "how long the clip is, in gait cycles (which loop seamlessly) or seconds")
+        _, r.length = imgui.input_float("##length", r.length, 0.0, 0.0, "%.2f")
+        imgui.table_next_column()
+        _label("in", "gait cycles (whole cycles loop seamlessly) or seconds")
+        for i, unit in enumerate(("cycles", "seconds")):
+            if i:
+                imgui.same_line()
+            if imgui.radio_button(unit, r.unit == unit):
+                r.unit = unit  # type: ignore[assignment]
+        imgui.table_next_column()
+        _label("size", "width x height in pixels")
+        imgui.set_next_item_width(70 * pc.scale)
+        _, r.width = imgui.input_int("##w", r.width, 0, 0)
         imgui.same_line()
-    imgui.set_next_item_width(80 * pc.scale)
-    _, r.length = imgui.input_float("##length", r.length, 0.0, 0.0, "%.2f")
-    imgui.same_line()
-    for unit in ("cycles", "seconds"):
-        if imgui.radio_button(unit, r.unit == unit):
-            r.unit = unit  # type: ignore[assignment]
+        imgui.text("x")
         imgui.same_line()
-    imgui.new_line()
-    imgui.set_next_item_width(90 * pc.scale)
-    _, r.width = imgui.input_int("##w", r.width, 0, 0)
-    imgui.same_line()
-    imgui.text("x")
-    imgui.same_line()
-    imgui.set_next_item_width(90 * pc.scale)
-    _, r.height = imgui.input_int("##h", r.height, 0, 0)
-    imgui.same_line()
-    imgui.set_next_item_width(-1)
-    _, r.fps = imgui.input_float("##fps", r.fps, 0.0, 0.0, "%.0f fps")
-    imgui.set_next_item_width(-1)
-    cams = list(CAMERA_PRESETS)
-    changed, idx = imgui.combo("##rec-camera", cams.index(r.camera), cams)
-    if changed:
-        r.camera = cams[idx]
-    imgui.set_next_item_width(-1)
-    _, r.folder = imgui.input_text("##folder", r.folder)
-    imgui.set_item_tooltip("folder to write into")
-    imgui.set_next_item_width(-1)
-    _, r.name = imgui.input_text_with_hint("##name", state.spec.name, r.name)
-    imgui.set_item_tooltip("file name without extension (default: the creature's name)")
+        imgui.set_next_item_width(70 * pc.scale)
+        _, r.height = imgui.input_int("##h", r.height, 0, 0)
+        imgui.table_next_column()
+        _label("frame rate", "frames per second")
+        _, r.fps = imgui.input_float("##fps", r.fps, 0.0, 0.0, "%.0f fps")
+        imgui.table_next_column()
+        _label("camera", "the camera preset, following the creature as it travels")
+        cams = list(CAMERA_PRESETS)
+        changed, idx = imgui.combo("##rec-camera", cams.index(r.camera), cams)
+        if changed:
+            r.camera = cams[idx]
+        imgui.table_next_column()
+        _label("folder", "the folder to write into")
+        _, r.folder = imgui.input_text("##folder", r.folder)
+        imgui.table_next_column()
+        _label("file name", "without extension (default: the creature's name)")
+        _, r.name = imgui.input_text_with_hint("##name", state.spec.name, r.name)
+        imgui.table_next_column()
+        imgui.end_table()
     if pc.recording_progress is None:
         if imgui.button(_icon(pc, ICON_RECORD, f"record {r.path(state.spec.name)}  (G)"), imgui.ImVec2(-1, 0)):
             state.record_requested = True
@@ -376,7 +440,9 @@ def file_panel(state: ViewerState, pc: PanelContext) -> None:
     imgui.same_line()
     if imgui.button(_icon(pc, ICON_OPEN, "load"), imgui.ImVec2(width, 0)):
         state.load(state.file_path)
-    if imgui.button("reset everything to the loaded creature", imgui.ImVec2(-1, 0)):
+    label = "really reset every change? (press again)" if state.reset_pending else \
+        "reset everything to the loaded creature"
+    if imgui.button(label + "##reset-all", imgui.ImVec2(-1, 0)):
         state.reset_all()
 
 
@@ -421,10 +487,10 @@ def plots_panel(state: ViewerState, pc: PanelContext) -> None:
     if report is not None:
         imgui.text(f"measured: {report.gait_match}   cycle {report.cycle_seconds:.3f} s")
     elif monitor.error:
-        imgui.text_disabled(monitor.error)
+        _wrapped_note(monitor.error)
     flags = imgui.TableFlags_.row_bg | imgui.TableFlags_.borders_inner_v | imgui.TableFlags_.sizing_stretch_same
     if imgui.begin_table("measured", 5, flags):
-        for title in ("foot", "duty asked", "measured", "phase asked", "measured"):
+        for title in ("foot", "duty", "measured", "phase", "measured"):
             imgui.table_setup_column(title)
         imgui.table_headers_row()
         for name in names:

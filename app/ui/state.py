@@ -26,7 +26,7 @@ from ..render.clip import ViewSettings
 from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
 from ..resources import creatures_dir
 from ..rigging import build_rig
-from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, LegType, leg_type, load_creature, spec_value,
+from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, load_creature, spec_value,
                     without_adjustment)
 
 def is_shipped(path: str | Path) -> bool:
@@ -97,6 +97,7 @@ class ViewerState:
     _heading: float | None = field(default=None, init=False, repr=False)  # path heading last frame (degrees)
     _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
     _confirm_overwrite: str | None = field(default=None, init=False, repr=False)  # asked once to overwrite this
+    reset_pending: bool = False  # "reset everything" asked once
 
     def __post_init__(self) -> None:
         if not isinstance(self.world.path, StraightPath):  # a turning path: show where it is going
@@ -131,6 +132,17 @@ class ViewerState:
     def is_modified(self, key: str) -> bool:
         """True when ``key`` differs from the loaded creature (the reset button is live)."""
         return spec_value(self.spec, key) != spec_value(self.base, key)
+
+    @property
+    def creature_label(self) -> str:
+        """The creature's name, with a * once it differs from the loaded one."""
+        return self.spec.name + ("*" if self.spec != self.base else "")
+
+    @property
+    def gait_label(self) -> str:
+        """The gait preset's name, with a * once any of its values is adjusted."""
+        gait = self.spec.gait
+        return gait.preset + ("*" if gait != GaitSpec(preset=gait.preset, wave=gait.wave) else "")
 
     @property
     def gait_is_symmetric(self) -> bool:
@@ -174,9 +186,16 @@ class ViewerState:
             return False
         return self._apply(spec)
 
-    def reset_all(self) -> None:
-        """Back to the loaded creature, blending the gait."""
-        self._apply(self.base)
+    def reset_all(self, confirmed: bool = False) -> bool:
+        """Back to the loaded creature, blending the gait. Every change is lost, so the
+        first call only asks (the button then reads "really reset"); a second call, or
+        ``confirmed``, resets."""
+        if not confirmed and not self.reset_pending:
+            self.reset_pending = True
+            self.error = "reset every change to the loaded creature? press reset again to do it"
+            return False
+        self.reset_pending = False
+        return self._apply(self.base)
 
     def set_gait(self, name: str) -> bool:
         """Switch gait preset (its adjustments reset to the new preset's values)."""
@@ -194,8 +213,12 @@ class ViewerState:
         return self.set("gait.bias", float(bias))
 
     def set_leg_type(self, pair: str, kind: LegType) -> bool:
-        """Make a leg pair plantigrade, digitigrade or unguligrade: typical ankle lift and
-        toe length for that type (both stay editable)."""
+        """Make a leg pair plantigrade, digitigrade or unguligrade: the loaded creature's
+        own ankle lift and toe when it is of that type (the dog's 72 degrees, not a typical
+        62), otherwise typical ones (both stay editable)."""
+        own = self.base.leg(pair) if pair in {leg.name for leg in self.base.legs} else None
+        if own is not None and leg_type(own.ankle_lift) == kind:
+            return self.set_many({f"legs.{pair}.ankle_lift": own.ankle_lift, f"legs.{pair}.toe": own.toe})
         lift, toe_ratio = LEG_TYPE_SHAPES[kind]
         meta = self.spec.leg(pair).metatarsus
         return self.set_many({f"legs.{pair}.ankle_lift": lift, f"legs.{pair}.toe": round(meta * toe_ratio, 4)})
@@ -307,9 +330,10 @@ class ViewerState:
 
     # -- view -------------------------------------------------------------------------
 
-    def frame_view(self, preset: str | None = None, ortho: bool | None = None) -> None:
+    def frame_view(self, preset: str | None = None, ortho: bool = False) -> None:
         """Point a camera preset at the creature, framing a whole gait cycle (around where
-        the creature is now, at the preset's angle to its heading)."""
+        the creature is now, at the preset's angle to its heading). Each preset sets its
+        own projection: perspective, unless ``ortho``."""
         from ..kinematics.clip import clip_motion
         from ..render.scene import motion_bounds
 
@@ -327,10 +351,14 @@ class ViewerState:
             c, s = np.cos(np.radians(heading)), np.sin(np.radians(heading))
             target = (float(root[0, 3] + c * tx + s * tz), ty, float(root[2, 3] - s * tx + c * tz))
             cam = replace(cam, target=target, azimuth=cam.azimuth + heading)
-        self.camera = replace(cam, ortho=self.camera.ortho if ortho is None else ortho)
+        self.camera = replace(cam, ortho=ortho)
         self._follow_height = None
         self._elevation = self.camera.elevation
         self.options = replace(self.options, grid_spacing=nice_grid_spacing(self.live.rig.hip_height * 1.6))
+
+    def default_view(self) -> None:
+        """The view the viewer starts with (R): the default preset, in perspective."""
+        self.frame_view(DEFAULT_CAMERA)
 
     def side_ortho(self) -> None:
         """The animator's view: orthographic, from the side."""

@@ -138,7 +138,7 @@ class Viewer:
         if pressed(imgui.Key.right_arrow, True):
             state.step_frame()
         if pressed(imgui.Key.r) and not io.key_ctrl:
-            state.frame_view()
+            state.default_view()
         if pressed(imgui.Key.f12):
             state.screenshot_requested = True
             state.screenshot_with_ui = io.key_shift
@@ -243,7 +243,7 @@ class Viewer:
             if job.finished:
                 result = job.finish()
                 self.recording = None
-                state.status = f"wrote {result.path}: {result.frames} frames, {result.seconds:.2f} s"
+                state.status = f"wrote {Path(result.path).resolve()}: {result.frames} frames, {result.seconds:.2f} s"
                 state.error = None
         except GaitlabError as exc:
             self.recording = None
