@@ -123,7 +123,8 @@ examples:
 
 mouse: left drag orbit, right/middle drag pan, wheel zoom, double-click focus.
 keys: Space play/pause, Right step, R reset view, F12 screenshot (the 3-D view;
-      Shift+F12 the whole window), G record, Tab hide UI, F1 help, Ctrl+Q quit.
+      Shift+F12 the whole window), G record, Ctrl+Z/Ctrl+Y undo/redo, Tab hide UI,
+      F1 help, Ctrl+Q quit.
 """
 
 

@@ -155,7 +155,16 @@ def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path
         xdotool(display, "mousemove", "--window", window, str(int(x0 + 10)), ym, "mousedown", "1",
                 "mousemove", "--window", window, str(int(x0 + 60)), ym, "sleep", "0.2",
                 "mousemove", "--window", window, str(int(x1 - 30)), ym, "sleep", "0.2", "mouseup", "1")
-        read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] > start + 0.1)
+        dragged = read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] > start + 0.1)
+        femur = dragged["creature"]["legs"]["fore"]["femur"]
+
+        # Ctrl+Z takes the drag back in one step; Ctrl+Y makes it again.
+        time.sleep(1.0)  # a moment after the drag, so it is one finished edit
+        xdotool(display, "mousemove", "--window", window, "700", "300")
+        xdotool(display, "key", "ctrl+z")
+        read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] == start)
+        xdotool(display, "key", "ctrl+y")
+        read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] == femur)
 
         # Space pauses: the clock stops.
         xdotool(display, "mousemove", "--window", window, "700", "300")

@@ -192,3 +192,22 @@ def test_view_presets_set_their_own_projection_and_r_returns_home(state: ViewerS
     state.orbit(200, 40)
     state.default_view()
     assert state.camera_preset == "three-quarter" and not state.camera.ortho
+
+
+def test_undo_and_redo_edits(state: ViewerState, monkeypatch: pytest.MonkeyPatch) -> None:
+    import app.ui.state as state_module
+
+    clock = iter(float(t) for t in range(0, 1000, 5))  # edits 5 s apart: each its own step
+    monkeypatch.setattr(state_module.time, "monotonic", lambda: next(clock))
+    start = state.spec
+    state.set("legs.hind.femur", 0.3)
+    state.set("gait.duty_factor", 0.6)
+    assert state.undo() and state.spec.gait.duty_factor is None and state.spec.leg("hind").femur == 0.3
+    assert state.undo() and state.spec == start and not state.undo()
+    assert state.redo() and state.spec.leg("hind").femur == 0.3
+    assert state.redo() and state.spec.gait.duty_factor == 0.6 and not state.redo()
+    # A slider drag (many changes of one key in quick succession) is one step.
+    monkeypatch.setattr(state_module.time, "monotonic", lambda: 2000.0)
+    for value in (0.31, 0.32, 0.33, 0.34):
+        state.set("legs.fore.femur", value)
+    assert state.undo() and state.spec.leg("fore").femur == start.leg("fore").femur

@@ -42,6 +42,7 @@ SHORTCUTS: tuple[tuple[str, str], ...] = (
     ("G", "record a GIF/MP4 (Record panel settings)"),
     ("Tab", "hide / show the UI"),
     ("F1", "this help"),
+    ("Ctrl+Z / Ctrl+Y", "undo / redo an edit"),
     ("Ctrl+Q", "quit"),
     ("Left drag", "orbit"),
     ("Right / middle drag", "pan"),

@@ -8,6 +8,7 @@ accepts; a rejected value leaves the creature unchanged and shows the error.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Literal
@@ -38,7 +39,9 @@ def is_shipped(path: str | Path) -> bool:
 
 
 FRAME_DT = 1.0 / 60.0
-SAMPLE_RATE = 240.0  # Hz: how often the live gait measurement samples the motion  # the single-step size, and the fixed step of scripted runs
+SAMPLE_RATE = 240.0  # Hz: how often the live gait measurement samples the motion
+UNDO_DEPTH = 200  # edits kept for undo
+UNDO_MERGE_SECONDS = 0.75  # changes of one control closer together than this are one edit (a drag)  # the single-step size, and the fixed step of scripted runs
 RecordFormat = Literal["gif", "mp4"]
 LengthUnit = Literal["cycles", "seconds"]
 
@@ -98,6 +101,9 @@ class ViewerState:
     _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
     _confirm_overwrite: str | None = field(default=None, init=False, repr=False)  # asked once to overwrite this
     reset_pending: bool = False  # "reset everything" asked once
+    _undo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
+    _redo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
+    _last_edit: tuple[str, float] = field(default=("", 0.0), init=False, repr=False)  # key(s), when
 
     def __post_init__(self) -> None:
         if not isinstance(self.world.path, StraightPath):  # a turning path: show where it is going
@@ -150,9 +156,12 @@ class ViewerState:
 
     # -- editing ----------------------------------------------------------------------
 
-    def _apply(self, spec: CreatureSpec, blend: bool = True) -> bool:
+    def _apply(self, spec: CreatureSpec, blend: bool = True, edit: str | None = "") -> bool:
         """Walk with ``spec`` from now on; a creature the world cannot take (a path too tight
-        for it) keeps the current one and shows why."""
+        for it) keeps the current one and shows why. ``edit`` names the change for undo
+        (consecutive changes of one slider within a moment are one step); ``None`` for
+        changes that are not edits (undo itself, loading)."""
+        previous = self.spec
         try:
             self.live.set_rig(build_rig(spec), blend=blend)
         except GaitlabError as exc:
@@ -160,6 +169,44 @@ class ViewerState:
             return False
         self.spec = spec
         self.error = None
+        if edit is not None and spec != previous:
+            now = time.monotonic()
+            same_drag = edit and edit == self._last_edit[0] and now - self._last_edit[1] < UNDO_MERGE_SECONDS
+            if not same_drag:
+                self._undo.append(previous)
+                del self._undo[:-UNDO_DEPTH]
+            self._redo.clear()
+            self._last_edit = (edit, now)
+        return True
+
+    def undo(self) -> bool:
+        """Take back the last edit (Ctrl+Z)."""
+        if not self._undo:
+            self.status = "nothing to undo"
+            return False
+        spec = self._undo.pop()
+        current = self.spec
+        if not self._apply(spec, edit=None):
+            self._undo.append(spec)
+            return False
+        self._redo.append(current)
+        self._last_edit = ("", 0.0)
+        self.status = "undone"
+        return True
+
+    def redo(self) -> bool:
+        """Make an undone edit again (Ctrl+Y or Ctrl+Shift+Z)."""
+        if not self._redo:
+            self.status = "nothing to redo"
+            return False
+        spec = self._redo.pop()
+        current = self.spec
+        if not self._apply(spec, edit=None):
+            self._redo.append(spec)
+            return False
+        self._undo.append(current)
+        self._last_edit = ("", 0.0)
+        self.status = "redone"
         return True
 
     def set(self, key: str, value: Any) -> bool:
@@ -172,7 +219,7 @@ class ViewerState:
         except GaitlabError as exc:
             self.error = str(exc)
             return False
-        return self._apply(spec)
+        return self._apply(spec, edit=",".join(sorted(overrides)))
 
     def reset(self, key: str) -> bool:
         """Give ``key`` its value from the loaded creature."""
@@ -237,8 +284,10 @@ class ViewerState:
         except GaitlabError as exc:
             self.error = str(exc)
             return False
-        if not self._apply(spec, blend=False):
+        if not self._apply(spec, blend=False, edit=None):
             return False
+        self._undo.clear()  # a new creature: its own history
+        self._redo.clear()
         self.base = spec
         self.file_path = self._save_path_for(spec)
         self.status = f"loaded {spec.name}"

@@ -139,6 +139,10 @@ class Viewer:
             state.step_frame()
         if pressed(imgui.Key.r) and not io.key_ctrl:
             state.default_view()
+        if io.key_ctrl and (pressed(imgui.Key.y, True) or (io.key_shift and pressed(imgui.Key.z, True))):
+            state.redo()
+        elif io.key_ctrl and pressed(imgui.Key.z, True):
+            state.undo()
         if pressed(imgui.Key.f12):
             state.screenshot_requested = True
             state.screenshot_with_ui = io.key_shift
