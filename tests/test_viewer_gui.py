@@ -161,9 +161,9 @@ def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path
         # Ctrl+Z takes the drag back in one step; Ctrl+Y makes it again.
         time.sleep(1.0)  # a moment after the drag, so it is one finished edit
         xdotool(display, "mousemove", "--window", window, "700", "300")
-        xdotool(display, "key", "ctrl+z")
+        xdotool(display, "keydown", "ctrl", "sleep", "0.3", "key", "z", "sleep", "0.3", "keyup", "ctrl")
         read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] == start)
-        xdotool(display, "key", "ctrl+y")
+        xdotool(display, "keydown", "ctrl", "sleep", "0.3", "key", "y", "sleep", "0.3", "keyup", "ctrl")
         read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] == femur)
 
         # Space pauses: the clock stops.
@@ -200,6 +200,71 @@ def test_f12_takes_the_3d_view_and_paused_shows(display: str, tmp_path: Path) ->
         top = image[:60, 380:]  # the PAUSED sign: amber text at the top of the 3-D view
         amber = (top[..., 0] > 200) & (top[..., 1] > 150) & (top[..., 2] < 140)
         assert amber.sum() > 20
+        quit_viewer(display, proc, window)
+
+
+def test_the_file_field_loads_where_no_dialog_opens(display: str, tmp_path: Path) -> None:
+    """On a bare Xvfb display no native file dialog can open: the path field is the way in."""
+    from app.resources import creatures_dir
+
+    mine = tmp_path / "mycat.toml"
+    mine.write_text((creatures_dir() / "cat.toml").read_text().replace('name = "cat"', 'name = "mycat"'))
+    with running_viewer(display, tmp_path, "--size", "1024x700") as (proc, dump, window):
+        # Fold the tall panels that are open at the start, so the File panel is on screen.
+        for title in ("Creature", "Gait"):
+            state = read_state(dump, until=lambda s: f"panel.{title}" in s["widgets"])
+            x, y = centre(state["widgets"][f"panel.{title}"])
+            xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+            time.sleep(0.5)
+        state = read_state(dump, until=lambda s: s["widgets"]["panel.File"][3] < 650)
+        x, y = centre(state["widgets"]["panel.File"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+        state = read_state(dump, until=lambda s: "file" in s["widgets"] and "load" in s["widgets"])
+        x, y = centre(state["widgets"]["file"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1", "sleep", "0.3", "keydown", "ctrl",
+                "sleep", "0.3", "key", "a", "sleep", "0.3", "keyup", "ctrl", "sleep", "0.2", "type", "--delay", "30",
+                str(mine))
+        read_state(dump, until=lambda s: True)
+        time.sleep(0.5)
+        x, y = centre(read_state(dump)["widgets"]["load"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+        state = read_state(dump, until=lambda s: s["creature"]["name"] == "mycat")
+        assert str(mine) in state["status"]
+
+        def click(name: str) -> None:
+            x, y = centre(read_state(dump)["widgets"][name])
+            xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+
+        # Save over the file just loaded: asked first, overwritten only on a second click.
+        before = mine.read_text()
+        mine.write_text(before + "# the user's own note\n")
+        click("save")
+        read_state(dump, until=lambda s: "exists: save again to overwrite it" in (s["error"] or ""))
+        assert mine.read_text().endswith("# the user's own note\n")  # not yet
+        time.sleep(0.3)
+        click("save")
+        read_state(dump, until=lambda s: (s["status"] or "").startswith("saved"))
+        assert "# the user's own note" not in mine.read_text() and not list(tmp_path.glob(".*partial*"))
+
+        # A shipped preset is never overwritten, whatever the field says.
+        preset = creatures_dir() / "cat.toml"
+        shipped = preset.read_bytes()
+        x, y = centre(read_state(dump)["widgets"]["file"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1", "sleep", "0.3", "keydown", "ctrl",
+                "sleep", "0.3", "key", "a", "sleep", "0.3", "keyup", "ctrl", "sleep", "0.2", "type", "--delay", "30",
+                str(preset))
+        time.sleep(0.5)
+        click("save")
+        read_state(dump, until=lambda s: "is one of Gaitlab's preset creatures" in (s["error"] or ""))
+        time.sleep(0.3)
+        click("save")
+        time.sleep(1.0)
+        assert preset.read_bytes() == shipped
+
+        # Reset everything asks first.
+        time.sleep(0.3)
+        click("reset_all")
+        read_state(dump, until=lambda s: "press reset again" in (s["error"] or ""))
         quit_viewer(display, proc, window)
 
 

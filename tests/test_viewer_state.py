@@ -211,3 +211,29 @@ def test_undo_and_redo_edits(state: ViewerState, monkeypatch: pytest.MonkeyPatch
     for value in (0.31, 0.32, 0.33, 0.34):
         state.set("legs.fore.femur", value)
     assert state.undo() and state.spec.leg("fore").femur == start.leg("fore").femur
+
+
+def test_recent_files_and_the_dialog_fallback(state: ViewerState, tmp_path: Path) -> None:
+    from app.ui.file_dialog import dialogs_available
+
+    first, second = tmp_path / "a.toml", tmp_path / "b.toml"
+    assert state.save(str(first)) and state.save(str(second))
+    assert state.load(str(first))
+    assert state.recent[:2] == [str(first.resolve()), str(second.resolve())]  # newest first, no repeats
+    # On a machine without zenity or kdialog (this one, CI) no dialog can open: the path
+    # field is the way in, and the panel says so.
+    import shutil
+
+    assert dialogs_available() == any(shutil.which(t) for t in ("zenity", "kdialog", "qarma", "matedialog"))
+
+
+def test_a_copy_of_the_preset_folder_is_protected_too(tmp_path: Path) -> None:
+    import shutil
+
+    from app.resources import creatures_dir
+    from app.ui.state import is_shipped
+
+    copy = tmp_path / "creatures"
+    shutil.copytree(creatures_dir(), copy)
+    assert is_shipped(copy / "dog.toml") and is_shipped(creatures_dir() / "cat.toml")
+    assert not is_shipped(tmp_path / "dog.toml")

@@ -73,6 +73,8 @@ class PanelContext:
     recording_progress: float | None = None  # 0..1 while a recording runs
     recording_label: str = ""
     monitor: object | None = None  # the live GaitMonitor (app/ui/monitor.py)
+    file_dialog: object | None = None  # the File panel's native dialog (app/ui/file_dialog.py)
+    dialogs_available: bool = False
 
 
 # -- small helpers ------------------------------------------------------------------------
@@ -427,24 +429,50 @@ def record_panel(state: ViewerState, pc: PanelContext) -> None:
 
 
 def file_panel(state: ViewerState, pc: PanelContext) -> None:
+    dialog = pc.file_dialog
+    if dialog is not None:
+        chosen = dialog.poll()
+        if chosen is not None:
+            state.file_path = chosen
+            (state.load if dialog.kind == "open" else state.save)(chosen)
+    imgui.text_disabled("file")
+    imgui.same_line()
     imgui.set_next_item_width(-1)
     _, state.file_path = imgui.input_text("##file", state.file_path)
     _remember(state, "file")
-    width = (imgui.get_content_region_avail().x - 4 * pc.scale) / 2
-    label = "overwrite" if state.overwrite_pending else "save"
-    if state.overwrite_pending:
+    width = (imgui.get_content_region_avail().x - 8 * pc.scale) / 3
+    can_browse = dialog is not None and pc.dialogs_available and not dialog.open
+    imgui.begin_disabled(not can_browse)
+    if imgui.button("browse...##open", imgui.ImVec2(width, 0)) and dialog is not None:
+        dialog.start("open", state.file_path)
+    imgui.end_disabled()
+    if not pc.dialogs_available:
+        imgui.set_item_tooltip("no file dialog on this system (install zenity or kdialog): type the path above")
+    imgui.same_line()
+    pending = state.overwrite_pending  # read once: the click below may change it
+    if pending:
         imgui.push_style_color(imgui.Col_.button, imgui.get_color_u32(imgui.ImVec4(0.7, 0.3, 0.2, 1.0)))
-    if imgui.button(_icon(pc, ICON_SAVE, label) + "##save", imgui.ImVec2(width, 0)):
+    if imgui.button(_icon(pc, ICON_SAVE, "overwrite" if pending else "save") + "##save", imgui.ImVec2(width, 0)):
         state.save()
-    if state.overwrite_pending:
+    _remember(state, "save")
+    if pending:
         imgui.pop_style_color()
     imgui.same_line()
-    if imgui.button(_icon(pc, ICON_OPEN, "load"), imgui.ImVec2(width, 0)):
+    if imgui.button(_icon(pc, ICON_OPEN, "load") + "##load", imgui.ImVec2(width, 0)):
         state.load(state.file_path)
+    _remember(state, "load")
+    if not pc.dialogs_available:
+        _wrapped_note("no file dialog here (install zenity or kdialog); type a path in the field")
+    if state.recent:
+        imgui.set_next_item_width(-1)
+        chosen = _combo("##recent", state.recent, "", "recent files")
+        if chosen is not None:
+            state.file_path = chosen
     label = "really reset every change? (press again)" if state.reset_pending else \
         "reset everything to the loaded creature"
     if imgui.button(label + "##reset-all", imgui.ImVec2(-1, 0)):
         state.reset_all()
+    _remember(state, "reset_all")
 
 
 def plots_panel(state: ViewerState, pc: PanelContext) -> None:
@@ -534,20 +562,36 @@ def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     imgui.text_disabled("F1 help  -  Tab hide UI")
     for title, draw, default_open in (*PANELS, *extra_panels):
         flag = imgui.TreeNodeFlags_.default_open if default_open else 0
-        if imgui.collapsing_header(title, flag):
+        opened = imgui.collapsing_header(title, flag)
+        _remember(state, f"panel.{title}")
+        if opened:
             imgui.push_id(title)
             draw(state, pc)
             imgui.pop_id()
-    if state.error:
-        imgui.separator()
+    imgui.end()
+
+
+def message_bar(state: ViewerState, pc: PanelContext) -> None:
+    """One fixed line along the bottom of the 3-D view: the newest message with its time
+    (each replaces the last), and a recording's progress, whether or not a panel is open."""
+    io = imgui.get_io()
+    left = SIDEBAR_WIDTH * pc.scale if state.show_ui else 0.0
+    imgui.set_next_window_pos(imgui.ImVec2(left, io.display_size.y), 0, imgui.ImVec2(0.0, 1.0))
+    imgui.set_next_window_size(imgui.ImVec2(io.display_size.x - left, 0.0))
+    imgui.set_next_window_bg_alpha(0.8)
+    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_nav
+             | imgui.WindowFlags_.no_focus_on_appearing | imgui.WindowFlags_.always_auto_resize)
+    if state.message is None and pc.recording_progress is None:
+        return
+    imgui.begin("##messages", None, flags)
+    if pc.recording_progress is not None:
+        imgui.progress_bar(pc.recording_progress, imgui.ImVec2(-1, 0), pc.recording_label)
+    if state.message is not None:
+        kind, text, stamp = state.message
         imgui.push_text_wrap_pos(0.0)
-        imgui.text_colored(_ERROR, state.error)
+        imgui.text_colored(_ERROR if kind == "error" else _OK, f"{stamp}  {text}")
         imgui.pop_text_wrap_pos()
-    elif state.status:
-        imgui.separator()
-        imgui.push_text_wrap_pos(0.0)
-        imgui.text_colored(_OK, state.status)
-        imgui.pop_text_wrap_pos()
+    _remember(state, "message")
     imgui.end()
 
 
@@ -610,5 +654,6 @@ def draw_ui(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
         hud(pc)
     if not state.playing:
         paused_marker(state, pc)
+    message_bar(state, pc)
     if state.show_help:
         help_overlay(state, pc)

@@ -31,9 +31,15 @@ from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, 
                     without_adjustment)
 
 def is_shipped(path: str | Path) -> bool:
-    """Whether ``path`` is one of the preset creature files that ship with Gaitlab."""
+    """Whether ``path`` is one of Gaitlab's preset creature files: in the installed
+    presets' folder, or in any folder that holds the whole set (a source checkout's
+    ``creatures/``, whichever copy is installed)."""
     try:
-        return Path(path).resolve().parent == creatures_dir().resolve()
+        folder = Path(path).resolve().parent
+        if folder == creatures_dir().resolve():
+            return True
+        presets = {p.name for p in creatures_dir().glob("*.toml")}
+        return Path(path).name in presets and presets <= {p.name for p in folder.glob("*.toml")}
     except OSError:
         return False
 
@@ -101,9 +107,22 @@ class ViewerState:
     _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
     _confirm_overwrite: str | None = field(default=None, init=False, repr=False)  # asked once to overwrite this
     reset_pending: bool = False  # "reset everything" asked once
+    recent: list[str] = field(default_factory=list)  # files saved or loaded this session, newest first
+    message: tuple[str, str, str] | None = field(default=None, init=False)  # (kind, text, time) shown in the bar
     _undo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
     _redo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
     _last_edit: tuple[str, float] = field(default=("", 0.0), init=False, repr=False)  # key(s), when
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        super().__setattr__(name, value)
+        # One message line: each new status or error replaces the last, stamped with the
+        # time; clearing an error clears its message (never a stale one).
+        if name in ("error", "status"):
+            if value:
+                super().__setattr__("message", ("error" if name == "error" else "ok", str(value),
+                                                time.strftime("%H:%M:%S")))
+            elif name == "error" and getattr(self, "message", None) and self.message[0] == "error":
+                super().__setattr__("message", None)
 
     def __post_init__(self) -> None:
         if not isinstance(self.world.path, StraightPath):  # a turning path: show where it is going
@@ -290,9 +309,16 @@ class ViewerState:
         self._redo.clear()
         self.base = spec
         self.file_path = self._save_path_for(spec)
-        self.status = f"loaded {spec.name}"
+        if str(name_or_path).endswith(".toml"):
+            self._remember_file(spec.source)
+        self.status = f"loaded {spec.name}" + (f" from {Path(spec.source).resolve()}"
+                                               if str(name_or_path).endswith(".toml") else "")
         self.frame_view()
         return True
+
+    def _remember_file(self, path: str) -> None:
+        full = str(Path(path).resolve())
+        self.recent = [full] + [p for p in self.recent if p != full][:7]
 
     @property
     def overwrite_pending(self) -> bool:
@@ -331,6 +357,7 @@ class ViewerState:
             self.error = f"{target}: cannot write: {exc.strerror or exc}"
             return False
         self.file_path = str(written)
+        self._remember_file(str(written))
         self.status = f"saved {Path(written).resolve()}"
         self.error = None
         return True

@@ -27,6 +27,7 @@ from ..render.scene import pose_instances
 from ..kinematics.world import World
 from ..spec import CreatureSpec
 from .imgui_renderer import ImguiRenderer
+from .file_dialog import FileDialog, dialogs_available
 from .monitor import GaitMonitor
 from .panels import SIDEBAR_COLOR, SIDEBAR_WIDTH, PanelContext, draw_ui
 from .state import FRAME_DT, ViewerState
@@ -120,7 +121,8 @@ class Viewer:
             self.state.aspect = vw / vh
             self.state.frame_view()
         self.monitor = GaitMonitor()
-        self.panel = PanelContext(presets=options.presets, scale=self.scale, icons=icons, monitor=self.monitor)
+        self.panel = PanelContext(presets=options.presets, scale=self.scale, icons=icons, monitor=self.monitor,
+                                  file_dialog=FileDialog(), dialogs_available=dialogs_available())
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
