@@ -200,32 +200,24 @@ class ViewerState:
 
     def undo(self) -> bool:
         """Take back the last edit (Ctrl+Z)."""
-        if not self._undo:
-            self.status = "nothing to undo"
-            return False
-        spec = self._undo.pop()
-        current = self.spec
-        if not self._apply(spec, edit=None):
-            self._undo.append(spec)
-            return False
-        self._redo.append(current)
-        self._last_edit = ("", 0.0)
-        self.status = "undone"
-        return True
+        return self._travel_history(self._undo, self._redo, "undo")
 
     def redo(self) -> bool:
         """Make an undone edit again (Ctrl+Y or Ctrl+Shift+Z)."""
-        if not self._redo:
-            self.status = "nothing to redo"
+        return self._travel_history(self._redo, self._undo, "redo")
+
+    def _travel_history(self, source: list[CreatureSpec], target: list[CreatureSpec], word: str) -> bool:
+        """Go to the newest creature of ``source``, keeping the current one on ``target``."""
+        if not source:
+            self.status = f"nothing to {word}"
             return False
-        spec = self._redo.pop()
-        current = self.spec
+        spec, current = source.pop(), self.spec
         if not self._apply(spec, edit=None):
-            self._redo.append(spec)
+            source.append(spec)
             return False
-        self._undo.append(current)
+        target.append(current)
         self._last_edit = ("", 0.0)
-        self.status = "redone"
+        self.status = f"{word}ne"
         return True
 
     def set(self, key: str, value: Any) -> bool:
