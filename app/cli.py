@@ -15,7 +15,7 @@ from typing import Sequence
 from . import __version__
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
-from .output import MAX_SIZE
+from .output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_QUALITIES, MAX_CRF, MAX_SIZE
 from .render.camera import CAMERA_PRESETS, DEFAULT_CAMERA
 
 EXIT_BAD_INPUT = 2
@@ -79,6 +79,16 @@ def _samples(text: str) -> int:
     if text not in ("0", "2", "4", "8"):
         raise argparse.ArgumentTypeError(f"{text!r}: expected 0 (off), 2, 4 or 8 samples")
     return int(text)
+
+
+def _crf(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = -1
+    if not 0 <= value <= MAX_CRF:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number from 0 to {MAX_CRF}")
+    return value
 
 
 RENDER_EPILOG = """\
@@ -194,6 +204,13 @@ def build_parser() -> argparse.ArgumentParser:
     _world_arguments(render)
     render.add_argument("--msaa", metavar="N", type=_samples, default=4,
                         help="antialiasing samples: 0 (off), 2, 4 or 8 (default: 4)")
+    render.add_argument("--gif-quality", choices=GIF_QUALITIES, default=DEFAULT_GIF_QUALITY,
+                        help="GIF size against fidelity: best (255 colours, lossless), good (about half the size, "
+                             "no visible loss), small (about a third, some grain); smaller GIFs need gifsicle "
+                             f"installed (default: {DEFAULT_GIF_QUALITY})")
+    render.add_argument("--crf", metavar="N", type=_crf, default=DEFAULT_CRF,
+                        help=f"MP4 quality: H.264 constant rate factor, 0 (lossless, large) to {MAX_CRF} "
+                             f"(smallest); +6 roughly halves the file (default: {DEFAULT_CRF})")
     render.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
     render.add_argument("--no-shadow", action="store_true", help="no shadow")
     render.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
@@ -314,7 +331,8 @@ def cmd_render(args: argparse.Namespace) -> int:
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
                                               joints=not args.no_joints, path=turns and not args.no_path))
     request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,
-                            start=args.time, view=view, speed=speed, world=world)
+                            start=args.time, view=view, speed=speed, world=world, gif_quality=args.gif_quality,
+                            crf=args.crf)
     if fmt == "gif" and (warning := gif_fps_warning(args.fps)) and not args.quiet:
         print(warning, file=sys.stderr)
 
@@ -335,6 +353,8 @@ def cmd_render(args: argparse.Namespace) -> int:
     finally:
         if bar is not None:
             bar.close()
+    for note in result.notes:
+        print(f"note: {note}", file=sys.stderr)
     if not args.quiet:
         size = result.path.stat().st_size
         w, h = args.size
@@ -512,7 +532,17 @@ def cmd_analyze(args: argparse.Namespace) -> int:
 COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "analyze": cmd_analyze, "view": cmd_view}
 
 
+def _terminate(signum: int, frame: object) -> None:
+    """SIGTERM ends a run as Ctrl-C does: through the clean-up of partial outputs."""
+    raise KeyboardInterrupt
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, _terminate)
     parser = build_parser()
     args = parser.parse_args(argv)
     if args.command is None:

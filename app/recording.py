@@ -15,8 +15,8 @@ import numpy as np
 from .errors import GaitlabError
 from .kinematics.clip import clip_motion, frame_at
 from .kinematics.world import World
-from .output import (GIF_MAX_FPS, MAX_SIZE, Mp4Writer, cannot_write, check_output_dir, output_format, write_gif,
-                     write_png)
+from .output import (DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_MAX_FPS, GIF_QUALITIES, MAX_SIZE, GifQuality, GifWriter,
+                     Mp4Writer, cannot_write, check_crf, check_output_dir, output_format, write_png)
 from .render.clip import ClipRenderer, ViewSettings, clip_cameras, loop_grid_spacing
 from .render.renderer import RenderOptions
 from .rigging import build_rig
@@ -44,8 +44,13 @@ class RecordRequest:
     view: ViewSettings = field(default_factory=ViewSettings)
     speed: tuple[float, float] | None = None  # m/s at the first and last frame: speed-driven gaits
     world: World = field(default_factory=World)  # path and terrain (default: straight ahead, flat)
+    gif_quality: GifQuality = DEFAULT_GIF_QUALITY  # GIF size against fidelity: best, good, small
+    crf: int = DEFAULT_CRF  # MP4 (H.264) constant rate factor: 0 lossless .. 51 smallest
 
     def __post_init__(self) -> None:
+        if self.gif_quality not in GIF_QUALITIES:
+            raise GaitlabError(f"GIF quality {self.gif_quality!r}: choose one of {', '.join(GIF_QUALITIES)}")
+        check_crf(self.crf)
         w, h = self.view.size
         if not (0 < self.fps <= MAX_FPS) or not math.isfinite(self.fps):
             raise GaitlabError(f"fps {self.fps:g}: must be greater than 0 and at most {MAX_FPS:g}")
@@ -73,12 +78,17 @@ class RecordResult:
     seconds: float
     cycles: float
     gaits: tuple[str, ...] = ()  # the gaits a speed-driven clip went through, in order
+    notes: tuple[str, ...] = ()  # things the user should know about the file (e.g. an optimiser missing)
 
 
 class Recording:
     """A recording in progress, rendered a few frames at a time so a UI can show progress
     and stay responsive. :func:`record` drives one to the end; the viewer steps one per
     UI frame. Both produce the same file for the same request.
+
+    Frames stream to the writer as they are rendered (memory does not grow with the
+    clip); the writer encodes on a background thread. Nothing is left at the output path
+    unless :meth:`finish` succeeds.
 
     Raises :class:`GaitlabError` (nothing written) for bad requests or unwritable paths.
     """
@@ -110,15 +120,26 @@ class Recording:
             self.options = _with_grid(view.options, loop_grid_spacing(self.motion, self.cycles))
         self.total = self.motion.frame_count
         self.done = 0
-        self._frames: list[np.ndarray] = []
-        self._renderer = ClipRenderer(view.size, view.samples, ctx=ctx)
-        self._mp4: Mp4Writer | None = None
+        self._png: np.ndarray | None = None
+        self._renderer: ClipRenderer | None = ClipRenderer(view.size, view.samples, ctx=ctx)
+        self._writer: GifWriter | Mp4Writer | None = None
         try:
             if self.format == "mp4":
-                self._mp4 = Mp4Writer(request.output, view.size, request.fps)
+                self._writer = Mp4Writer(request.output, view.size, request.fps, crf=request.crf)
+            elif self.format == "gif":
+                # One palette for the whole clip, from frames spread over it.
+                samples = [self._render(i) for i in sorted({0, self.total // 3, (2 * self.total) // 3})]
+                self._writer = GifWriter(request.output, view.size, request.fps, samples, request.gif_quality)
+        except OSError as exc:
+            self.cancel()
+            raise cannot_write(request.output, exc) from None
         except BaseException:
-            self._renderer.release()
+            self.cancel()
             raise
+
+    def _render(self, index: int) -> np.ndarray:
+        assert self._renderer is not None
+        return self._renderer.frame(self.motion, index, self.cameras[index], self.options)
 
     @property
     def finished(self) -> bool:
@@ -133,11 +154,11 @@ class Recording:
         """Render up to ``frames`` more frames; True when all are rendered."""
         try:
             for _ in range(min(frames, self.total - self.done)):
-                image = self._renderer.frame(self.motion, self.done, self.cameras[self.done], self.options)
-                if self._mp4 is not None:
-                    self._mp4.add(image)
+                image = self._render(self.done)
+                if self._writer is not None:
+                    self._writer.add(image)
                 else:
-                    self._frames.append(image)
+                    self._png = image
                 self.done += 1
         except OSError as exc:
             self.cancel()
@@ -148,19 +169,22 @@ class Recording:
         return self.finished
 
     def finish(self) -> RecordResult:
-        """Render what is left, write the file (atomically) and free the renderer."""
+        """Render what is left, finish the file (atomically) and free the renderer."""
         request = self.request
+        notes: tuple[str, ...] = ()
         try:
             self.step(self.total - self.done)
-            if self.format == "png":
-                write_png(request.output, self._frames[0])
-            elif self.format == "gif":
-                samples = [self._frames[i] for i in sorted({0, self.total // 3, (2 * self.total) // 3})]
-                write_gif(request.output, self._frames, request.fps, samples)
+            if self._writer is None:
+                assert self._png is not None
+                write_png(request.output, self._png)
             else:
-                assert self._mp4 is not None
-                self._mp4.close(ok=True)
-                self._mp4 = None
+                writer, self._writer = self._writer, None
+                try:
+                    writer.close(ok=True)
+                except BaseException:
+                    writer.close(ok=False)
+                    raise
+                notes = tuple(getattr(writer, "notes", ()))
         except OSError as exc:
             self.cancel()
             raise cannot_write(request.output, exc) from None
@@ -176,22 +200,22 @@ class Recording:
             cycles = float(self.motion.clock[-1] - self.motion.clock[0]) + float(np.diff(self.motion.clock[:2]).sum())
         else:
             cycles = self.cycles if self.cycles is not None else seconds * self.frequency
-        return RecordResult(Path(request.output), self.total, seconds, cycles, gaits)
+        return RecordResult(Path(request.output), self.total, seconds, cycles, gaits, notes)
 
     def cancel(self) -> None:
-        """Stop without writing anything (a partial MP4 is deleted)."""
-        if self._mp4 is not None:
+        """Stop without writing anything (a partial file is deleted)."""
+        if self._writer is not None:
             try:
-                self._mp4.close(ok=False)
+                self._writer.close(ok=False)
             finally:
-                self._mp4 = None
+                self._writer = None
         self._release()
 
     def _release(self) -> None:
-        self._frames = []
+        self._png = None
         if self._renderer is not None:
             self._renderer.release()
-            self._renderer = None  # type: ignore[assignment]
+            self._renderer = None
 
 
 def record(request: RecordRequest, progress: Progress | None = None,
