@@ -370,14 +370,14 @@ def cmd_render(args: argparse.Namespace) -> int:
 
 def _is_scene(name: str) -> bool:
     """Whether a .toml argument is a scene file (it has [[creatures]]) rather than a creature."""
-    import tomllib
+    from .tomlfile import TomlProblem, read_toml
 
     path = Path(name)
     if path.suffix.lower() != ".toml" or not path.is_file():
         return False
     try:
-        return "creatures" in tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        return "creatures" in read_toml(path)
+    except TomlProblem:
         return False  # the creature loader reports it
 
 

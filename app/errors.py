@@ -28,6 +28,12 @@ class GLContextError(GaitlabError):
     """No OpenGL context could be created (missing EGL/Mesa, no display, too old GL)."""
 
 
+def shown(value: object, limit: int = 60) -> str:
+    """``repr(value)`` for a message, cut short so one bad value cannot flood the line."""
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 4] + "...'"
+
+
 def did_you_mean(word: str, options: Iterable[str]) -> str:
     """' (did you mean 'x'?)' for the closest of ``options``, or ''."""
     match = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)

@@ -10,18 +10,18 @@ from __future__ import annotations
 
 import math
 import os
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path as FilePath
 from typing import Any, Callable, Mapping
 
 import numpy as np
 
+from .tomlfile import TomlProblem, read_toml
 from .kinematics.path import CirclePath, FigureEightPath, Path, StraightPath, WaypointPath
 from .kinematics.terrain import (DEFAULT_MAX_SLOPE, FlatTerrain, HeightGrid, HillsTerrain, SlopeTerrain,
                                  StairsTerrain, Terrain)
 from .kinematics.world import World, WorldError
-from .errors import did_you_mean
+from .errors import did_you_mean, shown
 
 PATH_KINDS = {
     "straight": "straight ahead; heading=DEG turns the start (default 0: +Z)",
@@ -45,11 +45,11 @@ FAR = 1e4  # m: no path or terrain size beyond this (ten kilometres)
 
 def _split(text: str, what: str) -> tuple[str, list[str]]:
     if not isinstance(text, str) or not text.strip():
-        raise WorldError(f"{what} {text!r}: expected KIND or KIND:KEY=VALUE,...")
+        raise WorldError(f"{what} {shown(text)}: expected KIND or KIND:KEY=VALUE,...")
     kind, _, rest = text.strip().partition(":")
     items = [item.strip() for item in rest.split(",")] if rest.strip() else []
     if any(not item for item in items):
-        raise WorldError(f"{what} {text!r}: empty item between commas")
+        raise WorldError(f"{what} {shown(text)}: empty item between commas")
     return kind.strip().lower(), items
 
 
@@ -58,9 +58,9 @@ def _number(text: str, key: str, what: str, *, lo: float | None = None, hi: floa
     try:
         value = float(text)
     except (TypeError, ValueError):
-        raise WorldError(f"{what}: {key}={text!r} is not a number") from None
+        raise WorldError(f"{what}: {key}={shown(text)} is not a number") from None
     if not math.isfinite(value):
-        raise WorldError(f"{what}: {key}={text} is not a finite number")
+        raise WorldError(f"{what}: {key}={shown(text)} is not a finite number")
     if lo is not None and (value < lo or (lo_open and value == lo)):
         raise WorldError(f"{what}: {key}={value:g} must be {'>' if lo_open else '>='} {lo:g}{unit}")
     if hi is not None and value > hi:
@@ -74,9 +74,9 @@ def _keys(items: list[str], allowed: Mapping[str, str], what: str) -> dict[str, 
         key, eq, value = item.partition("=")
         key = key.strip().lower()
         if not eq:
-            raise WorldError(f"{what}: {item!r} is not KEY=VALUE; keys here: {', '.join(allowed)}")
+            raise WorldError(f"{what}: {shown(item)} is not KEY=VALUE; keys here: {', '.join(allowed)}")
         if key not in allowed:
-            raise WorldError(f"{what}: unknown key {key!r}{did_you_mean(key, allowed)}; keys here: "
+            raise WorldError(f"{what}: unknown key {shown(key)}{did_you_mean(key, allowed)}; keys here: "
                              f"{', '.join(allowed)}")
         if key in values:
             raise WorldError(f"{what}: {key} given twice")
@@ -88,14 +88,14 @@ def _kind(kind: str, kinds: Mapping[str, str], what: str, text: str) -> str:
     aliases = {"figure8": "figure-eight", "eight": "figure-eight", "spline": "waypoints"}
     kind = aliases.get(kind, kind)
     if kind not in kinds:
-        raise WorldError(f"{what} {text!r}: unknown kind {kind!r}{did_you_mean(kind, kinds)}; kinds: "
+        raise WorldError(f"{what} {shown(text)}: unknown kind {shown(kind)}{did_you_mean(kind, kinds)}; kinds: "
                          f"{', '.join(kinds)}")
     return kind
 
 
 def parse_path(text: str) -> Path:
     """A path from its text form, e.g. ``circle:r=3,dir=right``."""
-    what = f"--path {text!r}" if isinstance(text, str) else "--path"
+    what = f"--path {shown(text)}" if isinstance(text, str) else "--path"
     kind, items = _split(text, "--path")
     kind = _kind(kind, PATH_KINDS, "--path", text)
     if kind == "waypoints":
@@ -121,7 +121,7 @@ def parse_path(text: str) -> Path:
     if kind == "circle":
         direction = values.get("dir", "left").lower()
         if direction not in ("left", "right"):
-            raise WorldError(f"{what}: dir={direction!r}; expected left or right")
+            raise WorldError(f"{what}: dir={shown(direction)}; expected left or right")
         return CirclePath(radius, direction, heading=heading)
     return FigureEightPath(radius, heading=heading)
 
@@ -140,7 +140,7 @@ def waypoint_path(points: np.ndarray, closed: bool, what: str) -> WaypointPath:
 def parse_terrain(text: str, base: FilePath | None = None) -> Terrain:
     """A terrain from its text form, e.g. ``hills:amp=0.2,wavelength=3``. File names are
     relative to ``base`` (a scene file's folder) or the working folder."""
-    what = f"--terrain {text!r}" if isinstance(text, str) else "--terrain"
+    what = f"--terrain {shown(text)}" if isinstance(text, str) else "--terrain"
     kind, items = _split(text, "--terrain")
     kind = _kind(kind, TERRAIN_KINDS, "--terrain", text)
     keys = {"flat": (), "slope": ("angle", "dir"), "hills": ("amp", "wavelength", "seed"),
@@ -309,13 +309,16 @@ def _text_or_table(value: Any, key: str, where: str) -> str:
                           (pt if isinstance(pt, list) else [pt])]
             elif k == "closed":
                 if not isinstance(v, bool):
-                    raise WorldError(f"{where}: {key}.closed = {v!r}: expected true or false")
+                    raise WorldError(f"{where}: {key}.closed = {shown(v)}: expected true or false")
                 if v:
                     parts.append("closed")
             else:
                 parts.append(f"{k}={v}")
         return f"{value['kind']}" + (":" + ",".join(parts) if parts else "")
-    raise WorldError(f"{where}: {key} = {value!r}: expected a text like \"circle:r=3\" or a table with kind")
+    raise WorldError(f"{where}: {key} = {shown(value)}: expected a text like \"circle:r=3\" or a table with kind")
+
+
+MAX_SCENE_CREATURES = 256
 
 
 def load_scene(file: str | os.PathLike[str]) -> Scene:
@@ -324,15 +327,13 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
     if not path.is_file():
         raise WorldError(f"{path}: no such scene file")
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as exc:
-        raise WorldError(f"{path}: cannot read the scene file: {exc}") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise WorldError(f"{path}: TOML syntax error: {exc}") from None
+        data = read_toml(path)
+    except TomlProblem as exc:
+        raise WorldError(f"{path}: {exc}") from None
     where = str(path)
     for key in data:
         if key not in SCENE_KEYS:
-            raise WorldError(f"{where}: unknown key {key!r}{did_you_mean(key, SCENE_KEYS)}; a scene has "
+            raise WorldError(f"{where}: unknown key {shown(key)}{did_you_mean(key, SCENE_KEYS)}; a scene has "
                              f"{', '.join(SCENE_KEYS)}")
     base = path.parent
 
@@ -354,6 +355,9 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
     if not isinstance(creatures_t, list) or not creatures_t:
         raise WorldError(f"{where}: a scene needs at least one [[creatures]] table with creature = \"dog\" (or a "
                          ".toml file)")
+    if len(creatures_t) > MAX_SCENE_CREATURES:
+        raise WorldError(f"{where}: {len(creatures_t)} [[creatures]] tables; a scene holds at most "
+                         f"{MAX_SCENE_CREATURES}")
     creatures = []
     for i, entry in enumerate(creatures_t):
         here = f"creatures[{i}]"
@@ -361,7 +365,7 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
             raise WorldError(f"{where}: {here} must be a table ([[creatures]])")
         for key in entry:
             if key not in CREATURE_KEYS:
-                raise WorldError(f"{where}: {here}: unknown key {key!r}{did_you_mean(key, CREATURE_KEYS)}; allowed: "
+                raise WorldError(f"{where}: {here}: unknown key {shown(key)}{did_you_mean(key, CREATURE_KEYS)}; allowed: "
                                  f"{', '.join(CREATURE_KEYS)}")
         name = entry.get("creature")
         if not isinstance(name, str) or not name:
@@ -377,14 +381,14 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
         speed = entry.get("speed")
         if speed is not None and (isinstance(speed, bool) or not isinstance(speed, (int, float))
                                   or not math.isfinite(speed) or not 0 < speed <= 30):
-            raise WorldError(f"{where}: {here}.speed = {speed!r}: expected m/s in (0, 30]")
+            raise WorldError(f"{where}: {here}.speed = {shown(speed)}: expected m/s in (0, 30]")
         overrides = entry.get("set", {})
         if not isinstance(overrides, Mapping):
             raise WorldError(f"{where}: {here}.set must be a table of creature keys, e.g. "
                              "set = { \"gait.duty_factor\" = 0.6 }")
         gait = entry.get("gait")
         if gait is not None and not isinstance(gait, str):
-            raise WorldError(f"{where}: {here}.gait = {gait!r}: expected a gait name")
+            raise WorldError(f"{where}: {here}.gait = {shown(gait)}: expected a gait name")
         creatures.append(SceneCreature(creature=name, world=World(path=body_path, terrain=terrain), gait=gait,
                                        speed=None if speed is None else float(speed), overrides=dict(overrides)))
     name = data.get("name", path.stem)
@@ -394,8 +398,8 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
 def scene_description(file: FilePath) -> str:
     """A scene file's one-line description (its ``description`` key), or its name."""
     try:
-        data = tomllib.loads(FilePath(file).read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+        data = read_toml(file)
+    except TomlProblem:
         return FilePath(file).stem
     return str(data.get("description", data.get("name", FilePath(file).stem)))
 

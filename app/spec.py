@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 import os
 import re
-import tomllib
 from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any, Mapping
@@ -26,6 +25,7 @@ import tomli_w
 from .choices import KNEE_DIRECTIONS, WAVE_SHAPES, KneeDirection, LegType, WaveShape
 from .errors import SpecError, did_you_mean
 from .output import atomic_write_text
+from .tomlfile import TomlProblem, parse_toml, read_toml
 from .gaits import GAIT_PRESETS, MAX_PAIRS, foot_names, gaits_for, phases_from_offsets, preset_phases
 from .resources import creatures_dir, preset_creature_names
 
@@ -397,13 +397,9 @@ def load_creature(name_or_path: str | os.PathLike[str]) -> CreatureSpec:
     if not path.is_file():
         raise SpecError(f"{text_name}: no such creature file")
     try:
-        raw = path.read_bytes().decode("utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SpecError(f"{text_name}: cannot read creature file: {exc}") from None
-    try:
-        data = tomllib.loads(raw)
-    except tomllib.TOMLDecodeError as exc:
-        raise SpecError(f"{text_name}: TOML syntax error: {exc}") from None
+        data = read_toml(path)
+    except TomlProblem as exc:
+        raise SpecError(f"{text_name}: {exc}") from None
     return creature_from_dict(data, source=str(path))
 
 
@@ -583,7 +579,7 @@ def _subtable(data: Mapping[str, Any], key: str, where: str, required: bool, pre
         return {}
     value = data[key]
     if not isinstance(value, Mapping):
-        raise SpecError(f"{_at(where)}{prefix}{key} must be a table ([{prefix}{key}]), got {value!r}")
+        raise SpecError(f"{_at(where)}{prefix}{key} must be a table ([{prefix}{key}]), got {_show(value)}")
     return value
 
 
@@ -635,7 +631,8 @@ def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
             raise bad()
         return tuple(_number(v, rule, bad) for v in value)
     if rule.kind == "integer":
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or float(value) != int(value):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
+                or float(value) != int(value):
             raise bad()
         value = int(value)
     return _number(value, rule, bad)
@@ -654,10 +651,14 @@ def _number(value: Any, rule: Rule, bad) -> float:
     return number
 
 
-def _show(value: Any) -> str:
+def _show(value: Any, limit: int = 60) -> str:
+    """A value as TOML-ish text for a message, cut short if long."""
     if isinstance(value, float) and not math.isfinite(value):
         return str(value)
-    return repr(value) if isinstance(value, str) else str(value).lower() if isinstance(value, bool) else str(value)
+    if isinstance(value, str):
+        return repr(value if len(value) <= limit else value[:limit] + "...")
+    text = str(value).lower() if isinstance(value, bool) else str(value)
+    return text if len(text) <= limit else text[:limit] + "..."
 
 
 def _at(where: str) -> str:
@@ -765,14 +766,14 @@ def leg_type(ankle_lift: float) -> LegType:
 def parse_override(text: str) -> tuple[str, Any]:
     """Parse a ``KEY=VALUE`` command-line override; VALUE is read as a TOML value."""
     if "=" not in text:
-        raise SpecError(f"--set {text!r}: expected KEY=VALUE, e.g. --set gait.duty_factor=0.7")
+        raise SpecError(f"--set {_show(text)}: expected KEY=VALUE, e.g. --set gait.duty_factor=0.7")
     key, raw = (s.strip() for s in text.split("=", 1))
     if rule_for(key) is None:
         raise SpecError(f"--set {key}: unknown key{did_you_mean(key, override_keys())}; "
                         "keys look like body.length, legs.hind.femur, gait.duty_factor, gait.phases.LF")
     try:
-        value = tomllib.loads(f"v = {raw}")["v"]
-    except tomllib.TOMLDecodeError:
+        value = parse_toml(f"v = {raw}")["v"]
+    except (TomlProblem, KeyError):
         value = raw  # a bare word such as a preset name; validated against the key's rule
     return key, value
 

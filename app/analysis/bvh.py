@@ -9,7 +9,9 @@ to the ones asked for.
 
 from __future__ import annotations
 
+import math
 import os
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -18,6 +20,10 @@ from numpy.typing import NDArray
 from ..errors import GaitlabError
 
 _AXES = {"X": 0, "Y": 1, "Z": 2}
+_WHOLE = re.compile(r"[0-9]{1,12}")  # ASCII digits only ("²".isdigit() is True)
+MAX_FILE_BYTES = 512 * 2**20
+MAX_JOINTS = 10_000
+MAX_CHANNELS_PER_JOINT = 9
 
 
 class InputError(GaitlabError):
@@ -96,6 +102,11 @@ def _axis_rotation(axis: int, angles: NDArray[np.float64]) -> NDArray[np.float64
     return m
 
 
+def _shown(token: str, limit: int = 40) -> str:
+    """A token for an error message: quoted, and cut short if long."""
+    return repr(token if len(token) <= limit else token[:limit] + "...")
+
+
 class _Tokens:
     """Whitespace tokens with their line numbers."""
 
@@ -120,22 +131,30 @@ class _Tokens:
     def expect(self, word: str) -> int:
         tok, line = self.next(repr(word))
         if tok.upper() != word.upper():
-            raise self.error(f"expected {word!r}, found {tok!r}", line)
+            raise self.error(f"expected {word!r}, found {_shown(tok)}", line)
         return line
 
     def number(self, what: str) -> float:
         tok, line = self.next(what)
         try:
-            return float(tok)
+            value = float(tok)
         except ValueError:
-            raise self.error(f"{what}: {tok!r} is not a number", line) from None
+            raise self.error(f"{what}: {_shown(tok)} is not a number", line) from None
+        if not math.isfinite(value):
+            raise self.error(f"{what}: {_shown(tok)} is not a finite number", line)
+        return value
 
 
 def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
     """Parse a BVH file. Raises :class:`InputError` naming the file and line."""
     path = os.fspath(path)
     try:
-        text = open(path, encoding="utf-8", errors="replace").read()
+        size = os.path.getsize(path)
+        if size > MAX_FILE_BYTES:
+            raise InputError(f"{path}: the file is {size / 2**20:.0f} MiB; BVH files up to "
+                             f"{MAX_FILE_BYTES // 2**20} MiB are read")
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            text = fh.read()
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
     lines = text.splitlines()
@@ -148,7 +167,8 @@ def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
     joints: list[BvhJoint] = []
     channel_count = 0
 
-    def parse_joint(parent: int, keyword_line: int) -> None:
+    def parse_joint(parent: int) -> int:
+        """The joint header (name, OFFSET, CHANNELS) after a ROOT/JOINT keyword; its index."""
         nonlocal channel_count
         name, _ = tokens.next("a joint name")
         tokens.expect("{")
@@ -156,56 +176,60 @@ def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
         offset = np.array([tokens.number("OFFSET x"), tokens.number("OFFSET y"), tokens.number("OFFSET z")])
         tokens.expect("CHANNELS")
         count_tok, count_line = tokens.next("the channel count")
-        if not count_tok.isdigit():
-            raise tokens.error(f"channel count {count_tok!r} is not a whole number", count_line)
+        if not _WHOLE.fullmatch(count_tok) or int(count_tok) > MAX_CHANNELS_PER_JOINT:
+            raise tokens.error(f"channel count {_shown(count_tok)}: expected a whole number from 0 to "
+                               f"{MAX_CHANNELS_PER_JOINT}", count_line)
         channels = []
         for _ in range(int(count_tok)):
             ch, ch_line = tokens.next("a channel name")
             if len(ch) < 2 or ch[0].upper() not in _AXES or ch[1:].lower() not in ("position", "rotation"):
-                raise tokens.error(f"unknown channel {ch!r} (expected Xposition ... Zrotation)", ch_line)
+                raise tokens.error(f"unknown channel {_shown(ch)} (expected Xposition ... Zrotation)", ch_line)
             channels.append(ch)
-        index = len(joints)
+        if len(joints) >= MAX_JOINTS:
+            raise tokens.error(f"more than {MAX_JOINTS} joints")
         joints.append(BvhJoint(name, parent, offset, channels, channel_count))
         channel_count += len(channels)
-        while True:
-            tok, line = tokens.next("JOINT, End Site or '}'")
-            if tok.upper() == "JOINT":
-                parse_joint(index, line)
-            elif tok.upper() == "END":
-                tokens.expect("Site")
-                tokens.expect("{")
-                tokens.expect("OFFSET")
-                for axis in "xyz":
-                    tokens.number(f"End Site OFFSET {axis}")
-                tokens.expect("}")
-            elif tok == "}":
-                return
-            else:
-                raise tokens.error(f"expected JOINT, End Site or '}}', found {tok!r}", line)
+        return len(joints) - 1
 
     tok, line = tokens.next("ROOT")
     if tok.upper() != "ROOT":
-        raise tokens.error(f"expected ROOT, found {tok!r}", line)
-    parse_joint(-1, line)
+        raise tokens.error(f"expected ROOT, found {_shown(tok)}", line)
+    stack = [parse_joint(-1)]  # the open joints, innermost last (no recursion: any depth)
+    while stack:
+        tok, line = tokens.next("JOINT, End Site or '}'")
+        if tok.upper() == "JOINT":
+            stack.append(parse_joint(stack[-1]))
+        elif tok.upper() == "END":
+            tokens.expect("Site")
+            tokens.expect("{")
+            tokens.expect("OFFSET")
+            for axis in "xyz":
+                tokens.number(f"End Site OFFSET {axis}")
+            tokens.expect("}")
+        elif tok == "}":
+            stack.pop()
+        else:
+            raise tokens.error(f"expected JOINT, End Site or '}}', found {_shown(tok)}", line)
     if tokens.pos < len(tokens.items):
         tok, line = tokens.items[tokens.pos]
-        raise tokens.error(f"unexpected {tok!r} after the hierarchy", line)
+        raise tokens.error(f"unexpected {_shown(tok)} after the hierarchy", line)
 
     header = [(n, lines[n].strip()) for n in range(motion_at + 1, min(motion_at + 3, len(lines)))]
     if len(header) < 2:
         raise InputError(f"{path}:{len(lines)}: truncated BVH: the MOTION section has no Frames / Frame Time lines")
+    frames_label, _, frames_text = header[0][1].partition(":")
+    if frames_label.strip().lower() != "frames" or not _WHOLE.fullmatch(frames_text.strip()):
+        raise InputError(f"{path}:{header[0][0] + 1}: malformed BVH: expected 'Frames: N' (a whole number), found "
+                         f"{header[0][1][:80]!r}")
+    frame_count = int(frames_text.strip())
+    time_label, _, time_text = header[1][1].partition(":")
     try:
-        frame_count = int(header[0][1].split(":", 1)[1])
-        assert header[0][1].lower().startswith("frames")
-    except (IndexError, ValueError, AssertionError):
-        raise InputError(f"{path}:{header[0][0] + 1}: malformed BVH: expected 'Frames: N', found "
-                         f"{header[0][1]!r}") from None
-    try:
-        frame_time = float(header[1][1].split(":", 1)[1])
-        assert header[1][1].lower().startswith("frame time") and frame_time > 0
-    except (IndexError, ValueError, AssertionError):
-        raise InputError(f"{path}:{header[1][0] + 1}: malformed BVH: expected 'Frame Time: seconds' (> 0), found "
-                         f"{header[1][1]!r}") from None
+        frame_time = float(time_text)
+    except ValueError:
+        frame_time = math.nan
+    if time_label.strip().lower() != "frame time" or not (0 < frame_time < 3600):
+        raise InputError(f"{path}:{header[1][0] + 1}: malformed BVH: expected 'Frame Time: seconds' (more than 0, "
+                         f"less than an hour), found {header[1][1][:80]!r}")
     first = motion_at + 3
     data_lines = [(n, line) for n, line in enumerate(lines[first:], start=first + 1) if line.strip()]
     if len(data_lines) < frame_count:
@@ -227,7 +251,7 @@ def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
                 try:
                     float(part)
                 except ValueError:
-                    raise InputError(f"{path}:{number}: malformed BVH: value {k + 1} ({part!r}) is not a "
+                    raise InputError(f"{path}:{number}: malformed BVH: value {k + 1} ({_shown(part)}) is not a "
                                      "number") from None
     frames = values.reshape(frame_count, channel_count)
     if not np.isfinite(frames).all():

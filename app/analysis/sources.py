@@ -32,6 +32,14 @@ KNOWN_RIGS: tuple[tuple[str, dict[str, tuple[str, tuple[str, ...]]]], ...] = (
 )
 
 
+MAX_FEET = 64
+MAX_COORDINATE = 1e7  # larger positions or times are not motion data (and overflow the analysis)
+
+
+def _shown(text: str, limit: int = 40) -> str:
+    return repr(text if len(text) <= limit else text[:limit] + "...")
+
+
 @dataclass(frozen=True)
 class FootMap:
     """Which joints stand for each foot: name -> (heel/ankle joint, toe joint or None)."""
@@ -113,6 +121,10 @@ def _leading_jumps(points: np.ndarray, limit: int = 5) -> int:
 
 
 def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis) -> tuple[FootTracks, str]:
+    for what, values in (("foot", heel), ("toe", toe), ("body", body)):
+        if not np.all(np.abs(values) < MAX_COORDINATE):
+            raise InputError(f"{path}: {what} positions reach {float(np.nanmax(np.abs(values))):.3g} (or are not "
+                             f"finite); positions must be under {MAX_COORDINATE:g} in file units")
     skip = _leading_jumps(np.concatenate([heel, toe, body[:, None]], axis=1))
     times, heel, toe, body = times[skip:] - times[skip], heel[skip:], toe[skip:], body[skip:]
     up_axis = detect_up(body, heel) if up == "auto" else up
@@ -174,9 +186,14 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
                               and not h[:-2].endswith("_toe") and h[:-2] != "body"))
     if not feet:
         raise InputError(f"{path}:1: no foot columns; expected NAME_x,NAME_y,NAME_z for each foot (e.g. LH_x)")
-    missing = [f"{f}_{a}" for f in feet for a in "xyz" if f"{f}_{a}" not in header]
+    if len(feet) > MAX_FEET:
+        raise InputError(f"{path}:1: {len(feet)} feet in the header; at most {MAX_FEET} are analysed")
+    columns = set(header)
+    missing = [f"{f}_{a}" for f in feet for a in "xyz" if f"{f}_{a}" not in columns]
     missing += [f"{f}_toe_{a}" for f in feet for a in "xyz"
-                if any(f"{f}_toe_{b}" in header for b in "xyz") and f"{f}_toe_{a}" not in header]
+                if any(f"{f}_toe_{b}" in columns for b in "xyz") and f"{f}_toe_{a}" not in columns]
+    if any(f"body_{a}" in columns for a in "xyz"):
+        missing += [f"body_{a}" for a in "xyz" if f"body_{a}" not in columns]
     if missing:
         raise InputError(f"{path}:1: missing columns {', '.join(missing)}; each foot needs NAME_x, NAME_y, NAME_z "
                          "(and NAME_toe_x/y/z if any toe column is given)")
@@ -189,10 +206,11 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
             try:
                 data[r, c] = float(value)
             except ValueError:
-                raise InputError(f"{path}:{line}: malformed CSV: column {header[c]!r} value {value!r} is not a "
-                                 "number") from None
-            if not math.isfinite(data[r, c]):
-                raise InputError(f"{path}:{line}: malformed CSV: column {header[c]!r} is {value}")
+                raise InputError(f"{path}:{line}: malformed CSV: column {_shown(header[c])} value {_shown(value)} "
+                                 "is not a number") from None
+            if not abs(data[r, c]) < MAX_COORDINATE:
+                raise InputError(f"{path}:{line}: column {_shown(header[c])} is {_shown(value)}; values must be "
+                                 f"finite and under {MAX_COORDINATE:g} in size")
     if data.shape[0] < 2:
         raise InputError(f"{path}: the CSV holds {data.shape[0]} rows; a clip needs at least one full stride")
     col = {h: i for i, h in enumerate(header)}
