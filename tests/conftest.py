@@ -1,7 +1,16 @@
-"""Shared fixtures: one headless GL context per session, golden-image comparison."""
+"""Shared fixtures: one headless GL context per session, golden-image comparison.
+
+The golden images were rendered by Mesa's software rasteriser (llvmpipe); a GPU driver
+draws edges and shading slightly differently. So the session pins Mesa's software
+renderer where Mesa is installed (its EGL vendor file, ``LIBGL_ALWAYS_SOFTWARE``), the
+renderer is printed in pytest's header, and the golden tests skip, saying why, when the
+context is not llvmpipe anyway. ``tests/snapshots/RENDERER.txt`` records the renderer the
+goldens were made with.
+"""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -9,6 +18,50 @@ import pytest
 
 SNAPSHOTS = Path(__file__).parent / "snapshots"
 FAILED = SNAPSHOTS / "failed"
+RENDERER_FILE = SNAPSHOTS / "RENDERER.txt"
+MESA_EGL_VENDOR = ("/usr/share/glvnd/egl_vendor.d/50_mesa.json", "/etc/glvnd/egl_vendor.d/50_mesa.json")
+SOFTWARE_RENDERER = "llvmpipe"
+
+
+def _pin_software_renderer() -> str:
+    """Ask for Mesa's llvmpipe before any context exists; a note on what was done."""
+    vendor = next((p for p in MESA_EGL_VENDOR if os.path.exists(p)), None)
+    notes = []
+    if vendor and "__EGL_VENDOR_LIBRARY_FILENAMES" not in os.environ:
+        os.environ["__EGL_VENDOR_LIBRARY_FILENAMES"] = vendor
+        notes.append(f"EGL vendor pinned to {vendor}")
+    os.environ.setdefault("LIBGL_ALWAYS_SOFTWARE", "1")
+    os.environ.setdefault("GALLIUM_DRIVER", "llvmpipe")
+    return "; ".join(notes) or "software renderer requested"
+
+
+PINNING = _pin_software_renderer()
+
+
+def golden_renderer() -> str:
+    """The GL_RENDERER the golden images were made with."""
+    return RENDERER_FILE.read_text(encoding="utf-8").strip() if RENDERER_FILE.exists() else "unknown"
+
+
+_RENDERER: dict[str, str] = {}
+
+
+def current_renderer() -> str:
+    """This session's GL_RENDERER (one throwaway context), or why there is none."""
+    if "name" not in _RENDERER:
+        try:
+            from app.render.context import create_headless_context
+
+            ctx = create_headless_context()
+            _RENDERER["name"] = ctx.info["GL_RENDERER"]
+            ctx.release()
+        except Exception as exc:  # no EGL at all: the GL tests report that themselves
+            _RENDERER["name"] = f"none ({str(exc).splitlines()[0][:120]})"
+    return _RENDERER["name"]
+
+
+def pytest_report_header(config: pytest.Config) -> list[str]:
+    return [f"renderer: {current_renderer()} ({PINNING}); golden images made with: {golden_renderer()}"]
 
 
 def pytest_addoption(parser: pytest.Parser) -> None:
@@ -42,6 +95,12 @@ class Snapshot:
               max_mean: float = 1.0) -> None:
         from PIL import Image
 
+        renderer = current_renderer()
+        if self.update:
+            RENDERER_FILE.write_text(renderer + "\n", encoding="utf-8")
+        elif SOFTWARE_RENDERER not in renderer.lower():
+            pytest.skip(f"golden images were made with {golden_renderer()}; this machine renders with {renderer} "
+                        "(install Mesa's llvmpipe: apt install libegl-mesa0 libgl1-mesa-dri)")
         golden_path = SNAPSHOTS / f"{name}.png"
         if self.update or not golden_path.exists():
             if not self.update:
@@ -59,7 +118,8 @@ class Snapshot:
         if bad > max_bad_fraction or mean > max_mean:
             self._fail(name, image, golden, f"{bad:.2%} of pixels differ by more than {threshold} "
                                             f"(allowed {max_bad_fraction:.2%}), mean difference {mean:.2f} "
-                                            f"(allowed {max_mean})")
+                                            f"(allowed {max_mean}); rendered with {renderer}, goldens made with "
+                                            f"{golden_renderer()}")
 
     @staticmethod
     def _fail(name: str, image: np.ndarray, golden: np.ndarray, why: str) -> None:

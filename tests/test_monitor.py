@@ -65,3 +65,28 @@ def test_live_measurement_is_true_at_20_fps(creature: str, gait: str) -> None:
         assert foot.duty_factor == pytest.approx(state.live.rig.gait.duty_factor, abs=0.02), foot.name
         reference = asked[reference_foot(tuple(asked))]
         assert cyclic_distance(foot.phase, (asked[foot.name] - reference) % 1.0) <= 0.02, foot.name
+
+
+def test_background_measurement_matches_the_synchronous_one() -> None:
+    """The viewer measures in a worker process; it reports what measure() reports."""
+    import time
+
+    state = ViewerState(load_creature("dog").with_overrides({"gait.preset": "trot"}))
+    monitor = GaitMonitor()
+    feed_samples(state, monitor, 3.0, fps=30.0)
+    expected = monitor.measure(state.live.time, force=True)
+    monitor.report = None
+    monitor._last_measure = -1e9
+    try:
+        assert monitor.update(state.live.time) is None  # started, not finished: the frame goes on
+        deadline = time.monotonic() + 60
+        while monitor.report is None and time.monotonic() < deadline:
+            time.sleep(0.05)
+            monitor.update(state.live.time)
+        report = monitor.report
+        assert report is not None, monitor.error
+        assert report.gait_match == expected.gait_match == "trot"
+        for a, b in zip(report.feet, expected.feet):
+            assert (a.name, a.duty_factor, a.phase) == (b.name, b.duty_factor, b.phase)
+    finally:
+        monitor.close()

@@ -102,48 +102,88 @@ def clip_period(tracks: FootTracks, min_seconds: float = 0.15) -> float:
     return float((start + best) / tracks.fps)
 
 
-def _search_end(a: NDArray, start: int, level: float, step: int) -> int | None:
-    """First index from ``start`` (going by ``step``) where ``a`` reaches ``level``."""
-    seg = a[start:] if step > 0 else a[start::-1]
-    hits = np.nonzero(seg >= level)[0]
-    if len(hits) == 0:
-        return None
-    return start + step * int(hits[0])
+def _crossings(a: NDArray, level: float) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """For every index i: the first index >= i where ``a`` reaches ``level`` (len(a) if
+    none), and the last index <= i where it does (-1 if none). O(T), for all steps at once."""
+    n = len(a)
+    at = np.arange(n)
+    reached = a >= level
+    after = np.minimum.accumulate(np.where(reached, at, n)[::-1])[::-1]
+    before = np.maximum.accumulate(np.where(reached, at, -1))
+    return after, before
 
 
-def _curve_event(a: NDArray, d1: NDArray, d2: NDArray, start: int, level: float, step: int) -> tuple[int, bool]:
+def _curve_event(a: NDArray, d1: NDArray, d2: NDArray, start: int, crossings: tuple[NDArray, NDArray],
+                 step: int) -> tuple[int, bool]:
     """The lift (step=+1) or touchdown (step=-1) point of one height curve: maximum
-    curvature between the stance frame and where the curve reaches ``level``, skipping
-    points below the ground and points sloping the wrong way. Returns (index, found)."""
-    end = _search_end(a, start, level, step)
-    if end is None:
+    curvature between the stance frame and where the curve reaches its search level
+    (``crossings``, from :func:`_crossings`), skipping points below the ground and points
+    sloping the wrong way. Returns (index, found)."""
+    end = int(crossings[0][start] if step > 0 else crossings[1][start])
+    if end >= len(a) or end < 0:
         return (len(a) - 1 if step > 0 else 0), False
     lo, hi = (start, end) if step > 0 else (end, start)
-    idx = np.arange(lo, hi + 1)
-    ok = (a[idx] >= 0.0) & ((d1[idx] >= 0.0) if step > 0 else (d1[idx] <= 0.0))
+    seg = slice(lo, hi + 1)
+    ok = (a[seg] >= 0.0) & ((d1[seg] >= 0.0) if step > 0 else (d1[seg] <= 0.0))
     if not ok.any():
         return end, True
-    candidates = idx[ok]
-    return int(candidates[np.argmax(d2[candidates])]), True
+    return lo + int(np.argmax(np.where(ok, d2[seg], -np.inf))), True
 
 
-def _speed_check(rel: NDArray, start: int, threshold: float, step: int) -> int | None:
+def _first_far(seg: NDArray, centre: float, threshold: float) -> int | None:
+    hits = np.flatnonzero(np.abs(seg - centre) > threshold)
+    return None if hits.size == 0 else int(hits[0])
+
+
+def _speed_check(rel: NDArray, start: int, threshold: float, step: int, window: int) -> int | None:
     """First index from the stance frame where the forward speed relative to the body has
-    moved more than ``threshold`` away from its value at the stance frame."""
-    seg = rel[start:] if step > 0 else rel[start::-1]
-    hits = np.nonzero(np.abs(seg - rel[start]) > threshold)[0]
-    return None if len(hits) == 0 else start + step * int(hits[0])
+    moved more than ``threshold`` away from its value at the stance frame. Looks within
+    ``window`` frames first (where it almost always is), then further."""
+    centre = rel[start]
+    if step > 0:
+        near = _first_far(rel[start:start + window], centre, threshold)
+        if near is None and start + window < len(rel):
+            far = _first_far(rel[start + window:], centre, threshold)
+            near = None if far is None else window + far
+        return None if near is None else start + near
+    lo = max(0, start - window + 1)
+    near = _first_far(rel[lo:start + 1][::-1], centre, threshold)
+    if near is None and lo > 0:
+        far = _first_far(rel[:lo][::-1], centre, threshold)
+        near = None if far is None else (start + 1 - lo) + far
+    return None if near is None else start - near
 
 
-def _plateau_centre(score: NDArray, peak: int, tolerance: float = 0.02) -> int:
+def _plateau_centre(score: NDArray, peak: int, spread: float, tolerance: float = 0.02) -> int:
     """The middle of the stretch around ``peak`` where ``score`` stays within ``tolerance``
-    (of its range) of the minimum: a flat stance's firmest frame is its centre, not an edge."""
-    limit = score[peak] + tolerance * max(float(np.ptp(score)), 1e-12)
-    lo = hi = peak
-    while lo > 0 and score[lo - 1] <= limit:
-        lo -= 1
-    while hi < len(score) - 1 and score[hi + 1] <= limit:
-        hi += 1
+    (of its range, ``spread``) of the minimum: a flat stance's firmest frame is its
+    centre, not an edge."""
+    limit = score[peak] + tolerance * max(spread, 1e-12)
+    above = score > limit
+    window = 64
+    hi = peak
+    while True:  # forwards, a window at a time
+        seg = above[hi + 1:hi + 1 + window]
+        hits = np.flatnonzero(seg)
+        if hits.size:
+            hi += int(hits[0])
+            break
+        hi += seg.size
+        if hi >= len(score) - 1:
+            hi = len(score) - 1
+            break
+    lo = peak
+    while True:  # backwards
+        start = max(0, lo - window)
+        seg = above[start:lo][::-1]
+        hits = np.flatnonzero(seg)
+        if hits.size:
+            lo -= int(hits[0])
+            break
+        lo = start
+        if lo <= 0:
+            lo = 0
+            break
     return (lo + hi) // 2
 
 
@@ -196,8 +236,8 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
             band = float(np.percentile(lifted[static], 75)) if static.sum() > 3 else 0.0
             a = lifted - max(band, 0.0)
             d1, d2 = slope[part][:, f], bend[part][:, f]
-            top = float(np.percentile(a, 99))
-            curves[part] = (a, d1, d2, max(top, 1e-9))
+            top = max(float(np.percentile(a, 99)), 1e-9)
+            curves[part] = (a, d1, d2, top, _crossings(a, LIFT_LEVEL * top))
         # A curve counts as a contact point only if that point is slow when the curve is
         # near its ground (a digitigrade "ankle" joint can be lowest in mid-swing).
         contact = {}
@@ -222,23 +262,25 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
         # Candidate stance frames at least a third of a stride apart (cadence may change
         # over the clip); two minima in one long stance are merged below.
         peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
-        stances = [_plateau_centre(score, int(p)) for p in peaks if low[p] < 0.25]
-        floor = 0.1 * float(np.percentile(np.abs(rel[:, f]), 95))
+        spread = float(np.ptp(score))
+        stances = [_plateau_centre(score, int(p), spread) for p in peaks if low[p] < 0.25]
+        rel_f = np.ascontiguousarray(rel[:, f])
+        floor = 0.1 * float(np.percentile(np.abs(rel_f), 95))
         steps = []
         for k in stances:
-            threshold = SPEED_CHANGE * max(abs(float(rel[k, f])), floor)
+            threshold = SPEED_CHANGE * max(abs(float(rel_f[k])), floor)
             ups, downs, found = [], [], True
             for part in ("heel", "toe"):
-                a, d1, d2, top = curves[part]
-                up, ok_up = _curve_event(a, d1, d2, k, LIFT_LEVEL * top, +1)
-                down, ok_down = _curve_event(a, d1, d2, k, LIFT_LEVEL * top, -1)
+                a, d1, d2, _, crossings = curves[part]
+                up, ok_up = _curve_event(a, d1, d2, k, crossings, +1)
+                down, ok_down = _curve_event(a, d1, d2, k, crossings, -1)
                 ups.append(up)
                 downs.append(down)
                 found &= ok_up and ok_down
             lift, liftoff = min(ups), max(ups)
             strike, landing = min(downs), max(downs)
-            z_up = _speed_check(rel[:, f], k, threshold, +1)
-            z_down = _speed_check(rel[:, f], k, threshold, -1)
+            z_up = _speed_check(rel_f, k, threshold, +1, frames)
+            z_down = _speed_check(rel_f, k, threshold, -1, frames)
             if z_up is not None and z_up < lift:
                 lift = max(z_up, k)
             if z_down is not None and z_down > landing:

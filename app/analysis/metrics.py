@@ -3,6 +3,7 @@ and the named gait the pattern most resembles."""
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -141,8 +142,18 @@ def reference_foot(names: tuple[str, ...]) -> str:
     return names[0]
 
 
+@functools.lru_cache(maxsize=1)
 def _preset_phases() -> dict[str, np.ndarray]:
     return {name: preset_phases(name, TETRAPOD_FEET) for name, p in GAIT_PRESETS.items() if p.fits(2)}
+
+
+@functools.lru_cache(maxsize=1)
+def _tetrapod_table() -> tuple[tuple[str, ...], np.ndarray, np.ndarray]:
+    """The two-pair gaits as arrays: names, phases (gaits, 4) and duty factors (gaits,)."""
+    presets = _preset_phases()
+    names = tuple(presets)
+    return (names, np.array([presets[n] for n in names], dtype=np.float64),
+            np.array([GAIT_PRESETS[n].duty_factor for n in names], dtype=np.float64))
 
 
 def wave_lag(phases: dict[str, float]) -> float | None:
@@ -172,17 +183,13 @@ def gait_distance(phases: dict[str, float], duty: float) -> tuple[str, float]:
     """(closest gait, its distance) — see :func:`match_gait`."""
     feet = set(phases)
     if feet >= set(TETRAPOD_FEET):
-        best, best_d = "", math.inf
-        measured = [{k: phases[k] for k in TETRAPOD_FEET}]
-        measured.append(_mirror(measured[0]))
-        for name, preset_phases in _preset_phases().items():
-            expected = dict(zip(TETRAPOD_FEET, preset_phases))
-            for m in measured:
-                d = np.mean([cyclic_distance(m[k], expected[k]) for k in TETRAPOD_FEET])
-                d += abs(duty - GAIT_PRESETS[name].duty_factor)
-                if d < best_d:
-                    best, best_d = name, d
-        return best, float(best_d)
+        first = {k: phases[k] for k in TETRAPOD_FEET}
+        measured = np.array([[m[k] for k in TETRAPOD_FEET] for m in (first, _mirror(first))])  # (2, 4)
+        names, expected, duties = _tetrapod_table()
+        d = (measured[None, :, :] - expected[:, None, :]) % 1.0  # (gaits, leads, feet)
+        score = np.minimum(d, 1.0 - d).mean(axis=2) + np.abs(duty - duties)[:, None]
+        best = int(np.argmin(score.min(axis=1)))  # the first gait, on its better lead, at a tie
+        return names[best], float(score[best].min())
     if {"L", "R"} <= feet:
         lr = phases["R"] - phases["L"]
         scores = {g: cyclic_distance(lr, p) + abs(duty - d) for g, (p, d) in BIPED_GAITS.items()}
@@ -287,15 +294,22 @@ def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, n
     """The gait of each reference-foot cycle, merged into spans of the same gait."""
     ref_strikes = strikes[ref]
     spans: list[GaitSpan] = []
+    # Each foot's complete steps as sorted strike and liftoff times: one binary search per cycle.
+    contacts = []
+    for fe in events:
+        complete = [s for s in fe.steps if s.complete]
+        on = np.array([times[s.strike] for s in complete])
+        off = np.array([times[s.liftoff] for s in complete])
+        order = np.argsort(on, kind="stable")
+        contacts.append((fe.name, on[order], off[order]))
     for t0, t1 in zip(ref_strikes, ref_strikes[1:]):
         phases, duties = {}, []
-        for fe in events:
-            steps = [s for s in fe.steps if s.complete and t0 <= times[s.strike] < t1]
-            if not steps:
+        for name, on, off in contacts:
+            i = int(np.searchsorted(on, t0, side="left"))
+            if i >= len(on) or not on[i] < t1:
                 break
-            s = steps[0]
-            phases[fe.name] = (times[s.strike] - t0) / (t1 - t0)
-            duties.append((times[s.liftoff] - times[s.strike]) / (t1 - t0))
+            phases[name] = (on[i] - t0) / (t1 - t0)
+            duties.append((off[i] - on[i]) / (t1 - t0))
         else:
             name, distance = gait_distance(phases, float(np.mean(duties)))
             if distance > TRANSITION_DISTANCE:

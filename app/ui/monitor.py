@@ -1,9 +1,17 @@
 """The viewer's live gait monitor: a rolling history of the feet and, every half second,
-the gait measured from it by the same analysis as ``gaitlab analyze`` (no GL, no imgui)."""
+the gait measured from it by the same analysis as ``gaitlab analyze`` (no GL, no imgui).
+
+In the viewer the measurement runs in a worker process (:meth:`GaitMonitor.update`): the
+frame only hands over the resampled history (about 0.1 MB) and later picks up the report,
+so a measurement never stalls a frame, whatever the number of feet. :meth:`measure` does
+the same work synchronously (tests, state dumps).
+"""
 
 from __future__ import annotations
 
+import multiprocessing
 from collections import deque
+from concurrent.futures import Future, ProcessPoolExecutor
 
 import numpy as np
 from numpy.typing import NDArray
@@ -36,6 +44,8 @@ class GaitMonitor:
         self._last_measure = -np.inf
         self.hip_height: float | None = None
         self.wanted = False  # set by the Plots panel each frame it is drawn
+        self._executor: ProcessPoolExecutor | None = None
+        self._pending: Future | None = None
 
     def clear(self) -> None:
         for buffer in (self._times, self._heel, self._toe, self._body, self._contact):
@@ -123,6 +133,43 @@ class GaitMonitor:
         return FootTracks(times=uniform - uniform[0], names=self.names, heel=resample(self._heel),
                           toe=resample(self._toe), body=resample(self._body), source="live",
                           hip_height=self.hip_height)
+
+    def update(self, now: float) -> GaitReport | None:
+        """The non-blocking :meth:`measure`: collect a finished measurement if there is
+        one, and start the next in the worker process every ``every`` seconds."""
+        if self._pending is not None and self._pending.done():
+            pending, self._pending = self._pending, None
+            try:
+                report = pending.result()
+            except AnalysisError as exc:
+                self.error = str(exc)
+            except Exception as exc:  # the worker died (e.g. killed): measure again next time
+                self.error = f"measurement failed: {exc}"
+                self._shutdown()
+            else:
+                if report is not None and report.tracks is not None and report.tracks.names == self.names:
+                    self.report, self.error = report, None
+        if self._pending is None and now - self._last_measure >= self.every:
+            self._last_measure = now
+            tracks = self.tracks()
+            if tracks is None:
+                self.error = "collecting motion..."
+            else:
+                if self._executor is None:
+                    self._executor = ProcessPoolExecutor(max_workers=1,
+                                                         mp_context=multiprocessing.get_context("spawn"))
+                self._pending = self._executor.submit(analyze_tracks, tracks)
+        return self.report
+
+    def _shutdown(self) -> None:
+        if self._executor is not None:
+            self._executor.shutdown(wait=False, cancel_futures=True)
+            self._executor = None
+        self._pending = None
+
+    def close(self) -> None:
+        """Stop the worker process (the viewer calls this when its window closes)."""
+        self._shutdown()
 
     def measure(self, now: float, force: bool = False) -> GaitReport | None:
         """Re-measure if ``every`` seconds of animation passed since the last time."""

@@ -309,8 +309,10 @@ class Viewer:
             use_sample = sampled is not None and not state.live.cross_fading
             pose = sampled.pose(sampled.frame_count - 1) if use_sample else state.pose()
             state.follow_creature(pose)
-            if self.monitor.wanted or opts.dump_state is not None:
-                self.monitor.measure(state.live.time)
+            if opts.dump_state is not None:
+                self.monitor.measure(state.live.time)  # in step with the dumped state
+            elif self.monitor.wanted:
+                self.monitor.update(state.live.time)  # in a worker process: never stalls a frame
             self.monitor.wanted = False
             t1 = clock()
             if not minimized and viewport[2] > 0:
@@ -381,6 +383,7 @@ class Viewer:
     def close(self) -> None:
         if self.recording is not None:
             self.recording.cancel()
+        self.monitor.close()
         self.ui.release()
         self.scene.release()
         implot.destroy_context(self.implot_ctx)
