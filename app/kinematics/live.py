@@ -151,10 +151,16 @@ class LiveMotion:
         return np.hypot(ground_speed + phase_speed * a, phase_speed * b).max(axis=-1)
 
     def _steady_swing_speed(self) -> float:
+        """The peak swing speed (m/s) of the rig's gait when steady (depends on the rig only)."""
+        cached = self.__dict__.get("_steady")
+        if cached is not None and cached[0] is self.rig:
+            return cached[1]
         g = self.rig.gait
         travel = g.stride * self.rig.leg_scale
         speed = float(ground_speed(travel, g.duty_factor, g.frequency))
-        return float(self._swing_speed(g.frequency, g.duty_factor, travel, g.step_height, speed, g.wave).max())
+        value = float(self._swing_speed(g.frequency, g.duty_factor, travel, g.step_height, speed, g.wave).max())
+        self._steady = (self.rig, value)
+        return value
 
     def _swing_travel(self) -> NDArray[np.float64]:
         """Metres each foot's current (or, while planted, next) swing covers relative to its

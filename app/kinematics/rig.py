@@ -12,6 +12,8 @@ the hip and the foot's rest position, so the knee stands up and out.
 
 from __future__ import annotations
 
+import functools
+
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -151,7 +153,7 @@ class Rig:
     def body_length(self) -> float:
         return self.body.length
 
-    @property
+    @functools.cached_property
     def leg_scale(self) -> float:
         """The mean leg rest length (m): the unit of the gait's stride."""
         return float(self.l_rest.mean())
