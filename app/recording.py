@@ -129,7 +129,8 @@ class Recording:
             elif self.format == "gif":
                 # One palette for the whole clip, from frames spread over it.
                 samples = [self._render(i) for i in sorted({0, self.total // 3, (2 * self.total) // 3})]
-                self._writer = GifWriter(request.output, view.size, request.fps, samples, request.gif_quality)
+                self._writer = GifWriter(request.output, view.size, request.fps, samples, request.gif_quality,
+                                         frame_count=self.total)
         except OSError as exc:
             self.cancel()
             raise cannot_write(request.output, exc) from None

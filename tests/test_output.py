@@ -58,7 +58,7 @@ def test_best_gif_decodes_to_the_palette_mapped_frames(tmp_path: Path, monkeypat
         monkeypatch.setattr(gif_module, "gifsicle_path", lambda: None)
     frames = moving_frames(12)
     samples = [frames[0], frames[4], frames[8]]
-    writer = GifWriter(tmp_path / "a.gif", (64, 48), 25.0, samples, "best")
+    writer = GifWriter(tmp_path / "a.gif", (64, 48), 25.0, samples, "best", frame_count=12)
     for f in frames:
         writer.add(f)
     writer.close(ok=True)
@@ -78,7 +78,7 @@ def test_smaller_qualities_stay_close_and_shrink(tmp_path: Path) -> None:
     frames = moving_frames(20, (160, 120))
     sizes = {}
     for quality in ("best", "good", "small"):
-        writer = GifWriter(tmp_path / f"{quality}.gif", (160, 120), 25.0, frames[::7], quality)
+        writer = GifWriter(tmp_path / f"{quality}.gif", (160, 120), 25.0, frames[::7], quality, frame_count=20)
         for f in frames:
             writer.add(f)
         writer.close(ok=True)
@@ -91,13 +91,35 @@ def test_smaller_qualities_stay_close_and_shrink(tmp_path: Path) -> None:
 
 def test_unchanged_frames_still_take_their_time(tmp_path: Path) -> None:
     frames = [moving_frames(1)[0]] * 5
-    writer = GifWriter(tmp_path / "still.gif", (64, 48), 10.0, frames[:1], "best")
+    writer = GifWriter(tmp_path / "still.gif", (64, 48), 10.0, frames[:1], "best", frame_count=5)
     for f in frames:
         writer.add(f)
     writer.close(ok=True)
     got, durations = decoded(tmp_path / "still.gif")
     assert sum(durations) == 500  # gifsicle may merge the repeats into one frame of 500 ms
     assert all(np.array_equal(g, got[0]) for g in got)
+
+
+@pytest.mark.parametrize("count", [1, 199, 200, 201, 450])
+def test_a_gif_optimised_in_parts_is_whole_and_exact(tmp_path: Path, monkeypatch, count: int) -> None:
+    """Long GIFs are optimised by gifsicle part by part while rendering goes on, then
+    joined: every frame and delay survives the parts' seams."""
+    if gif_module.gifsicle_path() is None:
+        pytest.skip("gifsicle is not installed")
+    frames = moving_frames(count, (32, 24))
+    samples = frames[:1]
+    writer = GifWriter(tmp_path / "long.gif", (32, 24), 30.0, samples, "best", frame_count=count)
+    for f in frames:
+        writer.add(f)
+    writer.close(ok=True)
+    got, durations = decoded(tmp_path / "long.gif")
+    expected = palette_mapped(frames, samples, 255)
+    assert sum(durations) == sum(gif_durations(count, 30.0))
+    if len(got) == count:  # gifsicle may merge repeated frames (this clip has none)
+        assert all(np.array_equal(g, e) for g, e in zip(got, expected))
+    else:
+        pytest.fail(f"{len(got)} frames decoded, {count} written")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["long.gif"]
 
 
 def test_cancelled_writers_leave_nothing(tmp_path: Path) -> None:

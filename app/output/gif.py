@@ -5,9 +5,10 @@ Memory stays at a couple of frames whatever the clip's length: each frame is map
 palette chosen up front from a few sample frames (so colours never flicker), reduced to
 the rectangle that changed since the previous frame with unchanged pixels transparent,
 and LZW-encoded by Pillow (its frame-by-frame GIF API) straight into the file. When
-``gifsicle`` is installed it then re-optimises the file (``-O2``, and ``--lossy`` for the
-smaller qualities), which about halves a typical clip; without it the GIF is still
-written, only larger.
+``gifsicle`` is installed it re-optimises the frames (``-O2``, and ``--lossy`` for the
+smaller qualities), which about halves a typical clip: part by part, in the background
+while later frames render, then joins the parts. Without it the GIF is still written,
+only larger.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Literal
@@ -30,7 +32,8 @@ GIF_MAX_FPS = 50  # browsers slow down frame delays under 20 ms
 GifQuality = Literal["best", "good", "small"]
 GIF_QUALITIES: tuple[str, ...] = ("best", "good", "small")
 DEFAULT_GIF_QUALITY: GifQuality = "good"
-GIFSICLE_MAX_BYTES = 96 * 2**20  # gifsicle holds the whole file in memory: skip it above this
+GIFSICLE_MAX_PIXELS = 3000 * 480 * 360  # frames x width x height: gifsicle joins it all in memory
+CHUNK_FRAMES = 200  # frames per part optimised by gifsicle while later ones render
 
 
 @dataclass(frozen=True)
@@ -79,12 +82,16 @@ class GifWriter:
     """Streams (H, W, 3) uint8 frames into a looping GIF, atomically.
 
     ``palette_samples``: a few frames representative of the clip (their colours make the
-    palette). ``quality``: one of :data:`GIF_QUALITIES`. After :meth:`close`,
-    :attr:`notes` says what, if anything, the user should know (e.g. gifsicle missing).
+    palette). ``quality``: one of :data:`GIF_QUALITIES`. ``frame_count``: how many frames
+    will come, if known; clips up to :data:`GIFSICLE_MAX_PIXELS` pixel-frames are
+    optimised by gifsicle in chunks of :data:`CHUNK_FRAMES` while later frames are still
+    rendering, then joined. After :meth:`close`, :attr:`notes` says what, if anything, the
+    user should know (e.g. gifsicle missing).
     """
 
     def __init__(self, path: str | os.PathLike[str], size: tuple[int, int], fps: float,
-                 palette_samples: list[NDArray[np.uint8]], quality: GifQuality = DEFAULT_GIF_QUALITY) -> None:
+                 palette_samples: list[NDArray[np.uint8]], quality: GifQuality = DEFAULT_GIF_QUALITY,
+                 frame_count: int | None = None) -> None:
         if quality not in GIF_PROFILES:
             raise OutputError(f"GIF quality {quality!r}: choose one of {', '.join(GIF_QUALITIES)}")
         if not palette_samples:
@@ -95,20 +102,53 @@ class GifWriter:
         self.notes: list[str] = []
         self._palette = choose_palette(palette_samples, self.profile.colors)
         self._transparent = len(self._palette.getpalette()) // 3  # the first index after the colours
-        self._atomic = AtomicPath(path)
-        self._file: IO[bytes] | None = open(self._atomic.tmp, "wb")
+        self.final = Path(path)
+        self._gifsicle = gifsicle_path()
+        pixels = (frame_count or 0) * self.size[0] * self.size[1]
+        if self._gifsicle is None:
+            self.notes.append("gifsicle is not installed, so this GIF is about twice the size it could be "
+                              "(install it: apt install gifsicle, brew install gifsicle)")
+        elif frame_count is None or pixels > GIFSICLE_MAX_PIXELS:
+            self.notes.append(f"a long GIF ({frame_count} frames of {self.size[0]}x{self.size[1]}) is not optimised "
+                              "by gifsicle, which would hold it all in memory; write .mp4 for long takes")
+            self._gifsicle = None
+        self._chunks: list[_Chunk] = []  # written (and being optimised), in order
+        self._file: IO[bytes] | None = None
+        self._in_chunk = 0
         self._previous: NDArray[np.uint8] | None = None
         self._count = 0
+        self._output = AtomicPath(path)  # checks the folder; the joined result goes here
         self._pipe = BackgroundWriter(self._encode, name="gif")
 
     # -- the worker thread ------------------------------------------------------------
 
+    def _start_chunk(self) -> None:
+        chunk = _Chunk(AtomicPath(self.final))
+        self._chunks.append(chunk)
+        self._file = open(chunk.raw.tmp, "wb")
+        self._in_chunk = 0
+        self._previous = None  # every chunk opens with a whole frame (it is a GIF of its own)
+
+    def _end_chunk(self) -> None:
+        """Close the chunk being written and hand it to gifsicle (in the background)."""
+        assert self._file is not None
+        self._file.write(b";")  # the GIF trailer
+        self._file.close()
+        self._file = None
+        if self._gifsicle is not None:
+            running = [c for c in self._chunks if c.process is not None and c.process.poll() is None]
+            if len(running) >= 2:  # gifsicle is behind: let it catch up before adding more
+                running[0].process.wait()
+            self._chunks[-1].optimise(self._gifsicle, self.profile.lossy)
+
     def _encode(self, frame: NDArray[np.uint8]) -> None:
         from PIL import GifImagePlugin, Image
 
+        if self._file is None:
+            self._start_chunk()
+        assert self._file is not None
         indices = np.asarray(Image.fromarray(frame).quantize(palette=self._palette, dither=Image.Dither.NONE))
         delay = _frame_duration(self._count, self.fps)
-        assert self._file is not None
         if self._previous is None:
             first = Image.fromarray(indices, "P")
             first.putpalette(self._palette.getpalette())
@@ -129,71 +169,103 @@ class GifWriter:
         self._file.write(b"".join(blocks))
         self._previous = indices
         self._count += 1
+        self._in_chunk += 1
+        if self._gifsicle is not None and self._in_chunk >= CHUNK_FRAMES:
+            self._end_chunk()
 
     # -- the caller's thread ----------------------------------------------------------
 
     def add(self, frame: NDArray[np.uint8]) -> None:
         h, w = frame.shape[:2]
         if (w, h) != self.size:
-            raise OutputError(f"{self._atomic.final}: frame is {w}x{h}, the GIF is {self.size[0]}x{self.size[1]}")
+            raise OutputError(f"{self.final}: frame is {w}x{h}, the GIF is {self.size[0]}x{self.size[1]}")
         self._pipe.put(frame)
 
     def close(self, ok: bool) -> Path | None:
-        """Finish the file and commit it when ``ok``; otherwise delete it."""
+        """Finish the file and commit it when ``ok``; otherwise delete everything written."""
         if not ok:
             self._pipe.abort()
-            self._close_file()
-            self._atomic.discard()
+            self._discard()
             return None
         try:
             self._pipe.close()
             if self._count == 0:
-                raise OutputError(f"{self._atomic.final}: no frames to write")
-            assert self._file is not None
-            self._file.write(b";")  # the GIF trailer
-            self._close_file()
-            self._optimise()
+                raise OutputError(f"{self.final}: no frames to write")
+            if self._file is not None:
+                self._end_chunk()
+            self._join()
         except OSError as exc:
-            self._close_file()
-            self._atomic.discard()
-            raise cannot_write(self._atomic.final, exc) from None
+            self._discard()
+            raise cannot_write(self.final, exc) from None
         except BaseException:
-            self._close_file()
-            self._atomic.discard()
+            self._discard()
             raise
-        return self._atomic.commit()
+        for chunk in self._chunks:
+            chunk.discard()
+        return self._output.commit()
 
-    def _close_file(self) -> None:
+    def _join(self) -> None:
+        """The chunks (optimised where gifsicle ran) as one GIF at the output's temporary path."""
+        parts = []
+        for chunk in self._chunks:
+            parts.append(chunk.result(self.notes))
+        if len(parts) == 1:
+            os.replace(parts[0], self._output.tmp)
+            return
+        assert self._gifsicle is not None  # several chunks only when gifsicle optimises them
+        done = subprocess.run([self._gifsicle, "--no-warnings", "--merge", *map(str, parts), "-o",
+                               str(self._output.tmp)], stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.PIPE)
+        if done.returncode != 0:
+            detail = done.stderr.decode("utf-8", "replace").strip().splitlines()
+            raise OutputError(f"{self.final}: cannot join the GIF's parts with gifsicle: "
+                              f"{detail[-1] if detail else done.returncode}")
+
+    def _discard(self) -> None:
         if self._file is not None:
             self._file.close()
             self._file = None
+        for chunk in self._chunks:
+            chunk.discard()
+        self._output.discard()
 
-    def _optimise(self) -> None:
-        """Run gifsicle over the written file, in place (through a second temporary file)."""
-        exe = gifsicle_path()
-        if exe is None:
-            self.notes.append("gifsicle is not installed, so this GIF is about twice the size it could be "
-                              "(install it: apt install gifsicle, brew install gifsicle)")
-            return
-        size = self._atomic.tmp.stat().st_size
-        if size > GIFSICLE_MAX_BYTES:
-            self.notes.append(f"the GIF is {size / 2**20:.0f} MiB before optimisation; gifsicle, which would hold "
-                              "it all in memory, was skipped (write .mp4 for long takes)")
-            return
-        optimised = AtomicPath(self._atomic.final)
-        command = [exe, "--no-warnings", "-O2"]
-        if self.profile.lossy:
-            command.append(f"--lossy={self.profile.lossy}")
-        try:
-            done = subprocess.run([*command, str(self._atomic.tmp), "-o", str(optimised.tmp)],
-                                  stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-        except BaseException:
-            optimised.discard()
-            raise
-        if done.returncode != 0 or optimised.tmp.stat().st_size == 0:
-            optimised.discard()
-            detail = done.stderr.decode("utf-8", "replace").strip().splitlines()
-            self.notes.append(f"gifsicle failed ({detail[-1] if detail else done.returncode}); "
-                              "the GIF was written unoptimised")
-            return
-        os.replace(optimised.tmp, self._atomic.tmp)
+
+class _Chunk:
+    """Part of a GIF: the frames as written, and gifsicle's optimised copy when it runs."""
+
+    def __init__(self, raw: AtomicPath) -> None:
+        self.raw = raw
+        self.optimised: AtomicPath | None = None
+        self.process: subprocess.Popen | None = None
+        self._log: IO[bytes] | None = None
+
+    def optimise(self, exe: str, lossy: int) -> None:
+        self.optimised = AtomicPath(self.raw.final)
+        self._log = tempfile.TemporaryFile()
+        command = [exe, "--no-warnings", "-O2"] + ([f"--lossy={lossy}"] if lossy else [])
+        self.process = subprocess.Popen([*command, str(self.raw.tmp), "-o", str(self.optimised.tmp)],
+                                        stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=self._log,
+                                        start_new_session=True)
+
+    def result(self, notes: list[str]) -> Path:
+        """The best finished file of this chunk (waits for gifsicle)."""
+        if self.process is None or self.optimised is None:
+            return self.raw.tmp
+        status = self.process.wait()
+        if status == 0 and self.optimised.tmp.stat().st_size > 0:
+            return self.optimised.tmp
+        assert self._log is not None
+        self._log.seek(0)
+        detail = self._log.read().decode("utf-8", "replace").strip().splitlines()
+        notes.append(f"gifsicle failed ({detail[-1] if detail else status}); part of the GIF is unoptimised")
+        return self.raw.tmp
+
+    def discard(self) -> None:
+        if self.process is not None and self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
+        if self._log is not None:
+            self._log.close()
+        self.raw.discard()
+        if self.optimised is not None:
+            self.optimised.discard()
