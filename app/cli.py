@@ -532,9 +532,12 @@ def cmd_analyze(args: argparse.Namespace) -> int:
 COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "analyze": cmd_analyze, "view": cmd_view}
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, raised like Ctrl-C so the same clean-up runs (exit status 143)."""
+
+
 def _terminate(signum: int, frame: object) -> None:
-    """SIGTERM ends a run as Ctrl-C does: through the clean-up of partial outputs."""
-    raise KeyboardInterrupt
+    raise Terminated
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -553,9 +556,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     except GaitlabError as exc:
         print(f"gaitlab {args.command}: error: {exc}", file=sys.stderr)
         return EXIT_BAD_INPUT
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:
         print(f"gaitlab {args.command}: interrupted; no output written", file=sys.stderr)
-        return 130
+        return 143 if isinstance(exc, Terminated) else 130
 
 
 if __name__ == "__main__":

@@ -36,11 +36,11 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
     """A TOML file's contents; :class:`TomlProblem` for unreadable, oversized or invalid files."""
     path = Path(path)
     try:
-        size = path.stat().st_size
-        if size > MAX_TOML_BYTES:
-            raise TomlProblem(f"the file is {size / 2**20:.0f} MiB; TOML files up to "
-                              f"{MAX_TOML_BYTES // 2**20} MiB are read")
-        text = path.read_bytes().decode("utf-8")
+        with open(path, "rb") as fh:
+            data = fh.read(MAX_TOML_BYTES + 1)  # not stat(): pipes and /proc files say 0
+        if len(data) > MAX_TOML_BYTES:
+            raise TomlProblem(f"the file is over {MAX_TOML_BYTES // 2**20} MiB; TOML files up to that size are read")
+        text = data.decode("utf-8")
     except OSError as exc:
         raise TomlProblem(f"cannot read: {exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:

@@ -16,6 +16,7 @@ from PIL import Image
 
 from app.errors import OutputError
 from app.output import (AtomicPath, GifWriter, Mp4Writer, gif_durations, remove_stale_partials, stale_partials)
+from app.output import files as files_module
 from app.output import gif as gif_module
 
 
@@ -122,6 +123,33 @@ def test_a_gif_optimised_in_parts_is_whole_and_exact(tmp_path: Path, monkeypatch
     assert sorted(p.name for p in tmp_path.iterdir()) == ["long.gif"]
 
 
+def test_cancelling_while_gifsicle_works_is_quick_and_clean(tmp_path: Path, monkeypatch) -> None:
+    """A slow gifsicle (here one that never finishes) neither delays a cancel nor leaves
+    processes or files behind; the writer thread never waits for it either."""
+    import time as clock
+
+    fake = tmp_path / "bin" / "gifsicle"
+    fake.parent.mkdir()
+    fake.write_text("#!/bin/sh\nexec sleep 60\n")
+    fake.chmod(0o755)
+    monkeypatch.setattr(gif_module, "gifsicle_path", lambda: str(fake))
+    out = tmp_path / "out"
+    out.mkdir()
+    frames = moving_frames(1000, (32, 24))
+    writer = GifWriter(out / "a.gif", (32, 24), 30.0, frames[:1], "good", frame_count=1000)
+    t0 = clock.monotonic()
+    for f in frames:  # five parts: gifsicle "runs" on two, three wait; adding frames never blocks on it
+        writer.add(f)
+    assert clock.monotonic() - t0 < 20
+    processes = [c.process for c in writer._chunks if c.process is not None]
+    assert len(processes) == 2
+    t0 = clock.monotonic()
+    writer.close(ok=False)
+    assert clock.monotonic() - t0 < 2.0
+    assert all(p.poll() is not None for p in processes)
+    assert list(out.iterdir()) == []
+
+
 def test_cancelled_writers_leave_nothing(tmp_path: Path) -> None:
     frames = moving_frames(4)
     gif = GifWriter(tmp_path / "a.gif", (64, 48), 25.0, frames[:1])
@@ -169,15 +197,17 @@ def test_a_frame_of_the_wrong_size_is_refused(tmp_path: Path) -> None:
 def test_partials_of_dead_processes_are_cleaned_and_live_ones_kept(tmp_path: Path) -> None:
     dead = subprocess.Popen([sys.executable, "-c", "pass"])
     dead.wait()
-    stale = tmp_path / f".walk.{dead.pid}-abc123.partial.gif"
-    live = tmp_path / f".walk.{os.getppid()}-def456.partial.gif"  # our parent is running
-    other = tmp_path / f".other.{dead.pid}-abc123.partial.gif"  # another output's: not ours to touch
-    for p in (stale, live, other):
+    host = files_module._host()
+    stale = tmp_path / f".walk.{host}_{dead.pid}-abc123.partial.gif"
+    live = tmp_path / f".walk.{host}_{os.getppid()}-def456.partial.gif"  # our parent is running
+    other = tmp_path / f".other.{host}_{dead.pid}-abc123.partial.gif"  # another output's: not ours to touch
+    remote = tmp_path / f".walk.elsewhere_{dead.pid}-abc123.partial.gif"  # another machine's writer
+    for p in (stale, live, other, remote):
         p.write_bytes(b"GIF89a")
     assert stale_partials(tmp_path / "walk.gif") == [stale]
     with AtomicPath(tmp_path / "walk.gif") as out:
         out.tmp.write_bytes(b"x")
-    assert not stale.exists() and live.exists() and other.exists()
+    assert not stale.exists() and live.exists() and other.exists() and remote.exists()
     assert remove_stale_partials(tmp_path / "other.gif") == 1
 
 
@@ -210,7 +240,7 @@ def test_interrupted_render_leaves_nothing(tmp_path: Path, output: str, sig: sig
     wait_for_partial(tmp_path, process)
     process.send_signal(sig)
     _, err = process.communicate(timeout=60)
-    assert process.returncode == 130
+    assert process.returncode == {signal.SIGINT: 130, signal.SIGTERM: 143}[sig]
     assert "interrupted; no output written" in err and "Traceback" not in err
     assert list(tmp_path.iterdir()) == []
 

@@ -149,12 +149,12 @@ def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
     """Parse a BVH file. Raises :class:`InputError` naming the file and line."""
     path = os.fspath(path)
     try:
-        size = os.path.getsize(path)
-        if size > MAX_FILE_BYTES:
-            raise InputError(f"{path}: the file is {size / 2**20:.0f} MiB; BVH files up to "
-                             f"{MAX_FILE_BYTES // 2**20} MiB are read")
-        with open(path, encoding="utf-8", errors="replace") as fh:
-            text = fh.read()
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_FILE_BYTES + 1)  # not stat(): pipes and /proc files say 0
+        if len(raw) > MAX_FILE_BYTES:
+            raise InputError(f"{path}: the file is over {MAX_FILE_BYTES // 2**20} MiB; BVH files up to that "
+                             "size are read")
+        text = raw.decode("utf-8", errors="replace")
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
     lines = text.splitlines()

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import csv
+import io
 import math
 import os
 import re
@@ -33,6 +34,7 @@ KNOWN_RIGS: tuple[tuple[str, dict[str, tuple[str, tuple[str, ...]]]], ...] = (
 
 
 MAX_FEET = 64
+MAX_CSV_BYTES = 512 * 2**20
 MAX_COORDINATE = 1e7  # larger positions or times are not motion data (and overflow the analysis)
 
 
@@ -171,8 +173,12 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
     ``NAME_y``, ``NAME_z`` (heel / ankle) and optionally ``NAME_toe_x`` .. ``NAME_toe_z``;
     optionally ``body_x`` .. ``body_z`` (default: the mean of the feet)."""
     try:
-        with open(path, newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
+        with open(path, "rb") as fh:
+            raw = fh.read(MAX_CSV_BYTES + 1)
+        if len(raw) > MAX_CSV_BYTES:
+            raise InputError(f"{path}: the file is over {MAX_CSV_BYTES // 2**20} MiB; CSV files up to that size "
+                             "are read")
+        rows = list(csv.reader(io.StringIO(raw.decode("utf-8"), newline="")))
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
     except (csv.Error, UnicodeDecodeError) as exc:

@@ -23,7 +23,8 @@ class BackgroundWriter:
     def __init__(self, consume: Callable[[NDArray[np.uint8]], None], depth: int = 4, name: str = "writer") -> None:
         self._consume = consume
         self._queue: queue.Queue = queue.Queue(maxsize=depth)
-        self._error: BaseException | None = None
+        self._error: BaseException | None = None  # raised once, in the caller's thread
+        self.failed = False  # sticky: once the consumer failed, close() never reports success
         self._aborted = threading.Event()
         self._thread = threading.Thread(target=self._run, name=f"gaitlab-{name}", daemon=True)
         self._thread.start()
@@ -38,13 +39,16 @@ class BackgroundWriter:
             try:
                 self._consume(item)
             except BaseException as exc:  # handed to the caller's thread
+                self._aborted.set()
+                self.failed = True
                 self._error = exc
 
     def _raise(self) -> None:
         if self._error is not None:
             error, self._error = self._error, None
-            self._aborted.set()
             raise error
+        if self.failed:
+            raise RuntimeError("the background writer failed earlier")
 
     def put(self, frame: NDArray[np.uint8]) -> None:
         self._raise()
@@ -63,8 +67,15 @@ class BackgroundWriter:
         self._thread.join()
         self._raise()
 
+    @property
+    def aborted(self) -> bool:
+        """True once :meth:`abort` was called or the consumer failed (consumers poll it
+        to stop long waits early)."""
+        return self._aborted.is_set()
+
     def abort(self) -> None:
-        """Drop queued frames and stop the thread (errors are ignored)."""
+        """Drop queued frames and stop the thread (errors are ignored). The consumer should
+        return promptly once :attr:`aborted` is set."""
         self._aborted.set()
         while True:
             try:
@@ -75,5 +86,5 @@ class BackgroundWriter:
             self._queue.put_nowait(_DONE)
         except queue.Full:
             pass
-        self._thread.join(timeout=5.0)
+        self._thread.join()
         self._error = None

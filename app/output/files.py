@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import os
 import re
+import socket
 import tempfile
 from pathlib import Path
 from typing import Literal
@@ -20,7 +21,14 @@ from ..errors import OutputError
 OutputFormat = Literal["png", "gif", "mp4"]
 OUTPUT_FORMATS: tuple[str, ...] = ("png", "gif", "mp4")
 MAX_SIZE = 8192
-PARTIAL = ".partial"  # temporary files are named .STEM.PID-RANDOM.partial.SUFFIX
+PARTIAL = ".partial"  # temporary files are named .STEM.HOST_PID-RANDOM.partial.SUFFIX
+
+
+def _host() -> str:
+    """This machine's name as a file-name part (a folder may be shared between machines or
+    containers, whose process ids mean nothing here)."""
+    name = re.sub(r"[^A-Za-z0-9]", "", socket.gethostname())[:24]
+    return name or "host"
 
 
 def output_format(path: str | os.PathLike[str]) -> OutputFormat:
@@ -73,10 +81,12 @@ def _process_alive(pid: int) -> bool:
 
 
 def stale_partials(final: str | os.PathLike[str]) -> list[Path]:
-    """Temporary files left next to ``final`` by writers that are no longer running."""
+    """Temporary files left next to ``final`` by writers on this machine that are no longer
+    running (another machine's are never touched: its process ids mean nothing here)."""
     final = Path(final)
     parent = final.parent if str(final.parent) else Path(".")
-    pattern = re.compile(rf"^\.{re.escape(final.stem)}\.(\d+)-[^.]*{re.escape(PARTIAL)}{re.escape(final.suffix)}$")
+    pattern = re.compile(rf"^\.{re.escape(final.stem)}\.{re.escape(_host())}_(\d+)-[^.]*{re.escape(PARTIAL)}"
+                         rf"{re.escape(final.suffix)}$")
     found = []
     try:
         names = os.listdir(parent)
@@ -109,7 +119,7 @@ class AtomicPath:
         check_output_dir(self.final)
         remove_stale_partials(self.final)
         try:
-            fd, tmp = tempfile.mkstemp(prefix=f".{self.final.stem}.{os.getpid()}-",
+            fd, tmp = tempfile.mkstemp(prefix=f".{self.final.stem}.{_host()}_{os.getpid()}-",
                                        suffix=f"{PARTIAL}{self.final.suffix}", dir=self.final.parent)
         except OSError as exc:
             raise cannot_write(self.final, exc) from None

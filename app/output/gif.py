@@ -17,6 +17,8 @@ import os
 import shutil
 import subprocess
 import tempfile
+import threading
+import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import IO, Literal
@@ -34,6 +36,7 @@ GIF_QUALITIES: tuple[str, ...] = ("best", "good", "small")
 DEFAULT_GIF_QUALITY: GifQuality = "good"
 GIFSICLE_MAX_PIXELS = 3000 * 480 * 360  # frames x width x height: gifsicle joins it all in memory
 CHUNK_FRAMES = 200  # frames per part optimised by gifsicle while later ones render
+MAX_GIFSICLES = 2  # parts optimised at once
 
 
 @dataclass(frozen=True)
@@ -101,7 +104,11 @@ class GifWriter:
         self.fps = float(fps)
         self.notes: list[str] = []
         self._palette = choose_palette(palette_samples, self.profile.colors)
-        self._transparent = len(self._palette.getpalette()) // 3  # the first index after the colours
+        colours = self._palette.getpalette()
+        count = len(colours) // 3
+        if count & (count - 1) == 0:  # a power of two fills its colour table: make room for one more
+            self._palette.putpalette(colours + colours[-3:])
+        self._transparent = count  # the first index after the colours: inside the table
         self.final = Path(path)
         self._gifsicle = gifsicle_path()
         pixels = (frame_count or 0) * self.size[0] * self.size[1]
@@ -113,6 +120,7 @@ class GifWriter:
                               "by gifsicle, which would hold it all in memory; write .mp4 for long takes")
             self._gifsicle = None
         self._chunks: list[_Chunk] = []  # written (and being optimised), in order
+        self._lock = threading.Lock()  # the chunk list is read by close() and the worker thread
         self._file: IO[bytes] | None = None
         self._in_chunk = 0
         self._previous: NDArray[np.uint8] | None = None
@@ -124,22 +132,37 @@ class GifWriter:
 
     def _start_chunk(self) -> None:
         chunk = _Chunk(AtomicPath(self.final))
-        self._chunks.append(chunk)
+        with self._lock:
+            self._chunks.append(chunk)
         self._file = open(chunk.raw.tmp, "wb")
         self._in_chunk = 0
         self._previous = None  # every chunk opens with a whole frame (it is a GIF of its own)
 
     def _end_chunk(self) -> None:
-        """Close the chunk being written and hand it to gifsicle (in the background)."""
+        """Close the chunk being written and queue it for gifsicle (never waits for it)."""
         assert self._file is not None
         self._file.write(b";")  # the GIF trailer
         self._file.close()
         self._file = None
         if self._gifsicle is not None:
-            running = [c for c in self._chunks if c.process is not None and c.process.poll() is None]
-            if len(running) >= 2:  # gifsicle is behind: let it catch up before adding more
-                running[0].process.wait()
-            self._chunks[-1].optimise(self._gifsicle, self.profile.lossy)
+            self._chunks[-1].waiting = True
+            self._start_waiting()
+
+    def _start_waiting(self) -> None:
+        """Start gifsicle on waiting chunks, oldest first, at most two running at once."""
+        assert self._gifsicle is not None
+        with self._lock:
+            running = sum(c.running for c in self._chunks)
+            for chunk in self._chunks:
+                if running >= MAX_GIFSICLES or self._pipe_aborted():
+                    break
+                if chunk.waiting:
+                    chunk.optimise(self._gifsicle, self.profile.lossy)
+                    running += 1
+
+    def _pipe_aborted(self) -> bool:
+        pipe = getattr(self, "_pipe", None)
+        return pipe is not None and pipe.aborted
 
     def _encode(self, frame: NDArray[np.uint8]) -> None:
         from PIL import GifImagePlugin, Image
@@ -184,6 +207,7 @@ class GifWriter:
     def close(self, ok: bool) -> Path | None:
         """Finish the file and commit it when ``ok``; otherwise delete everything written."""
         if not ok:
+            self._kill_chunks()  # first, so nothing the worker waits on keeps running
             self._pipe.abort()
             self._discard()
             return None
@@ -198,17 +222,27 @@ class GifWriter:
             self._discard()
             raise cannot_write(self.final, exc) from None
         except BaseException:
+            self._kill_chunks()
+            self._pipe.abort()
             self._discard()
             raise
         for chunk in self._chunks:
             chunk.discard()
         return self._output.commit()
 
+    def _kill_chunks(self) -> None:
+        with self._lock:
+            for chunk in self._chunks:
+                chunk.waiting = False
+                chunk.kill()
+
     def _join(self) -> None:
         """The chunks (optimised where gifsicle ran) as one GIF at the output's temporary path."""
-        parts = []
-        for chunk in self._chunks:
-            parts.append(chunk.result(self.notes))
+        if self._gifsicle is not None:
+            while not self._pipe_aborted() and any(c.waiting or c.running for c in self._chunks):
+                self._start_waiting()
+                time.sleep(0.02)
+        parts = [chunk.result(self.notes) for chunk in self._chunks]
         if len(parts) == 1:
             os.replace(parts[0], self._output.tmp)
             return
@@ -237,9 +271,21 @@ class _Chunk:
         self.raw = raw
         self.optimised: AtomicPath | None = None
         self.process: subprocess.Popen | None = None
+        self.waiting = False  # written, gifsicle not started yet
         self._log: IO[bytes] | None = None
 
+    @property
+    def running(self) -> bool:
+        return self.process is not None and self.process.poll() is None
+
+    def kill(self) -> None:
+        if self.running:
+            assert self.process is not None
+            self.process.kill()
+            self.process.wait()
+
     def optimise(self, exe: str, lossy: int) -> None:
+        self.waiting = False
         self.optimised = AtomicPath(self.raw.final)
         self._log = tempfile.TemporaryFile()
         command = [exe, "--no-warnings", "-O2"] + ([f"--lossy={lossy}"] if lossy else [])
@@ -261,9 +307,7 @@ class _Chunk:
         return self.raw.tmp
 
     def discard(self) -> None:
-        if self.process is not None and self.process.poll() is None:
-            self.process.kill()
-            self.process.wait()
+        self.kill()
         if self._log is not None:
             self._log.close()
         self.raw.discard()

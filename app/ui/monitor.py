@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import multiprocessing
 from collections import deque
+import signal
 from concurrent.futures import Future, ProcessPoolExecutor
+from concurrent.futures.process import BrokenProcessPool
 
 import numpy as np
 from numpy.typing import NDArray
@@ -22,6 +24,11 @@ from ..kinematics.live import stack_inputs
 from ..kinematics.motion import Motion, Pose, solve_motion
 from ..kinematics.rig import Rig
 from ..kinematics.world import World
+
+def _ignore_interrupts() -> None:
+    """In the measuring process: Ctrl-C is the viewer's to handle (it stops the worker)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
 
 ANALYSIS_FPS = 240.0  # the history is resampled to this rate before analysis (the sampling rate)
 
@@ -52,6 +59,9 @@ class GaitMonitor:
             buffer.clear()
         self.report = None
         self._last_measure = -np.inf
+        if self._pending is not None:  # a measurement of the motion just cleared: drop it
+            self._pending.cancel()
+            self._pending = None
 
     def record_samples(self, rig: Rig, world: World, samples: list[dict],
                        frequency: float | None = None) -> Motion | None:
@@ -143,9 +153,11 @@ class GaitMonitor:
                 report = pending.result()
             except AnalysisError as exc:
                 self.error = str(exc)
-            except Exception as exc:  # the worker died (e.g. killed): measure again next time
-                self.error = f"measurement failed: {exc}"
+            except BrokenProcessPool:  # the worker died (e.g. killed): a new one next time
+                self.error = "the measuring process stopped; starting another"
                 self._shutdown()
+            except Exception as exc:  # a bug in the analysis: say so in one line, keep the worker
+                self.error = f"measurement failed: {type(exc).__name__}: {str(exc).splitlines()[0][:160] if str(exc) else ''}"
             else:
                 if report is not None and report.tracks is not None and report.tracks.names == self.names:
                     self.report, self.error = report, None
@@ -156,7 +168,7 @@ class GaitMonitor:
                 self.error = "collecting motion..."
             else:
                 if self._executor is None:
-                    self._executor = ProcessPoolExecutor(max_workers=1,
+                    self._executor = ProcessPoolExecutor(max_workers=1, initializer=_ignore_interrupts,
                                                          mp_context=multiprocessing.get_context("spawn"))
                 self._pending = self._executor.submit(analyze_tracks, tracks)
         return self.report

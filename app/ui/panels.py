@@ -13,6 +13,7 @@ import numpy as np
 from imgui_bundle import imgui, implot
 
 from ..gaits import GAIT_PRESETS, gaits_for
+from ..output import GIF_QUALITIES, MAX_CRF
 from ..render.camera import CAMERA_PRESETS
 from ..choices import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
 from ..spec import rule_for
@@ -384,6 +385,20 @@ def record_panel(state: ViewerState, pc: PanelContext) -> None:
             if imgui.radio_button(fmt, r.format == fmt):
                 r.format = fmt  # type: ignore[assignment]
             imgui.same_line()
+        imgui.table_next_column()
+        if r.format == "gif":
+            _label("quality", "GIF size against fidelity: good is half the size of best with no visible loss; "
+                              "small is smaller still, with some grain")
+            for i, quality in enumerate(GIF_QUALITIES):
+                if i:
+                    imgui.same_line()
+                if imgui.radio_button(quality, r.gif_quality == quality):
+                    r.gif_quality = quality  # type: ignore[assignment]
+        else:
+            _label("quality", "H.264 constant rate factor: lower is better and larger; 18 looks like the "
+                              "original, each +6 roughly halves the file")
+            imgui.set_next_item_width(-1)
+            _, r.crf = imgui.slider_int("##crf", r.crf, 0, MAX_CRF)
         imgui.table_next_column()
         _label("length", "how long the clip is, in gait cycles (which loop seamlessly) or seconds")
         _, r.length = imgui.input_float("##length", r.length, 0.0, 0.0, "%.2f")

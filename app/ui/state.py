@@ -21,6 +21,7 @@ from ..kinematics.live import LiveMotion
 from ..kinematics.motion import Pose
 from ..kinematics.path import StraightPath
 from ..kinematics.world import World
+from ..output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, MAX_CRF, GifQuality
 from ..recording import RecordRequest
 from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, clear_elevations, frame_points
 from ..render.clip import ViewSettings
@@ -70,6 +71,8 @@ class RecordSettings:
     camera: str = DEFAULT_CAMERA
     folder: str = "."
     name: str = ""  # default: <creature>.<format>
+    gif_quality: GifQuality = DEFAULT_GIF_QUALITY
+    crf: int = DEFAULT_CRF
 
     def path(self, creature: str) -> Path:
         return Path(self.folder) / f"{self.name or creature}.{self.format}"
@@ -491,7 +494,8 @@ class ViewerState:
                             options=replace(RenderOptions(), grid=self.options.grid, shadow=self.options.shadow,
                                             joints=self.options.joints, path=self.options.path))
         return RecordRequest(spec=self.spec, output=r.path(self.spec.name), fps=float(r.fps), seconds=seconds,
-                             cycles=cycles, view=view, world=self.world)
+                             cycles=cycles, view=view, world=self.world, gif_quality=r.gif_quality,
+                             crf=int(np.clip(r.crf, 0, MAX_CRF)))
 
     def ground(self, pose: Pose) -> GroundView:
         """What the renderer draws under ``pose``."""
