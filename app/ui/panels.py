@@ -398,7 +398,7 @@ def record_panel(state: ViewerState, pc: PanelContext) -> None:
             _label("quality", "H.264 constant rate factor: lower is better and larger; 18 looks like the "
                               "original, each +6 roughly halves the file")
             imgui.set_next_item_width(-1)
-            _, r.crf = imgui.slider_int("##crf", r.crf, 0, MAX_CRF)
+            _, r.crf = imgui.slider_int("##crf", r.crf, 0, MAX_CRF, "crf %d")
         imgui.table_next_column()
         _label("length", "how long the clip is, in gait cycles (which loop seamlessly) or seconds")
         _, r.length = imgui.input_float("##length", r.length, 0.0, 0.0, "%.2f")

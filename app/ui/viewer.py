@@ -249,7 +249,8 @@ class Viewer:
             if job.finished:
                 result = job.finish()
                 self.recording = None
-                state.status = f"wrote {Path(result.path).resolve()}: {result.frames} frames, {result.seconds:.2f} s"
+                state.status = (f"wrote {Path(result.path).resolve()}: {result.frames} frames, {result.seconds:.2f} s"
+                                + "".join(f"; note: {note}" for note in result.notes))
                 state.error = None
         except GaitlabError as exc:
             self.recording = None
