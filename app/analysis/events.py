@@ -187,6 +187,72 @@ def _plateau_centre(score: NDArray, peak: int, spread: float, tolerance: float =
     return (lo + hi) // 2
 
 
+def _gather(a: NDArray, starts: NDArray[np.intp], width: int, step: int) -> tuple[NDArray, NDArray[np.bool_]]:
+    """``a`` at ``starts + step * [0, width)`` for every start, (len(starts), width), and
+    which of those indices lie inside ``a``."""
+    grid = starts[:, None] + step * np.arange(width)[None, :]
+    inside = (grid >= 0) & (grid < len(a))
+    return a[np.clip(grid, 0, len(a) - 1)], inside
+
+
+def _curve_events(a: NDArray, d1: NDArray, d2: NDArray, starts: NDArray[np.intp],
+                  crossings: tuple[NDArray, NDArray], step: int, cap: int) -> tuple[NDArray[np.intp], NDArray[np.bool_]]:
+    """:func:`_curve_event` for many stance frames at once: (indices, found)."""
+    n = len(a)
+    ends = (crossings[0] if step > 0 else crossings[1])[starts]
+    found = (ends < n) & (ends >= 0)
+    result = np.full(len(starts), n - 1 if step > 0 else 0, dtype=np.intp)
+    lengths = np.abs(ends - starts) + 1
+    rows = np.flatnonzero(found & (lengths <= cap))
+    if rows.size:
+        width = int(lengths[rows].max())
+        lo = np.minimum(starts[rows], ends[rows])
+        values, inside = _gather(a, lo, width, +1)
+        slopes, _ = _gather(d1, lo, width, +1)
+        bends, _ = _gather(d2, lo, width, +1)
+        inside &= np.arange(width)[None, :] < lengths[rows][:, None]
+        ok = inside & (values >= 0.0) & ((slopes >= 0.0) if step > 0 else (slopes <= 0.0))
+        best = lo + np.argmax(np.where(ok, bends, -np.inf), axis=1)
+        result[rows] = np.where(ok.any(axis=1), best, ends[rows])
+    for r in np.flatnonzero(found & (lengths > cap)):  # rare very long searches: one at a time
+        result[r] = _curve_event(a, d1, d2, int(starts[r]), crossings, step)[0]
+    return result, found
+
+
+def _speed_checks(rel: NDArray, starts: NDArray[np.intp], thresholds: NDArray, step: int,
+                  window: int) -> NDArray[np.intp]:
+    """:func:`_speed_check` for many stance frames at once (-1 where there is none)."""
+    values, inside = _gather(rel, starts, window, step)
+    hit = inside & (np.abs(values - rel[starts][:, None]) > thresholds[:, None])
+    has = hit.any(axis=1)
+    result = np.where(has, starts + step * np.argmax(hit, axis=1), -1)
+    beyond = starts + step * window
+    for r in np.flatnonzero(~has & (beyond >= 0) & (beyond < len(rel))):  # further than a stride
+        found = _speed_check(rel, int(starts[r]), float(thresholds[r]), step, window)
+        result[r] = -1 if found is None else found
+    return result
+
+
+def _plateau_centres(score: NDArray, peaks: NDArray[np.intp], spread: float, tolerance: float = 0.02,
+                     window: int = 64) -> NDArray[np.intp]:
+    """:func:`_plateau_centre` for many peaks at once."""
+    n = len(score)
+    limit = score[peaks] + tolerance * max(spread, 1e-12)
+    ends = []
+    for step in (+1, -1):
+        values, inside = _gather(score, peaks + step, window, step)
+        hit = inside & (values > limit[:, None])
+        has = hit.any(axis=1)
+        edge = np.where(has, peaks + step * np.argmax(hit, axis=1), n - 1 if step > 0 else 0)
+        long_run = ~has & (((peaks + window < n - 1) if step > 0 else (peaks - window > 0)))
+        ends.append((edge, long_run))
+    (hi, long_hi), (lo, long_lo) = ends
+    centre = (lo + hi) // 2
+    for r in np.flatnonzero(long_hi | long_lo):  # a plateau longer than the window
+        centre[r] = _plateau_centre(score, int(peaks[r]), spread, tolerance)
+    return centre
+
+
 def _one_per_contact(steps: list[Step], score: NDArray) -> list[Step]:
     """A long flat stance can hold two score minima: keep one step per ground contact
     (same strike and liftoff), at its firmest frame."""
@@ -263,29 +329,28 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
         # over the clip); two minima in one long stance are merged below.
         peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
         spread = float(np.ptp(score))
-        stances = [_plateau_centre(score, int(p), spread) for p in peaks if low[p] < 0.25]
+        peaks = np.asarray([p for p in peaks if low[p] < 0.25], dtype=np.intp)
+        stances = _plateau_centres(score, peaks, spread) if peaks.size else peaks
         rel_f = np.ascontiguousarray(rel[:, f])
         floor = 0.1 * float(np.percentile(np.abs(rel_f), 95))
-        steps = []
-        for k in stances:
-            threshold = SPEED_CHANGE * max(abs(float(rel_f[k])), floor)
-            ups, downs, found = [], [], True
-            for part in ("heel", "toe"):
-                a, d1, d2, _, crossings = curves[part]
-                up, ok_up = _curve_event(a, d1, d2, k, crossings, +1)
-                down, ok_down = _curve_event(a, d1, d2, k, crossings, -1)
-                ups.append(up)
-                downs.append(down)
-                found &= ok_up and ok_down
-            lift, liftoff = min(ups), max(ups)
-            strike, landing = min(downs), max(downs)
-            z_up = _speed_check(rel_f, k, threshold, +1, frames)
-            z_down = _speed_check(rel_f, k, threshold, -1, frames)
-            if z_up is not None and z_up < lift:
-                lift = max(z_up, k)
-            if z_down is not None and z_down > landing:
-                landing = min(z_down, k)
-            steps.append(Step(strike=strike, landing=landing, stance=k, lift=lift, liftoff=liftoff, complete=found))
+        thresholds = SPEED_CHANGE * np.maximum(np.abs(rel_f[stances]), floor)
+        # Every stance's events at once: lift and touchdown on both curves, speed checks.
+        ups, downs, found = [], [], np.ones(len(stances), dtype=bool)
+        for part in ("heel", "toe"):
+            a, d1, d2, _, crossings = curves[part]
+            up, ok_up = _curve_events(a, d1, d2, stances, crossings, +1, 4 * frames)
+            down, ok_down = _curve_events(a, d1, d2, stances, crossings, -1, 4 * frames)
+            ups.append(up)
+            downs.append(down)
+            found &= ok_up & ok_down
+        lift, liftoff = np.minimum(*ups), np.maximum(*ups)
+        strike, landing = np.minimum(*downs), np.maximum(*downs)
+        z_up = _speed_checks(rel_f, stances, thresholds, +1, frames)
+        z_down = _speed_checks(rel_f, stances, thresholds, -1, frames)
+        lift = np.where((z_up >= 0) & (z_up < lift), np.maximum(z_up, stances), lift)
+        landing = np.where((z_down >= 0) & (z_down > landing), np.minimum(z_down, stances), landing)
+        steps = [Step(strike=int(strike[i]), landing=int(landing[i]), stance=int(stances[i]), lift=int(lift[i]),
+                      liftoff=int(liftoff[i]), complete=bool(found[i])) for i in range(len(stances))]
         steps = _one_per_contact(steps, score)
         result.append(FootEvents(name=name, steps=tuple(steps), heel_height=a_heel, toe_height=a_toe))
     if not any(len(fe.steps) >= 2 for fe in result):
