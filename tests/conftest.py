@@ -44,20 +44,34 @@ def golden_renderer() -> str:
 
 
 _RENDERER: dict[str, str] = {}
+_CONTEXT: dict[str, object] = {}
+
+
+def session_context():
+    """The session's one headless GL context (made on first use). One only: releasing a
+    second standalone EGL context while another is alive corrupts the survivor's
+    rendering (seen as noise in every later frame)."""
+    if "ctx" not in _CONTEXT:
+        from app.render.context import create_headless_context
+
+        _CONTEXT["ctx"] = create_headless_context()
+    return _CONTEXT["ctx"]
 
 
 def current_renderer() -> str:
-    """This session's GL_RENDERER (one throwaway context), or why there is none."""
+    """This session's GL_RENDERER, or why there is none."""
     if "name" not in _RENDERER:
         try:
-            from app.render.context import create_headless_context
-
-            ctx = create_headless_context()
-            _RENDERER["name"] = ctx.info["GL_RENDERER"]
-            ctx.release()
+            _RENDERER["name"] = session_context().info["GL_RENDERER"]
         except Exception as exc:  # no EGL at all: the GL tests report that themselves
             _RENDERER["name"] = f"none ({str(exc).splitlines()[0][:120]})"
     return _RENDERER["name"]
+
+
+def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
+    ctx = _CONTEXT.pop("ctx", None)
+    if ctx is not None:
+        ctx.release()
 
 
 def pytest_report_header(config: pytest.Config) -> list[str]:
@@ -72,11 +86,7 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 @pytest.fixture(scope="session")
 def gl_ctx():
     """A headless (EGL) OpenGL context shared by the rendering tests."""
-    from app.render.context import create_headless_context
-
-    ctx = create_headless_context()
-    yield ctx
-    ctx.release()
+    return session_context()
 
 
 class Snapshot:
