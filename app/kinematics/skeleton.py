@@ -1,0 +1,174 @@
+"""A solved clip as a skeleton: a joint hierarchy with per-frame local rotations and
+translations, for export (BVH, glTF) and for anything that wants bones, not points.
+
+The hierarchy, from the body's root (the middle of the trunk):
+
+- forwards along the spine's segment centres to the neck's base, the head (the neck's
+  top) and the nose;
+- backwards along the spine to the tail's base and along the tail to its tip;
+- each leg from the spine joint nearest its hip: hip, knee, ankle, ball, toe tip.
+
+Every joint's frame points its +Y axis at its first child (the bone's direction; an end
+joint keeps its parent's frame). The bone's roll comes from one of the body's axes,
+chosen per joint as the axis most perpendicular to the bone in the first frame, so it
+never flips while the bone swings. Positions rebuilt from the local transforms equal
+the clip's joints to rounding; leg bones keep their lengths.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .motion import Motion
+
+LEG_JOINTS = ("hip", "knee", "ankle", "ball", "toe")
+
+
+@dataclass(frozen=True)
+class Skeleton:
+    """Joint names and parents (index, -1 for the root), parents before children."""
+
+    names: tuple[str, ...]
+    parents: tuple[int, ...]
+
+    @property
+    def count(self) -> int:
+        return len(self.names)
+
+    def children(self, index: int) -> list[int]:
+        return [j for j, p in enumerate(self.parents) if p == index]
+
+    def index(self, name: str) -> int:
+        return self.names.index(name)
+
+
+@dataclass(frozen=True)
+class SkeletonClip:
+    """A skeleton's animation. T frames, J joints; metres, Y up.
+
+    world_position (T, J, 3), world_rotation (T, J, 3, 3) (columns: the joint's x, y, z
+    axes); local_rotation (T, J, 3, 3) and local_translation (T, J, 3) relative to the
+    parent (the root's are its world values); times (T,) seconds.
+    """
+
+    skeleton: Skeleton
+    times: NDArray[np.float64]
+    world_position: NDArray[np.float64]
+    world_rotation: NDArray[np.float64]
+    local_rotation: NDArray[np.float64]
+    local_translation: NDArray[np.float64]
+    fps: float
+
+    @property
+    def frame_count(self) -> int:
+        return int(self.times.shape[0])
+
+
+def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.maximum(n, 1e-12)
+
+
+def skeleton_points(motion: Motion) -> tuple[Skeleton, NDArray[np.float64], list[int], dict[int, NDArray]]:
+    """The hierarchy and every joint's world position (T, J, 3); each joint's primary
+    child (-1 for end joints), whose direction is the joint's +Y; and the spine joints'
+    own directions (the spine's tangent, pointing away from the root): the neck's base
+    and the tail's root lie within millimetres of the end segments' centres, too close to
+    aim at."""
+    spine = motion.spine  # (T, S, 3), rear to front
+    root = motion.root[:, :3, 3]
+    S = spine.shape[1]
+    names: list[str] = ["root"]
+    parents: list[int] = [-1]
+    points: list[NDArray] = [root]
+    primary: list[int] = [-1]
+
+    def add(name: str, parent: int, point: NDArray) -> int:
+        names.append(name)
+        parents.append(parent)
+        points.append(point)
+        primary.append(-1)
+        if primary[parent] == -1 and parent != 0:
+            primary[parent] = len(names) - 1
+        return len(names) - 1
+
+    middle = int(np.argmin(np.linalg.norm(spine[0] - root[0], axis=-1)))
+    spine_index: dict[int, int] = {}
+    directions: dict[int, NDArray] = {}
+    parent = 0
+    for s in range(middle, S):  # forwards: trunk, neck, head, nose
+        parent = spine_index[s] = add(f"spine{s}", parent, spine[:, s])
+        directions[parent] = _unit(motion.spine_tangent[:, s])
+    parent = add("neck", parent, motion.neck[:, 0])
+    parent = add("head", parent, motion.neck[:, 1])
+    add("nose", parent, motion.head[:, 1])
+    parent = 0
+    for s in range(middle - 1, -1, -1):  # backwards: trunk, tail
+        parent = spine_index[s] = add(f"spine{s}", parent, spine[:, s])
+        directions[parent] = -_unit(motion.spine_tangent[:, s])
+    for k in range(motion.tail.shape[1]):
+        parent = add(f"tail{k}", parent, motion.tail[:, k])
+    joints = motion.joints  # (T, L, 5, 3)
+    for leg, leg_name in enumerate(motion.leg_names):
+        nearest = int(np.argmin(np.linalg.norm(spine[0] - joints[0, leg, 0], axis=-1)))
+        parent = spine_index[nearest]
+        for k, part in enumerate(LEG_JOINTS):
+            parent = add(f"{leg_name}_{part}", parent, joints[:, leg, k])
+    # The root's frame is the body's own.
+    return Skeleton(tuple(names), tuple(parents)), np.stack(points, axis=1), primary, directions
+
+
+def skeleton_clip(motion: Motion) -> SkeletonClip:
+    """The clip as a skeleton with orientations (see the module's description)."""
+    skeleton, position, primary, directions = skeleton_points(motion)
+    T, J = position.shape[:2]
+    body = motion.root[:, :3, :3]  # (T, 3, 3) columns: left, up, forward
+    rotation = np.empty((T, J, 3, 3))
+    rotation[:, 0] = body
+    for j in range(1, J):  # parents come first
+        child = primary[j]
+        if j in directions:
+            y = directions[j]
+        elif child < 0:
+            rotation[:, j] = rotation[:, skeleton.parents[j]]
+            continue
+        else:
+            bone = position[:, child] - position[:, j]
+            length = np.linalg.norm(bone, axis=-1, keepdims=True)
+            # A bone of no length (a creature without a neck) takes its parent's direction.
+            y = np.where(length > 1e-9, bone / np.maximum(length, 1e-12), rotation[:, skeleton.parents[j], :, 1])
+        # The roll reference: the body axis most perpendicular to the bone at the start.
+        axis = int(np.argmin(np.abs(np.einsum("ik,i->k", body[0], y[0]))))
+        ref = body[:, :, axis]
+        x = _unit(ref - np.sum(ref * y, axis=-1, keepdims=True) * y)
+        z = np.cross(x, y)
+        rotation[:, j] = np.stack([x, y, z], axis=-1)
+    parents = np.array(skeleton.parents)
+    parent_rot = rotation[:, np.maximum(parents, 0)]
+    parent_pos = position[:, np.maximum(parents, 0)]
+    local_rot = np.einsum("tjki,tjkl->tjil", parent_rot, rotation)  # R_parent^T R
+    local_pos = np.einsum("tjki,tjk->tji", parent_rot, position - parent_pos)
+    local_rot[:, 0] = rotation[:, 0]
+    local_pos[:, 0] = position[:, 0]
+    return SkeletonClip(skeleton=skeleton, times=np.asarray(motion.times, dtype=np.float64),
+                        world_position=position, world_rotation=rotation, local_rotation=local_rot,
+                        local_translation=local_pos, fps=float(motion.fps))
+
+
+def forward_kinematics(skeleton: Skeleton, local_rotation: NDArray[np.float64],
+                       local_translation: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """World positions (T, J, 3) and rotations (T, J, 3, 3) from local transforms."""
+    T, J = local_translation.shape[:2]
+    position = np.empty((T, J, 3))
+    rotation = np.empty((T, J, 3, 3))
+    for j, p in enumerate(skeleton.parents):
+        if p < 0:
+            rotation[:, j] = local_rotation[:, j]
+            position[:, j] = local_translation[:, j]
+        else:
+            rotation[:, j] = rotation[:, p] @ local_rotation[:, j]
+            position[:, j] = position[:, p] + np.einsum("tik,tk->ti", rotation[:, p], local_translation[:, j])
+    return position, rotation
