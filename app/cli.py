@@ -15,6 +15,7 @@ from typing import Sequence
 from . import __version__
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
+from .export.formats import EXPORT_FORMATS
 from .output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_QUALITIES, MAX_CRF, MAX_SIZE
 from .render.camera import CAMERA_PRESETS, DEFAULT_CAMERA
 
@@ -90,6 +91,18 @@ def _crf(text: str) -> int:
         raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number from 0 to {MAX_CRF}")
     return value
 
+
+EXPORT_EPILOG = """\
+examples:
+  gaitlab export dog --gait trot --cycles 2 -o dog.bvh
+  gaitlab export horse --gait gallop --fps 60 --seconds 4 -o gallop.bvh
+  gaitlab export spider --path circle:r=1 --terrain hills:amp=0.05 --seconds 6 -o spider.bvh
+  gaitlab analyze dog.bvh                 the exported file measures as the motion itself
+
+Joints: root (the middle of the trunk), spineN along the trunk, neck, head, nose,
+tailN, and per foot NAME_hip, NAME_knee, NAME_ankle, NAME_ball, NAME_toe. Joints whose
+offset changes (trunk, hips, neck and tail bases) carry position channels.
+"""
 
 RENDER_EPILOG = """\
 examples:
@@ -249,6 +262,31 @@ def build_parser() -> argparse.ArgumentParser:
     files.add_argument("--units", choices=("auto", "m", "cm", "mm", "in", "ft", "cmu"), default="auto",
                        help="length units of the file (default: detected from the hip height; CSV: m)")
     files.add_argument("--up", choices=("auto", "y", "z"), default="auto", help="up axis (default: detected; CSV: y)")
+
+    export = sub.add_parser("export", help="export the animation as a skeleton: BVH",
+                            description="Export a creature's motion as a skeleton (joint hierarchy with local "
+                                        "rotations and translations every frame) to a BVH file: Y up, metres, "
+                                        "ZXY Euler angles in degrees.", epilog=EXPORT_EPILOG,
+                            formatter_class=argparse.RawDescriptionHelpFormatter)
+    export.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
+                        help="preset name, creature .toml or scene .toml (default: dog)")
+    export.add_argument("-o", "--output", metavar="OUT", type=Path,
+                        help=f"output file: {', '.join('.' + f for f in EXPORT_FORMATS)} (default: CREATURE.bvh)")
+    export.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
+    length = export.add_mutually_exclusive_group()
+    length.add_argument("--seconds", metavar="S", type=_positive("seconds", 600), help="clip length in seconds")
+    length.add_argument("--cycles", metavar="N", type=_positive("cycles", 600),
+                        help="clip length in gait cycles (default: 2)")
+    export.add_argument("--fps", metavar="F", type=_positive("frames per second", MAX_FPS), default=30.0,
+                        help="frames per second (default: 30)")
+    export.add_argument("--time", metavar="T", type=_non_negative, default=0.0,
+                        help="time in seconds of the first frame (default: 0)")
+    export.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                        help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
+    export.add_argument("--speed", metavar="V[:V1]", type=_speed,
+                        help="speed in m/s, or a ramp V0:V1: the gait follows the speed (default length 4 s)")
+    _world_arguments(export)
+    export.add_argument("-q", "--quiet", action="store_true", help="no summary")
 
     view = sub.add_parser("view", help="open the interactive viewer (needs a display; try xvfb-run)",
                           description="Open a window in which the creature walks and every parameter is a live "
@@ -529,7 +567,23 @@ def cmd_analyze(args: argparse.Namespace) -> int:
     return 0
 
 
-COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "analyze": cmd_analyze, "view": cmd_view}
+def cmd_export(args: argparse.Namespace) -> int:
+    from .export import export_clip
+
+    output = args.output or Path(f"{Path(args.creature).stem}.bvh")
+    spec, world, speed = _creature_and_world(args)
+    result = export_clip(spec, output, fps=args.fps, seconds=args.seconds, cycles=args.cycles, start=args.time,
+                         speed=speed, world=world)
+    if not args.quiet:
+        size = result.path.stat().st_size
+        frames = f"{result.frames} frame{'' if result.frames == 1 else 's'}"
+        print(f"wrote {result.path}: {result.joints} joints, {frames} at {args.fps:g} fps "
+              f"({result.seconds:.2f} s of {spec.name} {spec.gait.preset}), {result.units}, {size / 1024:.0f} KiB")
+    return 0
+
+
+COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "export": cmd_export, "analyze": cmd_analyze,
+            "view": cmd_view}
 
 
 class Terminated(KeyboardInterrupt):

@@ -78,6 +78,11 @@ def find_feet(names: list[str], path: str) -> FootMap:
             feet[foot] = (ankle, next((t for t in toes if t in present), None))
         else:
             return FootMap(feet, rig)
+    # Gaitlab's own exports: NAME_ball and NAME_toe for every foot (the same points that
+    # Gaitlab's analysis of its own motion uses).
+    exported = [n[:-5] for n in names if n.endswith("_ball") and f"{n[:-5]}_toe" in present]
+    if exported:
+        return FootMap({foot: (f"{foot}_ball", f"{foot}_toe") for foot in exported}, "Gaitlab export")
     ankles = [n for n in names if re.search(r"(foot|ankle|toe|hand|paw|hoof)", n, re.IGNORECASE)]
     shown = ", ".join(ankles[:12] or names[:12]) + (" ..." if len(ankles or names) > 12 else "")
     raise InputError(f"{path}: no feet recognised among the joints ({shown}); map them with "

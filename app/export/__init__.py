@@ -1,0 +1,12 @@
+"""Taking the animation elsewhere: a clip's skeleton and motion as BVH.
+
+- :mod:`.formats`: which suffixes are written;
+- :mod:`.bvh`: the BVH writer;
+- :mod:`.clip`: ``gaitlab export`` (simulate as ``render`` does, then write).
+"""
+
+from .bvh import bvh_text, write_bvh
+from .clip import ExportResult, export_clip
+from .formats import EXPORT_FORMATS, export_format
+
+__all__ = ["EXPORT_FORMATS", "ExportResult", "bvh_text", "export_clip", "export_format", "write_bvh"]

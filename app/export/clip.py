@@ -1,0 +1,51 @@
+"""``gaitlab export``: simulate a clip as ``render`` would and write it as a skeleton."""
+
+from __future__ import annotations
+
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import OutputError
+from ..kinematics.clip import clip_motion
+from ..kinematics.skeleton import skeleton_clip
+from ..kinematics.world import World
+from ..output import check_output_dir
+from ..rigging import build_rig
+from ..spec import CreatureSpec
+from .bvh import write_bvh
+from .formats import export_format
+
+
+@dataclass(frozen=True)
+class ExportResult:
+    path: Path
+    frames: int
+    joints: int
+    seconds: float
+    units: str = "metres, Y up"
+
+
+def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float = 30.0, seconds: float | None = None,
+                cycles: float | None = None, start: float = 0.0, speed: tuple[float, float] | None = None,
+                world: World | None = None) -> ExportResult:
+    """Simulate ``spec`` (as ``gaitlab render`` does) and write the skeleton to ``output``
+    (format by suffix). Checks the output before simulating; writes atomically; raises
+    :class:`GaitlabError` with one line for bad input."""
+    fmt = export_format(output)
+    check_output_dir(output)
+    if not (fps > 0 and math.isfinite(fps)):
+        raise OutputError(f"fps {fps:g}: must be a finite number greater than 0")
+    if cycles is None and seconds is None:
+        cycles = None if speed is not None else 2.0
+        seconds = 4.0 if speed is not None else None
+    rig = build_rig(spec)
+    motion, _ = clip_motion(rig, fps, seconds, cycles, start, speed, world=world or World())
+    if motion.frame_count == 0:
+        raise OutputError(f"{os.fspath(output)}: the clip has no frames at {fps:g} fps; give a longer --seconds "
+                          "or --cycles")
+    clip = skeleton_clip(motion)
+    if fmt == "bvh":
+        path = write_bvh(output, clip)
+    return ExportResult(Path(path), clip.frame_count, clip.skeleton.count, clip.frame_count / fps)

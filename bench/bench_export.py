@@ -1,0 +1,40 @@
+"""Export speed: a 10 s clip at 60 fps of each preset as BVH (skeleton + file).
+
+    python bench/bench_export.py
+
+Prints, per creature, the median wall time (after a warm-up) of turning the solved clip
+into a skeleton and writing the BVH, and the file size. The goal: under 2 s.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import sys
+import tempfile
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from app import build_rig, load_creature  # noqa: E402
+from app.export import write_bvh  # noqa: E402
+from app.kinematics.clip import clip_motion  # noqa: E402
+from app.kinematics.skeleton import skeleton_clip  # noqa: E402
+from timing import median_time  # noqa: E402  (bench/timing.py)
+
+
+def main() -> None:
+    print(f"# export benchmark - {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}")
+    print("creature    joints  frames  skeleton+BVH (median of 5)  size")
+    with tempfile.TemporaryDirectory() as tmp:
+        for creature in ("dog", "horse", "spider", "centipede"):
+            motion, _ = clip_motion(build_rig(load_creature(creature)), 60.0, seconds=10.0)
+            out = Path(tmp) / f"{creature}.bvh"
+            seconds = median_time(lambda: write_bvh(out, skeleton_clip(motion)), repeats=5)
+            joints = skeleton_clip(motion).skeleton.count
+            print(f"{creature:10}  {joints:6}  {motion.frame_count:6}  {seconds:8.3f} s"
+                  f"                  {out.stat().st_size / 2**20:5.1f} MiB")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,97 @@
+"""Export (issue 10): BVH read back by Gaitlab's reader and by an independent one (bvhio)
+gives the clip's joints; analysing the export measures the same gait."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app import build_rig, load_creature
+from app.analysis import analyze_tracks, tracks_from_motion
+from app.analysis.bvh import read_bvh
+from app.analysis.sources import load_tracks
+from app.export import write_bvh
+from app.kinematics.clip import clip_motion
+from app.kinematics.skeleton import skeleton_clip
+from app.scenes import make_world
+
+PRESETS = ("ant", "bear", "cat", "centipede", "deer", "dog", "horse", "spider")
+
+
+def motion_of(creature: str, gait: str | None = None, fps: float = 60.0, cycles: float = 2.0, world=None):
+    spec = load_creature(creature)
+    if gait:
+        spec = spec.with_overrides({"gait.preset": gait})
+    return clip_motion(build_rig(spec), fps, cycles=cycles, world=world or make_world())[0]
+
+
+@pytest.mark.parametrize("creature", PRESETS)
+def test_bvh_round_trip_with_both_readers(tmp_path: Path, creature: str) -> None:
+    world = make_world("circle:r=3", "hills:amp=0.08") if creature == "dog" else None
+    motion = motion_of(creature, world=world)
+    clip = skeleton_clip(motion)
+    path = write_bvh(tmp_path / f"{creature}.bvh", clip)
+    names = list(clip.skeleton.names)
+    ours = read_bvh(path).positions(names)
+    assert np.abs(ours - clip.world_position).max() < 1e-4
+    for leg, leg_name in enumerate(motion.leg_names):  # the clip's own joints, over the whole clip
+        got = ours[:, [names.index(f"{leg_name}_{part}") for part in ("hip", "knee", "ankle", "ball", "toe")]]
+        assert np.abs(got - motion.joints[:, leg]).max() < 1e-4
+    bvhio = pytest.importorskip("bvhio", reason="bvhio (the independent BVH reader) is a test dependency")
+    root = bvhio.readAsHierarchy(str(path))
+    joints = {joint.Name: joint for joint, _, _ in root.layout()}
+    for t in range(0, motion.frame_count, max(1, motion.frame_count // 12)):
+        root.loadPose(t)
+        theirs = np.array([list(joints[n].PositionWorld) for n in names])
+        assert np.abs(theirs - clip.world_position[t]).max() < 1e-4
+
+
+@pytest.mark.parametrize("creature, gait", [("dog", "walk"), ("horse", "gallop"), ("cat", "trot"), ("bear", "pace"),
+                                            ("ant", None), ("spider", None)])
+def test_analysing_the_export_measures_the_same_gait(tmp_path: Path, creature: str, gait: str | None) -> None:
+    motion = motion_of(creature, gait, cycles=4.0)
+    write_bvh(tmp_path / "x.bvh", skeleton_clip(motion))
+    own = analyze_tracks(tracks_from_motion(motion))
+    tracks, note = load_tracks(str(tmp_path / "x.bvh"))
+    exported = analyze_tracks(tracks)
+    assert note.startswith("Gaitlab export") and exported.gait_match == own.gait_match
+    for a, b in zip(own.feet, exported.feet):
+        assert a.name == b.name
+        assert abs(a.duty_factor - b.duty_factor) <= 0.01
+        assert min(abs(a.phase - b.phase), 1 - abs(a.phase - b.phase)) <= 0.01
+
+
+def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    run = lambda *a: subprocess.run([sys.executable, "-m", "app", *a], capture_output=True, text=True,  # noqa: E731
+                                    cwd=tmp_path, timeout=120)
+    out = run("export", "dog", "--gait", "trot", "--cycles", "6", "--fps", "60", "-o", "dog.bvh")
+    assert out.returncode == 0, out.stderr
+    assert "41 joints" in out.stdout and "metres, Y up" in out.stdout
+    analysed = run("analyze", "dog.bvh")
+    assert analysed.returncode == 0, analysed.stderr
+    assert "trot" in analysed.stdout
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["dog.bvh"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["-o", "dog.fbx"], "export has '.fbx'; use .bvh"),
+    (["-o", "missing/dog.bvh"], "output folder 'missing' does not exist"),
+    (["--gait", "gallp", "-o", "dog.bvh"], "did you mean 'gallop'"),
+    (["--fps", "0", "-o", "dog.bvh"], "frames per second"),
+    (["--set", "legs.hind.femur=-1", "-o", "dog.bvh"], "legs.hind.femur"),
+])
+def test_export_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path: Path, args, message) -> None:
+    import subprocess
+    import sys
+
+    out = subprocess.run([sys.executable, "-m", "app", "export", "dog", *args], capture_output=True, text=True,
+                         cwd=tmp_path, timeout=120)
+    assert out.returncode == 2
+    assert message in out.stderr and "Traceback" not in out.stderr
+    assert len(out.stderr.strip().splitlines()) == 1
+    assert list(tmp_path.iterdir()) == []
