@@ -95,6 +95,7 @@ def _crf(text: str) -> int:
 EXPORT_EPILOG = """\
 examples:
   gaitlab export dog --gait trot --cycles 2 -o dog.bvh
+  gaitlab export dog --gait trot --cycles 2 -o dog.glb   for Blender, Godot, Unity, three.js
   gaitlab export horse --gait gallop --fps 60 --seconds 4 -o gallop.bvh
   gaitlab export spider --path circle:r=1 --terrain hills:amp=0.05 --seconds 6 -o spider.bvh
   gaitlab analyze dog.bvh                 the exported file measures as the motion itself
@@ -263,10 +264,12 @@ def build_parser() -> argparse.ArgumentParser:
                        help="length units of the file (default: detected from the hip height; CSV: m)")
     files.add_argument("--up", choices=("auto", "y", "z"), default="auto", help="up axis (default: detected; CSV: y)")
 
-    export = sub.add_parser("export", help="export the animation as a skeleton: BVH",
+    export = sub.add_parser("export", help="export the animation as a skeleton: BVH or glTF (.glb)",
                             description="Export a creature's motion as a skeleton (joint hierarchy with local "
-                                        "rotations and translations every frame) to a BVH file: Y up, metres, "
-                                        "ZXY Euler angles in degrees.", epilog=EXPORT_EPILOG,
+                                        "rotations and translations every frame): a BVH file (Y up, metres, ZXY "
+                                        "Euler angles in degrees) or a binary glTF with the creature's mesh "
+                                        "skinned to the skeleton and one animation with root motion.",
+                            epilog=EXPORT_EPILOG,
                             formatter_class=argparse.RawDescriptionHelpFormatter)
     export.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
                         help="preset name, creature .toml or scene .toml (default: dog)")

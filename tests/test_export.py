@@ -3,6 +3,7 @@ gives the clip's joints; analysing the export measures the same gait."""
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -79,7 +80,7 @@ def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("args, message", [
-    (["-o", "dog.fbx"], "export has '.fbx'; use .bvh"),
+    (["-o", "dog.fbx"], "export has '.fbx'; use .bvh, .glb"),
     (["-o", "missing/dog.bvh"], "output folder 'missing' does not exist"),
     (["--gait", "gallp", "-o", "dog.bvh"], "did you mean 'gallop'"),
     (["--fps", "0", "-o", "dog.bvh"], "frames per second"),
@@ -95,3 +96,101 @@ def test_export_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path: Path, 
     assert message in out.stderr and "Traceback" not in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def glb_world_positions(path: Path, times: np.ndarray) -> tuple[list[str], np.ndarray]:
+    """Joint world positions (T, J, 3) at ``times`` computed from the .glb's node TRS and
+    its animation alone (linear interpolation, quaternion slerp-free nlerp at keys)."""
+    import pygltflib
+    from scipy.spatial.transform import Rotation
+
+    doc = pygltflib.GLTF2().load(str(path))
+    blob = doc.binary_blob()
+
+    def read(index: int) -> np.ndarray:
+        accessor = doc.accessors[index]
+        view = doc.bufferViews[accessor.bufferView]
+        width = {"SCALAR": 1, "VEC3": 3, "VEC4": 4, "MAT4": 16}[accessor.type]
+        data = np.frombuffer(blob, dtype=np.float32, count=accessor.count * width,
+                             offset=view.byteOffset + (accessor.byteOffset or 0))
+        return data.reshape(accessor.count, width).astype(np.float64)
+
+    skin = doc.skins[0]
+    joints = skin.joints
+    node_index = {n: k for k, n in enumerate(joints)}
+    parents = {c: p for p in joints for c in (doc.nodes[p].children or [])}
+    T, J = len(times), len(joints)
+    translation = np.array([doc.nodes[n].translation for n in joints])[None].repeat(T, 0)
+    rotation = np.array([doc.nodes[n].rotation for n in joints])[None].repeat(T, 0)
+    animation = doc.animations[0]
+    for channel in animation.channels:
+        sampler = animation.samplers[channel.sampler]
+        keys, values = read(sampler.input)[:, 0], read(sampler.output)
+        k = node_index[channel.target.node]
+        for t, time in enumerate(times):  # sampled at the keys themselves here
+            i = int(np.argmin(np.abs(keys - time)))
+            if channel.target.path == "translation":
+                translation[t, k] = values[i]
+            else:
+                rotation[t, k] = values[i]
+    names = [doc.nodes[n].name for n in joints]
+    world_r = np.empty((T, J, 3, 3))
+    world_p = np.empty((T, J, 3))
+    for k, n in enumerate(joints):
+        local = Rotation.from_quat(rotation[:, k]).as_matrix()
+        if n in parents:
+            p = node_index[parents[n]]
+            world_r[:, k] = world_r[:, p] @ local
+            world_p[:, k] = world_p[:, p] + np.einsum("tij,tj->ti", world_r[:, p], translation[:, k])
+        else:
+            world_r[:, k], world_p[:, k] = local, translation[:, k]
+    return names, world_p
+
+
+@pytest.mark.parametrize("creature", PRESETS)
+def test_glb_joints_follow_the_clip(tmp_path: Path, creature: str) -> None:
+    from app.export import write_glb
+
+    world = make_world("circle:r=3", "hills:amp=0.08") if creature == "dog" else None
+    motion = motion_of(creature, fps=30.0, world=world)
+    clip = skeleton_clip(motion)
+    path = write_glb(tmp_path / f"{creature}.glb", motion, clip)
+    names, position = glb_world_positions(path, motion.times - motion.times[0])
+    assert names == list(clip.skeleton.names)
+    assert np.abs(position - clip.world_position).max() < 1e-4
+
+
+def _validator() -> list[str] | None:
+    """The command that runs the Khronos glTF validator, or None (with the reason) if unavailable."""
+    import shutil
+    import subprocess
+
+    node = shutil.which("node")
+    if node is None:
+        pytest.skip("node is not installed: the Khronos glTF validator (npm gltf-validator) cannot run")
+    home = Path(os.environ.get("GAITLAB_NODE_CACHE", Path.home() / ".cache" / "gaitlab-node"))
+    if not (home / "node_modules" / "gltf-validator").exists():
+        npm = shutil.which("npm")
+        home.mkdir(parents=True, exist_ok=True)
+        done = subprocess.run([npm, "install", "--silent", "--no-audit", "--no-fund", "--prefix", str(home),
+                               "gltf-validator@2.0.0-dev.3.10"], capture_output=True, text=True, timeout=300) \
+            if npm else None
+        if done is None or done.returncode != 0:
+            pytest.skip("could not install the npm package gltf-validator (offline?)")
+    script = Path(__file__).parent / "data" / "validate_gltf.js"
+    return [node, str(script), str(home)]
+
+
+@pytest.mark.parametrize("creature", PRESETS)
+def test_every_preset_passes_the_khronos_validator(tmp_path: Path, creature: str) -> None:
+    import json
+    import subprocess
+
+    from app.export import write_glb
+
+    command = _validator()
+    motion = motion_of(creature, fps=30.0)
+    path = write_glb(tmp_path / f"{creature}.glb", motion, skeleton_clip(motion))
+    out = subprocess.run([*command, str(path)], capture_output=True, text=True, timeout=120)
+    report = json.loads(out.stdout)
+    assert report.get("errors") == 0, report

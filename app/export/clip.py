@@ -16,6 +16,7 @@ from ..rigging import build_rig
 from ..spec import CreatureSpec
 from .bvh import write_bvh
 from .formats import export_format
+from .gltf import write_glb
 
 
 @dataclass(frozen=True)
@@ -24,7 +25,7 @@ class ExportResult:
     frames: int
     joints: int
     seconds: float
-    units: str = "metres, Y up"
+    units: str = "metres, Y up"  # both formats
 
 
 def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float = 30.0, seconds: float | None = None,
@@ -48,4 +49,6 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
     clip = skeleton_clip(motion)
     if fmt == "bvh":
         path = write_bvh(output, clip)
+    else:
+        path = write_glb(output, motion, clip)
     return ExportResult(Path(path), clip.frame_count, clip.skeleton.count, clip.frame_count / fps)

@@ -8,8 +8,8 @@ from typing import Literal
 
 from ..errors import OutputError
 
-ExportFormat = Literal["bvh"]
-EXPORT_FORMATS: tuple[str, ...] = ("bvh",)
+ExportFormat = Literal["bvh", "glb"]
+EXPORT_FORMATS: tuple[str, ...] = ("bvh", "glb")
 
 
 def export_format(path: str | os.PathLike[str]) -> ExportFormat:
