@@ -288,6 +288,11 @@ def build_parser() -> argparse.ArgumentParser:
                         help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
     export.add_argument("--speed", metavar="V[:V1]", type=_speed,
                         help="speed in m/s, or a ramp V0:V1: the gait follows the speed (default length 4 s)")
+    export.add_argument("--loop", action="store_true",
+                        help="whole cycles plus the frame that closes the loop (the last frame equals the first; "
+                             "in place, or shifted by the travel): what animation packages expect of a cycle")
+    export.add_argument("--ground", action="store_true",
+                        help="glTF: add the ground under the clip (the terrain) as a second mesh")
     _world_arguments(export)
     export.add_argument("-q", "--quiet", action="store_true", help="no summary")
 
@@ -576,7 +581,7 @@ def cmd_export(args: argparse.Namespace) -> int:
     output = args.output or Path(f"{Path(args.creature).stem}.bvh")
     spec, world, speed = _creature_and_world(args)
     result = export_clip(spec, output, fps=args.fps, seconds=args.seconds, cycles=args.cycles, start=args.time,
-                         speed=speed, world=world)
+                         speed=speed, world=world, loop=args.loop, ground=args.ground)
     if not args.quiet:
         size = result.path.stat().st_size
         frames = f"{result.frames} frame{'' if result.frames == 1 else 's'}"

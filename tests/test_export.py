@@ -189,8 +189,26 @@ def test_every_preset_passes_the_khronos_validator(tmp_path: Path, creature: str
     from app.export import write_glb
 
     command = _validator()
-    motion = motion_of(creature, fps=30.0)
-    path = write_glb(tmp_path / f"{creature}.glb", motion, skeleton_clip(motion))
+    world = make_world("circle:r=2", "stairs:rise=0.05,run=0.3") if creature == "dog" else None
+    motion = motion_of(creature, fps=30.0, world=world)
+    path = write_glb(tmp_path / f"{creature}.glb", motion, skeleton_clip(motion), ground=creature in ("dog", "ant"))
     out = subprocess.run([*command, str(path)], capture_output=True, text=True, timeout=120)
     report = json.loads(out.stdout)
     assert report.get("errors") == 0, report
+
+
+@pytest.mark.parametrize("in_place", [True, False])
+def test_a_looped_export_ends_where_it_began(tmp_path: Path, in_place: bool) -> None:
+    from app.export import export_clip
+
+    world = make_world(in_place=in_place)
+    result = export_clip(load_creature("cat"), tmp_path / "cat.bvh", fps=30.0, cycles=2.0, world=world, loop=True)
+    clip = read_bvh(result.path)
+    names = [j.name for j in clip.joints]
+    position = clip.positions(names)
+    shift = position[-1, 0] - position[0, 0]  # the root's travel over the clip
+    if in_place:
+        assert np.abs(shift).max() < 1e-5
+    assert np.abs((position[-1] - shift) - position[0]).max() < 1e-5  # the same pose again
+    with pytest.raises(Exception, match="--loop makes whole cycles"):
+        export_clip(load_creature("cat"), tmp_path / "x.bvh", seconds=2.0, loop=True)

@@ -30,19 +30,28 @@ class ExportResult:
 
 def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float = 30.0, seconds: float | None = None,
                 cycles: float | None = None, start: float = 0.0, speed: tuple[float, float] | None = None,
-                world: World | None = None) -> ExportResult:
+                world: World | None = None, loop: bool = False, ground: bool = False) -> ExportResult:
     """Simulate ``spec`` (as ``gaitlab render`` does) and write the skeleton to ``output``
-    (format by suffix). Checks the output before simulating; writes atomically; raises
+    (format by suffix). ``loop``: whole cycles with the closing frame (last = first).
+    Checks the output before simulating; writes atomically; raises
     :class:`GaitlabError` with one line for bad input."""
     fmt = export_format(output)
     check_output_dir(output)
     if not (fps > 0 and math.isfinite(fps)):
         raise OutputError(f"fps {fps:g}: must be a finite number greater than 0")
+    if loop and (seconds is not None or speed is not None):
+        raise OutputError("--loop makes whole cycles whose last frame equals the first: give --cycles, "
+                          "not --seconds or --speed")
+    if ground and fmt != "glb":
+        raise OutputError(f"--ground adds the terrain as a mesh, which {fmt.upper()} cannot hold; write .glb")
+    if ground and world is not None and world.in_place:
+        raise OutputError("--ground: an in-place clip's ground moves under the feet; export it travelling "
+                          "(without --in-place)")
     if cycles is None and seconds is None:
         cycles = None if speed is not None else 2.0
         seconds = 4.0 if speed is not None else None
     rig = build_rig(spec)
-    motion, _ = clip_motion(rig, fps, seconds, cycles, start, speed, world=world or World())
+    motion, _ = clip_motion(rig, fps, seconds, cycles, start, speed, world=world or World(), closed=loop)
     if motion.frame_count == 0:
         raise OutputError(f"{os.fspath(output)}: the clip has no frames at {fps:g} fps; give a longer --seconds "
                           "or --cycles")
@@ -50,5 +59,5 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
     if fmt == "bvh":
         path = write_bvh(output, clip)
     else:
-        path = write_glb(output, motion, clip)
+        path = write_glb(output, motion, clip, ground=ground)
     return ExportResult(Path(path), clip.frame_count, clip.skeleton.count, clip.frame_count / fps)

@@ -121,8 +121,33 @@ class _Blob:
         return len(self.doc.accessors) - 1
 
 
-def gltf_document(motion: Motion, clip: SkeletonClip) -> gl.GLTF2:
-    """The clip as a glTF document with its binary blob attached."""
+GROUND_MARGIN = 1.0  # m of ground around what the creature covers
+GROUND_MAX_CELLS = 300  # per side: the ground mesh's resolution is capped
+
+
+def _ground(motion: Motion, blob: "_Blob", doc: gl.GLTF2) -> int:
+    """A mesh of the ground under the clip (the terrain over the area the creature covers);
+    the index of its node."""
+    points = np.concatenate([motion.joints.reshape(-1, 3), motion.spine.reshape(-1, 3)])
+    lo = points[:, [0, 2]].min(axis=0) - GROUND_MARGIN
+    hi = points[:, [0, 2]].max(axis=0) + GROUND_MARGIN
+    cell = max(0.05, float((hi - lo).max()) / GROUND_MAX_CELLS)
+    position, normal, indices = motion.terrain.surface((float(lo[0]), float(lo[1])), (float(hi[0]), float(hi[1])), cell)
+    attributes = gl.Attributes(POSITION=blob.add(position.astype(np.float32), gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER,
+                                                 bounds=True),
+                               NORMAL=blob.add(normal.astype(np.float32), gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER))
+    doc.materials.append(gl.Material(name="ground", pbrMetallicRoughness=gl.PbrMetallicRoughness(
+        baseColorFactor=[0.77, 0.72, 0.64, 1.0], metallicFactor=0.0, roughnessFactor=0.9)))
+    doc.meshes.append(gl.Mesh(name="ground", primitives=[gl.Primitive(
+        attributes=attributes, material=len(doc.materials) - 1,
+        indices=blob.add(indices.astype(np.uint32), gl.SCALAR, gl.UNSIGNED_INT, gl.ELEMENT_ARRAY_BUFFER))]))
+    doc.nodes.append(gl.Node(name="ground", mesh=len(doc.meshes) - 1))
+    return len(doc.nodes) - 1
+
+
+def gltf_document(motion: Motion, clip: SkeletonClip, ground: bool = False) -> gl.GLTF2:
+    """The clip as a glTF document with its binary blob attached; ``ground`` adds the
+    terrain under the clip as a second mesh (not for in-place clips, whose ground moves)."""
     skeleton = clip.skeleton
     J, T = skeleton.count, clip.frame_count
     doc = gl.GLTF2(asset=gl.Asset(generator="Gaitlab", version="2.0"))
@@ -177,7 +202,10 @@ def gltf_document(motion: Motion, clip: SkeletonClip) -> gl.GLTF2:
     doc.skins.append(gl.Skin(name="skeleton", joints=list(range(J)), skeleton=0,
                              inverseBindMatrices=blob.add(inverse_bind, gl.MAT4, gl.FLOAT)))
     doc.nodes.append(gl.Node(name="creature", mesh=0, skin=0))
-    doc.scenes.append(gl.Scene(name="gaitlab", nodes=[0, J]))
+    roots = [0, J]
+    if ground:
+        roots.append(_ground(motion, blob, doc))
+    doc.scenes.append(gl.Scene(name="gaitlab", nodes=roots))
     doc.scene = 0
 
     # The animation: rotations of every joint, translations where offsets change.
@@ -206,9 +234,9 @@ def gltf_document(motion: Motion, clip: SkeletonClip) -> gl.GLTF2:
     return doc
 
 
-def write_glb(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip) -> Path:
-    """Write the clip as a binary glTF (.glb), atomically."""
-    doc = gltf_document(motion, clip)
+def write_glb(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip, ground: bool = False) -> Path:
+    """Write the clip as a binary glTF (.glb), atomically (``ground``: see :func:`gltf_document`)."""
+    doc = gltf_document(motion, clip, ground)
     with AtomicPath(path) as out:
         out.tmp.write_bytes(b"".join(doc.save_to_bytes()))
     return Path(path)

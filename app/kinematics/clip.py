@@ -20,7 +20,7 @@ DEFAULT_SPEED_SECONDS = 4.0
 
 def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: float | None = None,
                 start: float = 0.0, speed: tuple[float, float] | None = None,
-                world: World | None = None) -> tuple[Motion, float | None]:
+                world: World | None = None, closed: bool = False) -> tuple[Motion, float | None]:
     """The motion of a clip and, for whole-cycle clips, its cycle count.
 
     With ``cycles`` the frame count is ``round(cycles * fps / frequency)`` and the clock
@@ -28,10 +28,14 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
     frame per clip) so the last frame leads seamlessly into the first. With ``speed``
     (m/s at the first and last frame, linear in between) the gait follows the speed
     (:mod:`app.kinematics.speed`). ``world``: where to walk (default straight ahead on
-    flat ground, travelling).
+    flat ground, travelling). ``closed`` (whole cycles only) adds the frame that closes
+    the loop: the last frame then equals the first (shifted by the travel, if any), as
+    animation packages expect of a cycle.
     """
     world = world or World()
     check_world(rig, world)
+    if closed and (seconds is not None or speed is not None):
+        raise ValueError("a closed loop needs whole cycles (not seconds or a speed ramp)")
     if speed is not None:
         motion, cycles = _speed_clip(rig, fps, seconds, cycles, speed, world, start)
         if not world.terrain.flat:
@@ -42,12 +46,12 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
     if seconds is None:
         cycles = DEFAULT_CYCLES if cycles is None else cycles
         frames = max(1, int(round(cycles * fps / f)))
-        clock = start_clock + cycles * np.arange(frames) / frames
+        clock = start_clock + cycles * np.arange(frames + int(closed)) / frames
     else:
         frames = frame_count(seconds, fps)
         clock = start_clock + f * np.arange(frames) / fps
         cycles = None
-    times = start + np.arange(frames) / fps
+    times = start + np.arange(len(clock)) / fps
     motion = solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps)
     if not world.terrain.flat:
         check_reach(motion)
