@@ -1,4 +1,4 @@
-"""Export speed: a 10 s clip at 60 fps of each preset as BVH (skeleton + file).
+"""Export speed: a 10 s clip at 60 fps of each preset as BVH and as glTF (skeleton + file).
 
     python bench/bench_export.py
 
@@ -17,7 +17,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from app import build_rig, load_creature  # noqa: E402
-from app.export import write_bvh  # noqa: E402
+from app.export import write_bvh, write_glb  # noqa: E402
 from app.kinematics.clip import clip_motion  # noqa: E402
 from app.kinematics.skeleton import skeleton_clip  # noqa: E402
 from timing import median_time  # noqa: E402  (bench/timing.py)
@@ -25,15 +25,16 @@ from timing import median_time  # noqa: E402  (bench/timing.py)
 
 def main() -> None:
     print(f"# export benchmark - {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}")
-    print("creature    joints  frames  skeleton+BVH (median of 5)  size")
+    print("creature    joints  frames   BVH: time    size     glTF: time    size   (medians of 5, skeleton included)")
     with tempfile.TemporaryDirectory() as tmp:
         for creature in ("dog", "horse", "spider", "centipede"):
             motion, _ = clip_motion(build_rig(load_creature(creature)), 60.0, seconds=10.0)
-            out = Path(tmp) / f"{creature}.bvh"
-            seconds = median_time(lambda: write_bvh(out, skeleton_clip(motion)), repeats=5)
+            bvh, glb = Path(tmp) / f"{creature}.bvh", Path(tmp) / f"{creature}.glb"
+            t_bvh = median_time(lambda: write_bvh(bvh, skeleton_clip(motion)), repeats=5)
+            t_glb = median_time(lambda: write_glb(glb, motion, skeleton_clip(motion)), repeats=5)
             joints = skeleton_clip(motion).skeleton.count
-            print(f"{creature:10}  {joints:6}  {motion.frame_count:6}  {seconds:8.3f} s"
-                  f"                  {out.stat().st_size / 2**20:5.1f} MiB")
+            print(f"{creature:10}  {joints:6}  {motion.frame_count:6}  {t_bvh:8.3f} s  {bvh.stat().st_size / 2**20:5.1f} MiB"
+                  f"  {t_glb:8.3f} s  {glb.stat().st_size / 2**20:5.1f} MiB")
 
 
 if __name__ == "__main__":

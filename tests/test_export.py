@@ -98,9 +98,10 @@ def test_export_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path: Path, 
     assert list(tmp_path.iterdir()) == []
 
 
-def glb_world_positions(path: Path, times: np.ndarray) -> tuple[list[str], np.ndarray]:
-    """Joint world positions (T, J, 3) at ``times`` computed from the .glb's node TRS and
-    its animation alone (linear interpolation, quaternion slerp-free nlerp at keys)."""
+def glb_world_positions(path: Path, times: np.ndarray, rotations: bool = False):
+    """Joint names and world positions (T, J, 3) at ``times`` (the animation's keys),
+    computed from the .glb's node TRS and its animation alone; with ``rotations`` also the
+    world rotations (T, J, 3, 3) and the skin's inverse bind matrices (J, 4, 4)."""
     import pygltflib
     from scipy.spatial.transform import Rotation
 
@@ -144,6 +145,9 @@ def glb_world_positions(path: Path, times: np.ndarray) -> tuple[list[str], np.nd
             world_p[:, k] = world_p[:, p] + np.einsum("tij,tj->ti", world_r[:, p], translation[:, k])
         else:
             world_r[:, k], world_p[:, k] = local, translation[:, k]
+    if rotations:
+        inverse_bind = read(skin.inverseBindMatrices).reshape(J, 4, 4).transpose(0, 2, 1)
+        return names, world_p, world_r, inverse_bind
     return names, world_p
 
 
@@ -152,12 +156,19 @@ def test_glb_joints_follow_the_clip(tmp_path: Path, creature: str) -> None:
     from app.export import write_glb
 
     world = make_world("circle:r=3", "hills:amp=0.08") if creature == "dog" else None
-    motion = motion_of(creature, fps=30.0, world=world)
+    motion = motion_of(creature, fps=60.0, world=world)  # at 30 fps a whipping swing turns ~45 degrees a frame
     clip = skeleton_clip(motion)
     path = write_glb(tmp_path / f"{creature}.glb", motion, clip)
-    names, position = glb_world_positions(path, motion.times - motion.times[0])
+    names, position, rotation, inverse_bind = glb_world_positions(path, motion.times - motion.times[0], True)
     assert names == list(clip.skeleton.names)
     assert np.abs(position - clip.world_position).max() < 1e-4
+    assert np.abs(rotation - clip.world_rotation).max() < 1e-5  # the bones' frames: what the skin follows
+    bind = np.tile(np.eye(4), (len(names), 1, 1))
+    bind[:, :3, :3], bind[:, :3, 3] = rotation[0], position[0]
+    assert np.abs(bind @ inverse_bind - np.eye(4)).max() < 1e-4  # the mesh sits on the bones at rest
+    angles = np.degrees(np.arccos(np.clip((np.trace(np.einsum("tjki,tjkl->tjil", rotation[:-1], rotation[1:]),
+                                                    axis1=2, axis2=3) - 1) / 2, -1, 1)))
+    assert angles.max() < 30.0  # no bone flips from one 60 fps frame to the next
 
 
 def _validator() -> list[str] | None:
