@@ -96,6 +96,7 @@ EXPORT_EPILOG = """\
 examples:
   gaitlab export dog --gait trot --cycles 2 -o dog.bvh
   gaitlab export dog --gait trot --cycles 2 -o dog.glb   for Blender, Godot, Unity, three.js
+  gaitlab export dog --gait trot --cycles 2 --loop -o dog.usda   a closed cycle for USD tools
   gaitlab export horse --gait gallop --fps 60 --seconds 4 -o gallop.bvh
   gaitlab export spider --path circle:r=1 --terrain hills:amp=0.05 --seconds 6 -o spider.bvh
   gaitlab analyze dog.bvh                 the exported file measures as the motion itself
@@ -264,11 +265,12 @@ def build_parser() -> argparse.ArgumentParser:
                        help="length units of the file (default: detected from the hip height; CSV: m)")
     files.add_argument("--up", choices=("auto", "y", "z"), default="auto", help="up axis (default: detected; CSV: y)")
 
-    export = sub.add_parser("export", help="export the animation as a skeleton: BVH or glTF (.glb)",
+    export = sub.add_parser("export", help="export the animation as a skeleton: BVH, glTF (.glb) or USD",
                             description="Export a creature's motion as a skeleton (joint hierarchy with local "
                                         "rotations and translations every frame): a BVH file (Y up, metres, ZXY "
-                                        "Euler angles in degrees) or a binary glTF with the creature's mesh "
-                                        "skinned to the skeleton and one animation with root motion.",
+                                        "Euler angles in degrees), a binary glTF with the creature's mesh "
+                                        "skinned to the skeleton and one animation with root motion, or a USD "
+                                        "stage (UsdSkel; .usda text or .usdc binary; needs usd-core).",
                             epilog=EXPORT_EPILOG,
                             formatter_class=argparse.RawDescriptionHelpFormatter)
     export.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",

@@ -80,7 +80,9 @@ def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:
 
 
 @pytest.mark.parametrize("args, message", [
-    (["-o", "dog.fbx"], "export has '.fbx'; use .bvh, .glb"),
+    (["-o", "dog.fbx"], "export has '.fbx'; use .bvh, .glb, .usda, .usdc"),
+    (["--ground", "-o", "dog.bvh"], "--ground adds the terrain as a mesh to glTF files"),
+    (["--loop", "--seconds", "2", "-o", "dog.bvh"], "--loop makes whole cycles"),
     (["-o", "missing/dog.bvh"], "output folder 'missing' does not exist"),
     (["--gait", "gallp", "-o", "dog.bvh"], "did you mean 'gallop'"),
     (["--fps", "0", "-o", "dog.bvh"], "frames per second"),
@@ -223,3 +225,27 @@ def test_a_looped_export_ends_where_it_began(tmp_path: Path, in_place: bool) -> 
     assert np.abs((position[-1] - shift) - position[0]).max() < 1e-5  # the same pose again
     with pytest.raises(Exception, match="--loop makes whole cycles"):
         export_clip(load_creature("cat"), tmp_path / "x.bvh", seconds=2.0, loop=True)
+
+
+@pytest.mark.parametrize("creature, suffix", [("dog", "usda"), ("spider", "usdc")])
+def test_usd_skeleton_animation_reads_back(tmp_path: Path, creature: str, suffix: str) -> None:
+    pxr = pytest.importorskip("pxr", reason="usd-core (Pixar's USD) is optional")  # noqa: F841
+    from pxr import Usd, UsdGeom, UsdSkel
+
+    from app.export import write_usd
+
+    world = make_world("circle:r=3", "hills:amp=0.08") if creature == "dog" else None
+    motion = motion_of(creature, fps=30.0, world=world)
+    clip = skeleton_clip(motion)
+    path = write_usd(tmp_path / f"{creature}.{suffix}", motion, clip)
+    stage = Usd.Stage.Open(str(path))
+    assert UsdGeom.GetStageUpAxis(stage) == "Y" and UsdGeom.GetStageMetersPerUnit(stage) == 1.0
+    cache = UsdSkel.Cache()
+    cache.Populate(UsdSkel.Root(stage.GetPrimAtPath("/Creature")), Usd.PrimDefaultPredicate)
+    query = cache.GetSkelQuery(UsdSkel.Skeleton(stage.GetPrimAtPath("/Creature/Skeleton")))
+    assert query.GetAnimQuery()
+    for t in range(motion.frame_count):
+        world_xf = query.ComputeJointWorldTransforms(UsdGeom.XformCache(t))
+        position = np.array([[m[3][0], m[3][1], m[3][2]] for m in world_xf])
+        assert np.abs(position - clip.world_position[t]).max() < 1e-4
+    assert sorted(p.name for p in tmp_path.iterdir()) == [path.name]

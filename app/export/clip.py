@@ -17,6 +17,7 @@ from ..spec import CreatureSpec
 from .bvh import write_bvh
 from .formats import export_format
 from .gltf import write_glb
+from .usd import write_usd
 
 
 @dataclass(frozen=True)
@@ -37,13 +38,17 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
     :class:`GaitlabError` with one line for bad input."""
     fmt = export_format(output)
     check_output_dir(output)
+    if fmt in ("usda", "usdc"):
+        from .usd import _pxr
+
+        _pxr()  # usd-core installed? (say so before simulating)
     if not (fps > 0 and math.isfinite(fps)):
         raise OutputError(f"fps {fps:g}: must be a finite number greater than 0")
     if loop and (seconds is not None or speed is not None):
         raise OutputError("--loop makes whole cycles whose last frame equals the first: give --cycles, "
                           "not --seconds or --speed")
     if ground and fmt != "glb":
-        raise OutputError(f"--ground adds the terrain as a mesh, which {fmt.upper()} cannot hold; write .glb")
+        raise OutputError(f"--ground adds the terrain as a mesh to glTF files; write .glb (not .{fmt})")
     if ground and world is not None and world.in_place:
         raise OutputError("--ground: an in-place clip's ground moves under the feet; export it travelling "
                           "(without --in-place)")
@@ -58,6 +63,8 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
     clip = skeleton_clip(motion)
     if fmt == "bvh":
         path = write_bvh(output, clip)
-    else:
+    elif fmt == "glb":
         path = write_glb(output, motion, clip, ground=ground)
+    else:
+        path = write_usd(output, motion, clip)
     return ExportResult(Path(path), clip.frame_count, clip.skeleton.count, clip.frame_count / fps)

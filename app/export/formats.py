@@ -8,8 +8,8 @@ from typing import Literal
 
 from ..errors import OutputError
 
-ExportFormat = Literal["bvh", "glb"]
-EXPORT_FORMATS: tuple[str, ...] = ("bvh", "glb")
+ExportFormat = Literal["bvh", "glb", "usda", "usdc"]
+EXPORT_FORMATS: tuple[str, ...] = ("bvh", "glb", "usda", "usdc")
 
 
 def export_format(path: str | os.PathLike[str]) -> ExportFormat:

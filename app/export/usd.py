@@ -1,0 +1,111 @@
+"""USD export (.usda text, .usdc binary) as a UsdSkel skeleton animation.
+
+The stage is Y up in metres at the clip's frame rate. ``/Creature`` is a SkelRoot holding
+the Skeleton (joints as paths, bind and rest transforms from the first frame), its
+SkelAnimation (every joint's local translation and rotation at every frame) and the
+creature's mesh, bound rigidly (one joint per vertex, weight 1) with vertex colours.
+Needs Pixar's ``usd-core`` package (``pip install usd-core``, an optional dependency).
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial.transform import Rotation
+
+from ..errors import OutputError
+from ..kinematics.motion import Motion
+from ..kinematics.skeleton import SkeletonClip
+from ..output import AtomicPath
+from .mesh import creature_mesh
+
+
+def _pxr():
+    try:
+        from pxr import Gf, Sdf, Usd, UsdGeom, UsdSkel, Vt
+    except ImportError:
+        raise OutputError("USD export needs Pixar's usd-core: pip install usd-core (or write .glb or .bvh)") from None
+    return Gf, Sdf, Usd, UsdGeom, UsdSkel, Vt
+
+
+def joint_paths(clip: SkeletonClip) -> list[str]:
+    """Each joint as a USD joint path ("root/spine4/LF_hip/...")."""
+    names, parents = clip.skeleton.names, clip.skeleton.parents
+    paths: list[str] = []
+    for j, p in enumerate(parents):
+        paths.append(names[j] if p < 0 else f"{paths[p]}/{names[j]}")
+    return paths
+
+
+def _matrices(rotation: NDArray[np.float64], translation: NDArray[np.float64], Gf) -> list:
+    """(J, 3, 3) and (J, 3) -> Gf.Matrix4d (USD's row-vector convention)."""
+    out = []
+    for r, t in zip(rotation, translation):
+        m = np.eye(4)
+        m[:3, :3] = r.T
+        m[3, :3] = t
+        out.append(Gf.Matrix4d(m.tolist()))
+    return out
+
+
+def write_usd(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip) -> Path:
+    """Write the clip as a UsdSkel stage (.usda or .usdc by suffix), atomically."""
+    Gf, Sdf, Usd, UsdGeom, UsdSkel, Vt = _pxr()
+    out = AtomicPath(path)
+    try:
+        stage = Usd.Stage.CreateNew(str(out.tmp))
+        UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.y)
+        UsdGeom.SetStageMetersPerUnit(stage, 1.0)
+        T = clip.frame_count
+        stage.SetTimeCodesPerSecond(clip.fps)
+        stage.SetFramesPerSecond(clip.fps)
+        stage.SetStartTimeCode(0)
+        stage.SetEndTimeCode(max(T - 1, 0))
+        root = UsdSkel.Root.Define(stage, "/Creature")
+        stage.SetDefaultPrim(root.GetPrim())
+        skeleton = UsdSkel.Skeleton.Define(stage, "/Creature/Skeleton")
+        paths = joint_paths(clip)
+        skeleton.CreateJointsAttr(paths)
+        skeleton.CreateBindTransformsAttr(Vt.Matrix4dArray(
+            _matrices(clip.world_rotation[0], clip.world_position[0], Gf)))
+        skeleton.CreateRestTransformsAttr(Vt.Matrix4dArray(
+            _matrices(clip.local_rotation[0], clip.local_translation[0], Gf)))
+        animation = UsdSkel.Animation.Define(stage, "/Creature/Skeleton/Motion")
+        animation.CreateJointsAttr(paths)
+        translations = animation.CreateTranslationsAttr()
+        rotations = animation.CreateRotationsAttr()
+        animation.CreateScalesAttr().Set(Vt.Vec3hArray([Gf.Vec3h(1, 1, 1)] * len(paths)))
+        quat = Rotation.from_matrix(clip.local_rotation.reshape(-1, 3, 3)).as_quat().reshape(T, -1, 4)  # xyzw
+        for t in range(T):
+            translations.Set(Vt.Vec3fArray.FromNumpy(clip.local_translation[t].astype(np.float32)), t)
+            rotations.Set(Vt.QuatfArray([Gf.Quatf(float(q[3]), float(q[0]), float(q[1]), float(q[2]))
+                                         for q in quat[t]]), t)
+        UsdSkel.BindingAPI.Apply(skeleton.GetPrim()).CreateAnimationSourceRel().SetTargets([animation.GetPath()])
+
+        mesh_data = creature_mesh(motion, clip)
+        mesh = UsdGeom.Mesh.Define(stage, "/Creature/Body")
+        mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.positions.astype(np.float32)))
+        mesh.CreateFaceVertexCountsAttr(Vt.IntArray([3] * len(mesh_data.faces)))
+        mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(mesh_data.faces.reshape(-1).astype(np.int32)))
+        mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.normals.astype(np.float32)))
+        mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
+        mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)
+        colors = UsdGeom.PrimvarsAPI(mesh).CreatePrimvar("displayColor", Sdf.ValueTypeNames.Color3fArray,
+                                                         UsdGeom.Tokens.vertex)
+        colors.Set(Vt.Vec3fArray.FromNumpy(mesh_data.colors.astype(np.float32)))
+        binding = UsdSkel.BindingAPI.Apply(mesh.GetPrim())
+        binding.CreateSkeletonRel().SetTargets([skeleton.GetPath()])
+        binding.CreateJointIndicesPrimvar(False, 1).Set(Vt.IntArray.FromNumpy(mesh_data.joint.astype(np.int32)))
+        binding.CreateJointWeightsPrimvar(False, 1).Set(Vt.FloatArray([1.0] * len(mesh_data.joint)))
+        binding.CreateGeomBindTransformAttr(Gf.Matrix4d(1.0))
+        stage.GetRootLayer().Save()
+    except OutputError:
+        out.discard()
+        raise
+    except BaseException:
+        out.discard()
+        raise
+    return out.commit()
