@@ -237,3 +237,19 @@ def test_a_copy_of_the_preset_folder_is_protected_too(tmp_path: Path) -> None:
     shutil.copytree(creatures_dir(), copy)
     assert is_shipped(copy / "dog.toml") and is_shipped(creatures_dir() / "cat.toml")
     assert not is_shipped(tmp_path / "dog.toml")
+
+
+def test_export_from_the_viewer_writes_what_is_on_screen(tmp_path) -> None:
+    """The File panel's export: this creature and gait, from the current time, into the
+    Record panel's folder (issue 10)."""
+    from app.analysis.bvh import read_bvh
+
+    state = ViewerState(load_creature("cat").with_overrides({"gait.preset": "trot"}))
+    state.advance(0.5)
+    state.record.folder = str(tmp_path)
+    state.record.export_format = "bvh"
+    assert state.export(), state.error
+    clip = read_bvh(tmp_path / "cat.bvh")
+    assert "exported" in state.status and clip.frames.shape[0] > 10
+    state.record.folder = str(tmp_path / "missing")
+    assert not state.export() and "does not exist" in state.error

@@ -13,6 +13,7 @@ import numpy as np
 from imgui_bundle import imgui, implot
 
 from ..gaits import GAIT_PRESETS, gaits_for
+from ..export.formats import EXPORT_FORMATS
 from ..output import GIF_QUALITIES, MAX_CRF
 from ..render.camera import CAMERA_PRESETS
 from ..choices import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
@@ -483,6 +484,20 @@ def file_panel(state: ViewerState, pc: PanelContext) -> None:
         chosen = _combo("##recent", state.recent, "", "recent files")
         if chosen is not None:
             state.file_path = chosen
+    imgui.separator_text("export the motion")
+    r = state.record
+    for i, fmt in enumerate(EXPORT_FORMATS[:3]):
+        if i:
+            imgui.same_line()
+        if imgui.radio_button(fmt + "##export", r.export_format == fmt):
+            r.export_format = fmt  # type: ignore[assignment]
+    imgui.set_item_tooltip("BVH: the skeleton; glTF: skeleton, skinned mesh and animation (Blender, Godot, web); "
+                           "USD: UsdSkel (needs usd-core)")
+    name = f"{r.name or state.spec.name}.{r.export_format}"
+    if imgui.button(f"export {name}##export", imgui.ImVec2(-1, 0)):
+        state.export()
+    imgui.set_item_tooltip("what is on screen, from now on, for the Record panel's length and frame rate, into its "
+                           "folder; whole cycles end on the frame that closes the loop")
     label = "really reset every change? (press again)" if state.reset_pending else \
         "reset everything to the loaded creature"
     if imgui.button(label + "##reset-all", imgui.ImVec2(-1, 0)):

@@ -21,6 +21,8 @@ from ..kinematics.live import LiveMotion
 from ..kinematics.motion import Pose
 from ..kinematics.path import StraightPath
 from ..kinematics.world import World
+from ..export import export_clip
+from ..export.formats import ExportFormat
 from ..output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, MAX_CRF, GifQuality
 from ..recording import RecordRequest
 from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, clear_elevations, frame_points
@@ -73,6 +75,7 @@ class RecordSettings:
     name: str = ""  # default: <creature>.<format>
     gif_quality: GifQuality = DEFAULT_GIF_QUALITY
     crf: int = DEFAULT_CRF
+    export_format: ExportFormat = "glb"  # File panel: the skeleton's motion as BVH, glTF or USD
 
     def path(self, creature: str) -> Path:
         return Path(self.folder) / f"{self.name or creature}.{self.format}"
@@ -354,6 +357,25 @@ class ViewerState:
         self.file_path = str(written)
         self._remember_file(str(written))
         self.status = f"saved {Path(written).resolve()}"
+        self.error = None
+        return True
+
+    def export(self) -> bool:
+        """Export what is on screen — this creature, gait and world — as a skeleton clip
+        of the Record panel's length and frame rate from the current time, to the Record
+        panel's folder and name with the chosen export format."""
+        r = self.record
+        path = Path(r.folder) / f"{r.name or self.spec.name}.{r.export_format}"
+        try:
+            result = export_clip(self.spec, path, fps=float(r.fps),
+                                 seconds=r.length if r.unit == "seconds" else None,
+                                 cycles=r.length if r.unit == "cycles" else None,
+                                 start=float(self.live.time), world=self.world, loop=r.unit == "cycles")
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        self.status = (f"exported {Path(result.path).resolve()}: {result.joints} joints, {result.frames} frames "
+                       f"({result.units})")
         self.error = None
         return True
 
