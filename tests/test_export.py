@@ -43,7 +43,7 @@ def test_bvh_round_trip_with_both_readers(tmp_path: Path, creature: str) -> None
     bvhio = pytest.importorskip("bvhio", reason="bvhio (the independent BVH reader) is a test dependency")
     root = bvhio.readAsHierarchy(str(path))
     joints = {joint.Name: joint for joint, _, _ in root.layout()}
-    for t in range(0, motion.frame_count, max(1, motion.frame_count // 12)):
+    for t in range(motion.frame_count):  # the whole clip
         root.loadPose(t)
         theirs = np.array([list(joints[n].PositionWorld) for n in names])
         assert np.abs(theirs - clip.world_position[t]).max() < 1e-4
@@ -249,3 +249,15 @@ def test_usd_skeleton_animation_reads_back(tmp_path: Path, creature: str, suffix
         position = np.array([[m[3][0], m[3][1], m[3][2]] for m in world_xf])
         assert np.abs(position - clip.world_position[t]).max() < 1e-4
     assert sorted(p.name for p in tmp_path.iterdir()) == [path.name]
+
+
+def test_a_clip_of_no_frames_is_refused_and_nothing_written(tmp_path: Path, monkeypatch) -> None:
+    import app.export.clip as export_module
+    from app.errors import GaitlabError
+
+    real = export_module.clip_motion
+    monkeypatch.setattr(export_module, "clip_motion", lambda *a, **k: (lambda m: (m[0].frames(m[0].frame_count),
+                                                                                  m[1]))(real(*a, **k)))
+    with pytest.raises(GaitlabError, match="the clip has no frames"):
+        export_module.export_clip(load_creature("dog"), tmp_path / "dog.glb")
+    assert list(tmp_path.iterdir()) == []
