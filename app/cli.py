@@ -101,6 +101,7 @@ examples:
   gaitlab export spider --path circle:r=1 --terrain hills:amp=0.05 --seconds 6 -o spider.bvh
   gaitlab analyze dog.bvh                 the exported file measures as the motion itself
 
+--path and --terrain take the kinds and keys 'gaitlab render --help' lists.
 Joints: root (the middle of the trunk), spineN along the trunk, neck, head, nose,
 tailN, and per foot NAME_hip, NAME_knee, NAME_ankle, NAME_ball, NAME_toe. Joints whose
 offset changes (trunk, hips, neck and tail bases) carry position channels.
