@@ -20,7 +20,7 @@ from .output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_QUALITIES, MAX_CRF, MA
 from .render.camera import CAMERA_PRESETS, DEFAULT_CAMERA
 
 EXIT_BAD_INPUT = 2
-MAX_FPS = 240.0
+from .limits import MAX_FPS
 
 
 class _Parser(argparse.ArgumentParser):
@@ -451,7 +451,7 @@ def _creature_and_world(args: argparse.Namespace):
             specs.append(_load_with_overrides(args, entry.creature, overrides, origin=args.creature))
         spec = specs[0]
         if len(specs) > 1 and not getattr(args, "quiet", False):
-            print(f"note: {args.creature} has {len(specs)} creatures; this version films the first ({spec.name})",
+            print(f"note: {args.creature} has {len(specs)} creatures; this version uses the first ({spec.name})",
                   file=sys.stderr)
         if speed is None and first.speed is not None:
             speed = (first.speed, first.speed)

@@ -13,6 +13,7 @@ import moderngl
 import numpy as np
 
 from .errors import GaitlabError
+from .limits import MAX_FPS, MAX_SECONDS, MAX_SPEED, check_clip  # noqa: F401  (re-exported)
 from .kinematics.clip import clip_motion, frame_at
 from .kinematics.world import World
 from .output import (DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_MAX_FPS, GIF_QUALITIES, MAX_SIZE, GifQuality, GifWriter,
@@ -22,9 +23,6 @@ from .render.renderer import RenderOptions
 from .rigging import build_rig
 from .spec import CreatureSpec
 
-MAX_FPS = 240.0
-MAX_SECONDS = 600.0
-MAX_SPEED = 30.0
 
 Progress = Callable[[int, int], None]
 
@@ -52,23 +50,9 @@ class RecordRequest:
             raise GaitlabError(f"GIF quality {self.gif_quality!r}: choose one of {', '.join(GIF_QUALITIES)}")
         check_crf(self.crf)
         w, h = self.view.size
-        if not (0 < self.fps <= MAX_FPS) or not math.isfinite(self.fps):
-            raise GaitlabError(f"fps {self.fps:g}: must be greater than 0 and at most {MAX_FPS:g}")
         if not (1 <= w <= MAX_SIZE and 1 <= h <= MAX_SIZE):
             raise GaitlabError(f"size {w}x{h}: width and height must be between 1 and {MAX_SIZE}")
-        if self.seconds is not None and self.cycles is not None:
-            raise GaitlabError("give seconds or cycles, not both")
-        for name in ("seconds", "cycles"):
-            value = getattr(self, name)
-            if value is not None and not (0 < value <= MAX_SECONDS and math.isfinite(value)):
-                raise GaitlabError(f"{name} {value:g}: must be greater than 0 and at most {MAX_SECONDS:g}")
-        if not math.isfinite(self.start) or self.start < 0:
-            raise GaitlabError(f"time {self.start:g}: must be a finite number of seconds >= 0")
-        if self.speed is not None:
-            if any(not (0 < v <= MAX_SPEED and math.isfinite(v)) for v in self.speed):
-                raise GaitlabError(f"speed {self.speed[0]:g}:{self.speed[1]:g}: speeds must be in (0, {MAX_SPEED:g}] m/s")
-            if self.cycles is not None and self.speed[0] != self.speed[1]:
-                raise GaitlabError("with a changing --speed give the length in --seconds (cycles vary in length)")
+        check_clip(self.fps, self.seconds, self.cycles, self.start, self.speed)
 
 
 @dataclass(frozen=True)

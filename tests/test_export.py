@@ -40,6 +40,10 @@ def test_bvh_round_trip_with_both_readers(tmp_path: Path, creature: str) -> None
     for leg, leg_name in enumerate(motion.leg_names):  # the clip's own joints, over the whole clip
         got = ours[:, [names.index(f"{leg_name}_{part}") for part in ("hip", "knee", "ankle", "ball", "toe")]]
         assert np.abs(got - motion.joints[:, leg]).max() < 1e-4
+    channels = read_bvh(path).frames
+    rotations = [k for j in read_bvh(path).joints for k, c in enumerate(j.channels, j.first_channel)
+                 if c.lower().endswith("rotation")]
+    assert np.abs(np.diff(channels[:, rotations], axis=0)).max() < 45.0  # continuous angles: no gimbal spins
     bvhio = pytest.importorskip("bvhio", reason="bvhio (the independent BVH reader) is a test dependency")
     root = bvhio.readAsHierarchy(str(path))
     joints = {joint.Name: joint for joint, _, _ in root.layout()}
@@ -82,7 +86,8 @@ def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:
 @pytest.mark.parametrize("args, message", [
     (["-o", "dog.fbx"], "export has '.fbx'; use .bvh, .glb, .usda, .usdc"),
     (["--ground", "-o", "dog.bvh"], "--ground adds the terrain as a mesh to glTF files"),
-    (["--loop", "--seconds", "2", "-o", "dog.bvh"], "--loop makes whole cycles"),
+    (["--loop", "--seconds", "2", "-o", "dog.bvh"], "a looped export is whole cycles"),
+    (["--speed", "1:4", "--cycles", "2", "-o", "dog.bvh"], "with a changing --speed give the length in --seconds"),
     (["-o", "missing/dog.bvh"], "output folder 'missing' does not exist"),
     (["--gait", "gallp", "-o", "dog.bvh"], "did you mean 'gallop'"),
     (["--fps", "0", "-o", "dog.bvh"], "frames per second"),
@@ -223,7 +228,7 @@ def test_a_looped_export_ends_where_it_began(tmp_path: Path, in_place: bool) -> 
     if in_place:
         assert np.abs(shift).max() < 1e-5
     assert np.abs((position[-1] - shift) - position[0]).max() < 1e-5  # the same pose again
-    with pytest.raises(Exception, match="--loop makes whole cycles"):
+    with pytest.raises(Exception, match="a looped export is whole cycles"):
         export_clip(load_creature("cat"), tmp_path / "x.bvh", seconds=2.0, loop=True)
 
 

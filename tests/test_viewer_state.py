@@ -253,3 +253,21 @@ def test_export_from_the_viewer_writes_what_is_on_screen(tmp_path) -> None:
     assert "exported" in state.status and clip.frames.shape[0] > 10
     state.record.folder = str(tmp_path / "missing")
     assert not state.export() and "does not exist" in state.error
+
+
+def test_export_from_the_viewer_starts_at_the_phase_on_screen(tmp_path) -> None:
+    """After scrubbing the cycle, the export begins with the pose the viewer shows."""
+    from app.analysis.bvh import read_bvh
+
+    state = ViewerState(load_creature("dog"))
+    state.advance(0.4)
+    state.live.set_phase(0.6)  # scrubbed: the clock moved, the time did not
+    state.record.folder = str(tmp_path)
+    state.record.export_format = "bvh"
+    assert state.export(), state.error
+    pose = state.pose()
+    clip = read_bvh(tmp_path / "dog.bvh")
+    names = [f"{leg}_{part}" for leg in pose.leg_names for part in ("hip", "ball")]
+    first = clip.positions(names)[0].reshape(len(pose.leg_names), 2, 3)
+    shown = pose.joints[:, [0, 3]]
+    assert np.abs((first[:, 1] - first[:, 0]) - (shown[:, 1] - shown[:, 0])).max() < 0.01  # feet relative to hips

@@ -1,8 +1,11 @@
 """BVH export: the skeleton's hierarchy and motion as a Biovision file.
 
 Y up, metres (BVH has no unit field; ``gaitlab analyze`` detects metres from the hip
-height, and Blender's importer takes a scale). Rotations are ZXY Euler angles in degrees
-(R = Rz Rx Ry, applied in the order the channels are listed). Joints whose offset from
+height, and Blender's importer takes a scale). Rotations are Euler angles in degrees,
+applied in the order the channels are listed (ZXY: R = Rz Rx Ry); each joint uses the
+axis order that keeps it away from gimbal lock over the clip (ZXY wherever it can), and
+angles are continuous from frame to frame, so retiming or thinning keys never spins a
+joint. Joints whose offset from
 their parent changes over the clip (the trunk's joints, the hips, the neck and tail
 bases) carry position channels, which replace their OFFSET; leg bones, whose lengths
 are constant, carry rotations only. Every named joint is a JOINT (toe tips and the nose
@@ -22,8 +25,28 @@ from scipy.spatial.transform import Rotation
 from ..kinematics.skeleton import SkeletonClip
 from ..output import AtomicPath
 
-ROTATION_ORDER = "ZXY"
+ROTATION_ORDERS = ("ZXY", "ZYX", "YXZ", "YZX", "XYZ", "XZY")  # ZXY first: the common choice
 END_SITE = 0.01  # m: the End Site's offset along a leaf joint's +Y
+SAFE_MARGIN = 20.0  # degrees the middle Euler angle keeps from +-90 for ZXY to be kept
+
+
+def joint_eulers(rotation: np.ndarray) -> tuple[str, np.ndarray]:
+    """One joint's rotations (T, 3, 3) as Euler angles (T, 3) in degrees, in the axis order
+    whose middle angle stays farthest from +-90 degrees over the clip (where Euler angles
+    lock and the other two swing by 180 from one frame to the next), unwrapped so that
+    the angles change continuously."""
+    best: tuple[float, str, np.ndarray] | None = None
+    with warnings.catch_warnings():  # at gimbal lock scipy picks one of the equal answers: still exact
+        warnings.simplefilter("ignore", UserWarning)
+        for order in ROTATION_ORDERS:
+            angles = Rotation.from_matrix(rotation).as_euler(order, degrees=True)
+            margin = float(90.0 - np.abs(angles[:, 1]).max())
+            if best is None or margin > best[0] + 1e-6:
+                best = (margin, order, angles)
+            if order == ROTATION_ORDERS[0] and margin >= SAFE_MARGIN:
+                break  # the usual order is safe for this joint
+    assert best is not None
+    return best[1], np.unwrap(best[2], period=360.0, axis=0)
 
 
 def _channels(clip: SkeletonClip) -> list[bool]:
@@ -36,6 +59,8 @@ def bvh_text(clip: SkeletonClip) -> str:
     """The whole BVH file as text."""
     skeleton = clip.skeleton
     positional = _channels(clip)
+    eulers = [joint_eulers(clip.local_rotation[:, j]) for j in range(skeleton.count)]
+    orders = [order for order, _ in eulers]
     out = io.StringIO()
     out.write("HIERARCHY\n")
     order: list[int] = []  # joints in file order (depth first), for the motion columns
@@ -46,7 +71,7 @@ def bvh_text(clip: SkeletonClip) -> str:
         offset = np.zeros(3) if j == 0 else clip.local_translation[0, j]
         out.write(f"{pad}{keyword} {skeleton.names[j]}\n{pad}{{\n")
         out.write(f"{pad}  OFFSET {offset[0]:.6f} {offset[1]:.6f} {offset[2]:.6f}\n")
-        rotations = " ".join(f"{axis}rotation" for axis in ROTATION_ORDER)
+        rotations = " ".join(f"{axis}rotation" for axis in orders[j])
         if positional[j]:
             out.write(f"{pad}  CHANNELS 6 Xposition Yposition Zposition {rotations}\n")
         else:
@@ -61,15 +86,11 @@ def bvh_text(clip: SkeletonClip) -> str:
 
     write_joint(0, 0)
     T = clip.frame_count
-    with warnings.catch_warnings():  # at gimbal lock scipy picks one of the equal answers: still exact
-        warnings.simplefilter("ignore", UserWarning)
-        euler = Rotation.from_matrix(clip.local_rotation.reshape(-1, 3, 3)).as_euler(ROTATION_ORDER, degrees=True)
-    euler = euler.reshape(T, skeleton.count, 3)
     columns = []
     for j in order:
         if positional[j]:
             columns.append(clip.local_translation[:, j])
-        columns.append(euler[:, j])
+        columns.append(eulers[j][1])
     values = np.concatenate(columns, axis=1)
     out.write(f"MOTION\nFrames: {T}\nFrame Time: {1.0 / clip.fps:.8f}\n")
     np.savetxt(out, values, fmt="%.6f", delimiter=" ")

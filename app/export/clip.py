@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
-import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
 
 from ..errors import OutputError
+from ..limits import check_clip
 from ..kinematics.clip import clip_motion
 from ..kinematics.skeleton import skeleton_clip
 from ..kinematics.world import World
@@ -42,11 +42,10 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
         from .usd import _pxr
 
         _pxr()  # usd-core installed? (say so before simulating)
-    if not (fps > 0 and math.isfinite(fps)):
-        raise OutputError(f"fps {fps:g}: must be a finite number greater than 0")
+    check_clip(fps, seconds, cycles, start, speed)
     if loop and (seconds is not None or speed is not None):
-        raise OutputError("--loop makes whole cycles whose last frame equals the first: give --cycles, "
-                          "not --seconds or --speed")
+        raise OutputError("a looped export is whole cycles whose last frame equals the first: give a length in "
+                          "cycles, without seconds or a speed")
     if ground and fmt != "glb":
         raise OutputError(f"--ground adds the terrain as a mesh to glTF files; write .glb (not .{fmt})")
     if ground and world is not None and world.in_place:
@@ -61,10 +60,11 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
         raise OutputError(f"{os.fspath(output)}: the clip has no frames at {fps:g} fps; give a longer --seconds "
                           "or --cycles")
     clip = skeleton_clip(motion)
+    seconds_out = (clip.frame_count - int(loop)) / fps  # a looped clip's closing frame adds no time
     if fmt == "bvh":
         path = write_bvh(output, clip)
     elif fmt == "glb":
         path = write_glb(output, motion, clip, ground=ground)
     else:
         path = write_usd(output, motion, clip)
-    return ExportResult(Path(path), clip.frame_count, clip.skeleton.count, clip.frame_count / fps)
+    return ExportResult(Path(path), clip.frame_count, clip.skeleton.count, seconds_out)

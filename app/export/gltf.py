@@ -21,10 +21,11 @@ from scipy.spatial.transform import Rotation
 
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import SkeletonClip
+from ..errors import OutputError
 from ..output import AtomicPath
 from .mesh import creature_mesh
 
-def _quaternions(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
+def continuous_quaternions(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
     """(T, 3, 3) -> (T, 4) xyzw, signs kept continuous over time (no 360-degree spins)."""
     q = Rotation.from_matrix(rotation).as_quat()
     flip = np.einsum("ti,ti->t", q[1:], q[:-1]) < 0
@@ -59,7 +60,8 @@ class _Blob:
 
 
 GROUND_MARGIN = 1.0  # m of ground around what the creature covers
-GROUND_MAX_CELLS = 300  # per side: the ground mesh's resolution is capped
+GROUND_MAX_CELLS = 600  # per side: the ground mesh's resolution is capped
+GROUND_MAX_CELL = 0.25  # m: coarser cells would no longer follow the terrain the feet stand on
 
 
 def _ground(motion: Motion, blob: "_Blob", doc: gl.GLTF2) -> int:
@@ -68,7 +70,12 @@ def _ground(motion: Motion, blob: "_Blob", doc: gl.GLTF2) -> int:
     points = np.concatenate([motion.joints.reshape(-1, 3), motion.spine.reshape(-1, 3)])
     lo = points[:, [0, 2]].min(axis=0) - GROUND_MARGIN
     hi = points[:, [0, 2]].max(axis=0) + GROUND_MARGIN
-    cell = max(0.05, float((hi - lo).max()) / GROUND_MAX_CELLS)
+    extent = float((hi - lo).max())
+    cell = max(0.05, extent / GROUND_MAX_CELLS)
+    if cell > GROUND_MAX_CELL:
+        raise OutputError(f"--ground: the clip covers {extent:.0f} m; the ground mesh is made for clips up to "
+                          f"{GROUND_MAX_CELL * GROUND_MAX_CELLS:.0f} m across (export a shorter clip, or without "
+                          "--ground)")
     position, normal, indices = motion.terrain.surface((float(lo[0]), float(lo[1])), (float(hi[0]), float(hi[1])), cell)
     attributes = gl.Attributes(POSITION=blob.add(position.astype(np.float32), gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER,
                                                  bounds=True),
@@ -136,7 +143,7 @@ def gltf_document(motion: Motion, clip: SkeletonClip, ground: bool = False) -> g
     animation = gl.Animation(name="clip", channels=[], samplers=[])
     moving = np.ptp(clip.local_translation, axis=0).max(axis=-1) > 1e-9
     for j in range(J):
-        q = _quaternions(clip.local_rotation[:, j]).astype(np.float32)
+        q = continuous_quaternions(clip.local_rotation[:, j]).astype(np.float32)
         animation.samplers.append(gl.AnimationSampler(input=time_accessor, output=blob.add(q, gl.VEC4, gl.FLOAT),
                                                       interpolation="LINEAR"))
         animation.channels.append(gl.AnimationChannel(sampler=len(animation.samplers) - 1,

@@ -14,12 +14,12 @@ from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial.transform import Rotation
 
 from ..errors import OutputError
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import SkeletonClip
 from ..output import AtomicPath
+from .gltf import continuous_quaternions
 from .mesh import creature_mesh
 
 
@@ -78,7 +78,7 @@ def write_usd(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip) 
         translations = animation.CreateTranslationsAttr()
         rotations = animation.CreateRotationsAttr()
         animation.CreateScalesAttr().Set(Vt.Vec3hArray([Gf.Vec3h(1, 1, 1)] * len(paths)))
-        quat = Rotation.from_matrix(clip.local_rotation.reshape(-1, 3, 3)).as_quat().reshape(T, -1, 4)  # xyzw
+        quat = np.stack([continuous_quaternions(clip.local_rotation[:, j]) for j in range(len(paths))], axis=1)
         for t in range(T):
             translations.Set(Vt.Vec3fArray.FromNumpy(clip.local_translation[t].astype(np.float32)), t)
             rotations.Set(Vt.QuatfArray([Gf.Quatf(float(q[3]), float(q[0]), float(q[1]), float(q[2]))
@@ -104,6 +104,12 @@ def write_usd(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip) 
         stage.GetRootLayer().Save()
     except OutputError:
         out.discard()
+        raise
+    except Exception as exc:  # pxr raises Tf.ErrorException with several lines of context
+        out.discard()
+        if type(exc).__module__.startswith("pxr"):
+            first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+            raise OutputError(f"{os.fspath(path)}: cannot write USD: {first[:200]}") from None
         raise
     except BaseException:
         out.discard()

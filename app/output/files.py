@@ -47,7 +47,7 @@ def check_output_dir(path: str | os.PathLike[str]) -> None:
     if not parent.is_dir():
         raise OutputError(f"{os.fspath(path)}: output folder {os.fspath(parent)!r} does not exist")
     if path.is_dir():
-        raise OutputError(f"{os.fspath(path)}: is a folder; give a file name ending in .png, .gif or .mp4")
+        raise OutputError(f"{os.fspath(path)}: is a folder; give a file name")
     try:  # a real probe: permission bits say nothing for root or for special file systems
         fd, probe = tempfile.mkstemp(prefix=".gaitlab-probe-", dir=parent)
         os.close(fd)

@@ -370,9 +370,13 @@ class ViewerState:
             result = export_clip(self.spec, path, fps=float(r.fps),
                                  seconds=r.length if r.unit == "seconds" else None,
                                  cycles=r.length if r.unit == "cycles" else None,
-                                 start=float(self.live.time), world=self.world, loop=r.unit == "cycles")
+                                 start=float(self.live.clock) / self.live.rig.gait.frequency, world=self.world,
+                                 loop=r.unit == "cycles")
         except GaitlabError as exc:
             self.error = str(exc)
+            return False
+        except OSError as exc:
+            self.error = f"{path}: cannot write: {exc.strerror or exc}"
             return False
         self.status = (f"exported {Path(result.path).resolve()}: {result.joints} joints, {result.frames} frames "
                        f"({result.units})")
