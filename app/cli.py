@@ -269,8 +269,9 @@ def build_parser() -> argparse.ArgumentParser:
     export = sub.add_parser("export", help="export the animation as a skeleton: BVH, glTF (.glb) or USD",
                             description="Export a creature's motion as a skeleton (joint hierarchy with local "
                                         "rotations and translations every frame): a BVH file (Y up, metres, Euler "
-                                        "angles in degrees, ZXY unless a joint nears gimbal lock), a binary glTF with the creature's mesh "
-                                        "skinned to the skeleton and one animation with root motion, or a USD "
+                                        "angles in degrees, ZXY unless a joint nears gimbal lock), a binary glTF "
+                                        "with the creature's mesh skinned to the skeleton and one animation with "
+                                        "root motion, or a USD "
                                         "stage (UsdSkel; .usda text or .usdc binary; needs usd-core).",
                             epilog=EXPORT_EPILOG,
                             formatter_class=argparse.RawDescriptionHelpFormatter)

@@ -195,8 +195,8 @@ def _gather(a: NDArray, starts: NDArray[np.intp], width: int, step: int) -> tupl
     return a[np.clip(grid, 0, len(a) - 1)], inside
 
 
-def _curve_events(a: NDArray, d1: NDArray, d2: NDArray, starts: NDArray[np.intp],
-                  crossings: tuple[NDArray, NDArray], step: int, cap: int) -> tuple[NDArray[np.intp], NDArray[np.bool_]]:
+def _curve_events(a: NDArray, d1: NDArray, d2: NDArray, starts: NDArray[np.intp], crossings: tuple[NDArray, NDArray],
+                  step: int, cap: int) -> tuple[NDArray[np.intp], NDArray[np.bool_]]:
     """:func:`_curve_event` for many stance frames at once: (indices, found)."""
     n = len(a)
     ends = (crossings[0] if step > 0 else crossings[1])[starts]

@@ -14,4 +14,5 @@ from .formats import EXPORT_FORMATS, export_format
 from .gltf import gltf_document, write_glb
 from .usd import write_usd
 
-__all__ = ["EXPORT_FORMATS", "ExportResult", "bvh_text", "export_clip", "export_format", "gltf_document", "write_bvh", "write_glb", "write_usd"]
+__all__ = ["EXPORT_FORMATS", "ExportResult", "bvh_text", "export_clip", "export_format", "gltf_document", "write_bvh",
+           "write_glb", "write_usd"]

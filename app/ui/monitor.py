@@ -157,7 +157,8 @@ class GaitMonitor:
                 self.error = "the measuring process stopped; starting another"
                 self._shutdown()
             except Exception as exc:  # a bug in the analysis: say so in one line, keep the worker
-                self.error = f"measurement failed: {type(exc).__name__}: {str(exc).splitlines()[0][:160] if str(exc) else ''}"
+                detail = str(exc).splitlines()[0][:160] if str(exc) else ""
+                self.error = f"measurement failed: {type(exc).__name__}: {detail}"
             else:
                 if report is not None and report.tracks is not None and report.tracks.names == self.names:
                     self.report, self.error = report, None
