@@ -49,3 +49,23 @@ def test_feet_mapping_by_hand_gives_the_same_result() -> None:
                       "RF=b_RightHand:b_RightFinger")
     tracks, notes = tracks_from_bvh(str(DATA / "dog_trot_tencent_walkrun001_f960-1156.bvh"), feet, units="cm")
     assert "--feet" in notes and analyze_tracks(tracks).gait_match == "trot"
+
+
+def test_cmu_human_run_a_single_stride_is_estimated_and_says_so() -> None:
+    """Issue 9: a take holding one stride (each foot lands once or twice) is analysed:
+    the cycle from the foot seen landing twice, duty factors from each foot's contact,
+    and a note that these are estimates. A run has a flight phase: duty under 0.5."""
+    tracks, _ = load_tracks(str(DATA / "human_run_cmu_09_01.bvh"))
+    report = analyze_tracks(tracks)
+    assert report.notes and "single stride" in report.notes[0] and "estimates" in report.notes[0]
+    assert report.cycle_seconds == pytest.approx(0.75, abs=0.02)  # R lands at frames 39 and 129 (120 fps)
+    assert report.gait_match == "run"
+    for foot in report.feet:
+        assert 0.2 < foot.duty_factor < 0.5
+    assert cyclic_distance(report.foot("R").phase, 0.5) < 0.15  # roughly opposite feet
+
+
+def test_the_long_clips_carry_no_note() -> None:
+    for name in ("human_walk_cmu_12_01.bvh", "dog_walk_tencent_walkrun005_f120-419.bvh"):
+        tracks, _ = load_tracks(str(DATA / name))
+        assert analyze_tracks(tracks).notes == ()

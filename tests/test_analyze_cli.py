@@ -150,3 +150,15 @@ def test_bad_input(tmp_path: Path, case: str) -> None:
     line, = out.stderr.strip().splitlines()
     assert expected in line, line
     assert list(work.iterdir()) == []
+
+
+def test_analyze_a_single_stride_clip_prints_the_note(tmp_path) -> None:
+    import subprocess
+    import sys
+
+    data = Path(__file__).parent / "data" / "human_run_cmu_09_01.bvh"
+    out = subprocess.run([sys.executable, "-m", "app", "analyze", str(data)], capture_output=True, text=True,
+                         timeout=120, cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert "note         the clip holds a single stride" in out.stdout
+    assert "gait         run" in out.stdout

@@ -98,6 +98,7 @@ class GaitReport:
     tracks: FootTracks | None = field(repr=False, default=None)
     path_error: PathError | None = None
     wave_lag: float | None = None  # many-legged creatures: a foot's lag behind the foot behind it
+    notes: tuple[str, ...] = ()  # what the numbers rest on, when it is not the usual (e.g. a single stride)
 
     def foot(self, name: str) -> FootReport:
         for f in self.feet:
@@ -117,6 +118,7 @@ class GaitReport:
             "limb_phase": num(self.limb_phase),
             "wave_lag": num(self.wave_lag),
             "gait_match": self.gait_match,
+            "notes": list(self.notes),
             "feet": [{"name": f.name, "duty_factor": num(f.duty_factor), "phase": num(f.phase),
                       "stride_length": num(f.stride_length), "max_stance_slip": num(f.max_stance_slip, 5),
                       "skating_ratio": num(f.skating_ratio), "events": [{"kind": k, "time": num(t)} for k, t in f.events]}
@@ -250,11 +252,18 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
     times = tracks.times
     ref = reference_foot(tracks.names)
     strikes = {fe.name: np.array([times[s.strike] for s in fe.steps if s.complete]) for fe in events}
-    if len(strikes.get(ref, [])) < 2:
-        raise AnalysisError(f"the reference foot {ref} touches down fewer than twice; give a longer clip "
-                            "(at least one full stride)")
-    cycle = float(np.median(np.diff(strikes[ref])))
-    phases = {k: circular_mean(v) for k, v in _step_phases(times, strikes, ref).items()}
+    notes: list[str] = []
+    single = len(strikes.get(ref, [])) < 2
+    if single:
+        # A single stride (a short mocap take): each foot's one contact, the cycle from a
+        # foot seen touching down twice or from the alternating feet.
+        cycle, how = _single_stride_cycle(events, times, ref, period)
+        phases = _single_stride_phases(events, times, ref, cycle)
+        notes.append(f"the clip holds a single stride: the cycle ({cycle:.3f} s, {how}) and so the duty factors "
+                     "and phases are estimates")
+    else:
+        cycle = float(np.median(np.diff(strikes[ref])))
+        phases = {k: circular_mean(v) for k, v in _step_phases(times, strikes, ref).items()}
     scale = (tracks.hip_height / 0.9) if tracks.hip_height else 1.0
 
     feet = []
@@ -263,6 +272,8 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
         duties = []
         for a, b in zip(complete, complete[1:]):
             duties.append((times[a.liftoff] - times[a.strike]) / max(times[b.strike] - times[a.strike], 1e-9))
+        if single:
+            duties = [(times[a.liftoff] - times[a.strike]) / cycle for a in complete]
         heel = tracks.heel[:, f]
         stance_points = np.array([heel[s.stance][[0, 2]] for s in complete])
         strides = np.linalg.norm(np.diff(stance_points, axis=0), axis=1) if len(stance_points) > 1 else np.array([])
@@ -287,7 +298,39 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
     spans = gait_spans(times, events, strikes, ref)
     return GaitReport(source=tracks.source, gait=requested_gait, cycle_seconds=cycle, speed=tracks.speed(),
                       limb_phase=limb_phase, gait_match=gait_match, feet=feet, spans=spans, foot_events=events,
-                      tracks=tracks, wave_lag=wave_lag(phases))
+                      tracks=tracks, wave_lag=wave_lag(phases), notes=tuple(notes))
+
+
+def _touchdowns(fe: FootEvents, times: np.ndarray) -> np.ndarray:
+    """A foot's touchdown times seen inside the clip (a contact already under way at the
+    first frame has none)."""
+    return np.array([times[s.strike] for s in fe.steps if s.strike > 0])
+
+
+def _single_stride_cycle(events: list[FootEvents], times: np.ndarray, ref: str, period: float) -> tuple[float, str]:
+    """The cycle (s) of a clip too short for the reference foot to land twice, and how it
+    was found: a foot seen touching down twice, else the alternating left and right feet
+    (a symmetric gait's are half a cycle apart), else the clip's repetition."""
+    twice = {fe.name: np.diff(t) for fe in events if len(t := _touchdowns(fe, times)) >= 2}
+    if twice:
+        name = min(twice, key=lambda n: (n != ref, n))
+        return float(np.median(twice[name])), f"from {name}'s two touchdowns"
+    once = {fe.name: t[0] for fe in events if len(t := _touchdowns(fe, times)) == 1}
+    if {"L", "R"} <= set(once):
+        return 2.0 * abs(float(once["R"] - once["L"])), "twice the time from one foot's touchdown to the other's"
+    if not any(s.complete for fe in events for s in fe.steps):
+        raise AnalysisError("no foot has a whole ground contact in the clip; give a longer clip (at least one stride)")
+    return float(period), "from the clip's repetition"
+
+
+def _single_stride_phases(events: list[FootEvents], times: np.ndarray, ref: str, cycle: float) -> dict[str, float]:
+    """Each foot's touchdown phase after the reference foot's first touchdown."""
+    downs = {fe.name: _touchdowns(fe, times) for fe in events}
+    if len(downs.get(ref, [])) == 0:
+        raise AnalysisError(f"the reference foot {ref} never touches down in the clip; give a longer clip "
+                            "(at least one full stride)")
+    t0 = float(downs[ref][0])
+    return {name: circular_mean(((t - t0) / cycle) % 1.0) for name, t in downs.items() if len(t)}
 
 
 def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, np.ndarray], ref: str) -> list[GaitSpan]:

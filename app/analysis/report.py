@@ -23,6 +23,8 @@ def format_table(report: GaitReport, requested: dict[str, tuple[float, float]] |
     lines = [f"source       {report.source}"]
     if notes:
         lines.append(f"read as      {notes}")
+    for note in report.notes:
+        lines.append(f"note         {note}")
     if report.gait:
         verdict = "matches" if report.gait_match == report.gait else f"requested {report.gait}"
         lines.append(f"gait         {report.gait_match} ({verdict})")
