@@ -23,6 +23,7 @@ from .meshes import unit_capsule, unit_sphere
 from .scene import CAPSULE_FLOATS, ELLIPSOID_FLOATS, SceneInstances, pose_instances, srgb_to_linear
 from .shaders import ShaderLibrary
 
+GL_MULTISAMPLE = 0x809D  # glEnable/glDisable capability (moderngl's enable_direct)
 SHADOW_MAP_SIZE = 256
 FLOOR_SEGMENTS = 64
 THIN_CAPSULE = 0.35  # capsules thinner than this fraction of the thickest use the coarse mesh
@@ -225,8 +226,11 @@ class SceneRenderer:
                 mesh.vao_depth.program["u_view_proj"].write(light_vp)
                 mesh.draw(depth_only=True)
 
-        # 2. Main pass, front to back so early depth testing skips hidden pixels:
-        #    creature, then ground, then the sky wherever nothing was drawn.
+        # 2. Main pass: the ground and the sky first with multisampling off, then the
+        #    creature with it on. A software rasteriser (llvmpipe) shades every sample of a
+        #    multisampled target, so the ground, most of the picture, would cost four times
+        #    over for nothing: its grid lines antialias themselves and its far edge fades
+        #    into the fog. Drawn first, it sits under the creature's antialiased edges.
         target.use()
         target.viewport = viewport
         sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
@@ -244,9 +248,8 @@ class SceneRenderer:
             self._set(prog, "u_shadow_map", 0)
             self._set(prog, "u_shadow_strength", 0.7 if options.shadow else 0.0)
             self._set(prog, "u_shadow_texel", shadow_texel)
-        for mesh in (self.capsules, self.ellipsoids, self.thin_capsules, self.small_ellipsoids):
-            mesh.draw(depth_only=False)
 
+        ctx.disable_direct(GL_MULTISAMPLE)
         ctx.disable(moderngl.CULL_FACE)
         reach = radius * self.FOG_END * 1.05
         horizon_t = tuple(horizon)
@@ -276,6 +279,13 @@ class SceneRenderer:
             self._set(self.background_prog, "u_horizon_color", tuple(horizon))
             self.background_vao.render(moderngl.TRIANGLE_STRIP)
             ctx.depth_func = "<"
+
+        ctx.enable_direct(GL_MULTISAMPLE)
+        ctx.enable(moderngl.CULL_FACE)
+        ctx.disable(moderngl.BLEND)
+        for mesh in (self.capsules, self.ellipsoids, self.thin_capsules, self.small_ellipsoids):
+            mesh.draw(depth_only=False)
+        ctx.disable(moderngl.CULL_FACE)
 
     def _draw_floor(self, scene: SceneInstances, centre: np.ndarray, reach: float, shadow_texel: float,
                     radius: float, options: RenderOptions) -> None:
