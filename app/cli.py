@@ -20,7 +20,7 @@ from .output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_QUALITIES, MAX_CRF, MA
 from .render.camera import CAMERA_PRESETS, DEFAULT_CAMERA
 
 EXIT_BAD_INPUT = 2
-from .limits import MAX_FPS
+from .limits import MAX_FPS, MAX_SECONDS
 
 
 class _Parser(argparse.ArgumentParser):
@@ -180,6 +180,29 @@ def _world_arguments(parser: argparse.ArgumentParser) -> None:
                        help="walk on the spot while the ground moves under the feet (flat, straight only)")
 
 
+def _clip_arguments(parser: argparse.ArgumentParser, output_help: str, cycles_help: str, fps: float) -> None:
+    """What a clip is of and how long (shared by render and export)."""
+    parser.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
+                        help="preset name, creature .toml or scene .toml (default: dog)")
+    parser.add_argument("-o", "--output", metavar="OUT", type=Path, help=output_help)
+    parser.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
+    length = parser.add_mutually_exclusive_group()
+    length.add_argument("--seconds", metavar="S", type=_positive("seconds", MAX_SECONDS), help="clip length in seconds")
+    length.add_argument("--cycles", metavar="N", type=_positive("cycles", MAX_SECONDS), help=cycles_help)
+    parser.add_argument("--fps", metavar="F", type=_positive("frames per second", MAX_FPS), default=fps,
+                        help=f"frames per second (default: {fps:g})")
+
+
+def _creature_arguments(parser: argparse.ArgumentParser, time_help: str) -> None:
+    """When the clip starts, creature overrides and speed (shared by render and export)."""
+    parser.add_argument("--time", metavar="T", type=_non_negative, default=0.0, help=time_help)
+    parser.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                        help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
+    parser.add_argument("--speed", metavar="V[:V1]", type=_speed,
+                        help="speed in m/s, or a ramp V0:V1 over the clip: the gait follows the speed "
+                             "(walk, trot, gallop by Froude number); default length 4 s")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="gaitlab", description="Procedural legged locomotion: tetrapods, insects, spiders and "
                      "centipedes walking paths over terrain, their legs driven by gait oscillators and analytic "
@@ -196,27 +219,12 @@ def build_parser() -> argparse.ArgumentParser:
                             description="Render a creature headless (EGL) to a PNG frame, a looping GIF or an "
                                         "H.264 MP4.", epilog=RENDER_EPILOG,
                             formatter_class=argparse.RawDescriptionHelpFormatter)
-    render.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
-                        help="preset name, creature .toml or scene .toml (default: dog)")
-    render.add_argument("-o", "--output", metavar="OUT", type=Path,
-                        help="output file: .png, .gif or .mp4 (default: CREATURE.gif)")
-    render.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
-    length = render.add_mutually_exclusive_group()
-    length.add_argument("--seconds", metavar="S", type=_positive("seconds", 600), help="clip length in seconds")
-    length.add_argument("--cycles", metavar="N", type=_positive("cycles", 600),
-                        help="clip length in gait cycles (default: 2; loops seamlessly)")
-    render.add_argument("--fps", metavar="F", type=_positive("frames per second", MAX_FPS), default=25.0,
-                        help="frames per second (default: 25)")
+    _clip_arguments(render, output_help="output file: .png, .gif or .mp4 (default: CREATURE.gif)",
+                    cycles_help="clip length in gait cycles (default: 2; loops seamlessly)", fps=25.0)
     render.add_argument("--size", metavar="WxH", type=_size, default=(480, 360), help="image size (default: 480x360)")
     render.add_argument("--camera", choices=CAMERA_PRESETS, default=DEFAULT_CAMERA,
                         help=f"camera preset (default: {DEFAULT_CAMERA})")
-    render.add_argument("--time", metavar="T", type=_non_negative, default=0.0,
-                        help="time in seconds of the PNG frame, or of a clip's first frame (default: 0)")
-    render.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
-                        help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
-    render.add_argument("--speed", metavar="V[:V1]", type=_speed,
-                        help="speed in m/s, or a ramp V0:V1 over the clip: the gait follows the speed "
-                             "(walk, trot, gallop by Froude number); default length 4 s")
+    _creature_arguments(render, time_help="time in seconds of the PNG frame, or of a clip's first frame (default: 0)")
     _world_arguments(render)
     render.add_argument("--msaa", metavar="N", type=_samples, default=4,
                         help="antialiasing samples: 0 (off), 2, 4 or 8 (default: 4)")
@@ -275,23 +283,10 @@ def build_parser() -> argparse.ArgumentParser:
                                         "stage (UsdSkel; .usda text or .usdc binary; needs usd-core).",
                             epilog=EXPORT_EPILOG,
                             formatter_class=argparse.RawDescriptionHelpFormatter)
-    export.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
-                        help="preset name, creature .toml or scene .toml (default: dog)")
-    export.add_argument("-o", "--output", metavar="OUT", type=Path,
-                        help=f"output file: {', '.join('.' + f for f in EXPORT_FORMATS)} (default: CREATURE.bvh)")
-    export.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
-    length = export.add_mutually_exclusive_group()
-    length.add_argument("--seconds", metavar="S", type=_positive("seconds", 600), help="clip length in seconds")
-    length.add_argument("--cycles", metavar="N", type=_positive("cycles", 600),
-                        help="clip length in gait cycles (default: 2)")
-    export.add_argument("--fps", metavar="F", type=_positive("frames per second", MAX_FPS), default=30.0,
-                        help="frames per second (default: 30)")
-    export.add_argument("--time", metavar="T", type=_non_negative, default=0.0,
-                        help="time in seconds of the first frame (default: 0)")
-    export.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
-                        help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
-    export.add_argument("--speed", metavar="V[:V1]", type=_speed,
-                        help="speed in m/s, or a ramp V0:V1: the gait follows the speed (default length 4 s)")
+    _clip_arguments(export, output_help=f"output file: {', '.join('.' + f for f in EXPORT_FORMATS)} "
+                                        "(default: CREATURE.bvh)",
+                    cycles_help="clip length in gait cycles (default: 2)", fps=30.0)
+    _creature_arguments(export, time_help="time in seconds of the first frame (default: 0)")
     export.add_argument("--loop", action="store_true",
                         help="whole cycles plus the frame that closes the loop (the last frame equals the first; "
                              "in place, or shifted by the travel): what animation packages expect of a cycle")

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Literal
 
-from ..errors import OutputError
+from ..output.files import format_by_suffix
 
 ExportFormat = Literal["bvh", "glb", "usda", "usdc"]
 EXPORT_FORMATS: tuple[str, ...] = ("bvh", "glb", "usda", "usdc")
@@ -14,8 +13,5 @@ EXPORT_FORMATS: tuple[str, ...] = ("bvh", "glb", "usda", "usdc")
 
 def export_format(path: str | os.PathLike[str]) -> ExportFormat:
     """The export format of ``path`` from its suffix; :class:`OutputError` if unsupported."""
-    suffix = Path(path).suffix.lower().lstrip(".")
-    if suffix not in EXPORT_FORMATS:
-        shown = f"'.{suffix}'" if suffix else "no suffix"
-        raise OutputError(f"{os.fspath(path)}: export has {shown}; use {', '.join('.' + f for f in EXPORT_FORMATS)}")
-    return suffix  # type: ignore[return-value]
+    allowed = ", ".join("." + f for f in EXPORT_FORMATS)
+    return format_by_suffix(path, EXPORT_FORMATS, "export", allowed)  # type: ignore[return-value]

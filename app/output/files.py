@@ -31,13 +31,19 @@ def _host() -> str:
     return name or "host"
 
 
+def format_by_suffix(path: str | os.PathLike[str], formats: tuple[str, ...], what: str, allowed: str) -> str:
+    """The lower-case suffix of ``path`` if it is one of ``formats``; otherwise an
+    :class:`OutputError` saying what ``what`` has and that ``allowed`` is what to use."""
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in formats:
+        shown = f"'.{suffix}'" if suffix else "no suffix"
+        raise OutputError(f"{os.fspath(path)}: {what} has {shown}; use {allowed}")
+    return suffix
+
+
 def output_format(path: str | os.PathLike[str]) -> OutputFormat:
     """The format of an output path from its suffix; :class:`OutputError` if unsupported."""
-    suffix = Path(path).suffix.lower().lstrip(".")
-    if suffix not in OUTPUT_FORMATS:
-        shown = f"'.{suffix}'" if suffix else "no suffix"
-        raise OutputError(f"{os.fspath(path)}: output has {shown}; use .png (one frame), .gif or .mp4")
-    return suffix  # type: ignore[return-value]
+    return format_by_suffix(path, OUTPUT_FORMATS, "output", ".png (one frame), .gif or .mp4")  # type: ignore
 
 
 def check_output_dir(path: str | os.PathLike[str]) -> None:
