@@ -17,3 +17,9 @@ KNEE_DIRECTIONS: tuple[str, ...] = get_args(KneeDirection)
 
 LegType = Literal["plantigrade", "digitigrade", "unguligrade"]
 LEG_TYPES: tuple[str, ...] = get_args(LegType)
+
+# How recorded frames smooth their edges: FXAA over the creature (fast), multisampling
+# (finest, costly on a software renderer) or nothing.
+Antialias = Literal["fxaa", "msaa", "off"]
+ANTIALIAS_MODES: tuple[str, ...] = get_args(Antialias)
+DEFAULT_ANTIALIAS: Antialias = "fxaa"

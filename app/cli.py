@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Sequence
 
 from . import __version__
+from .choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
 from .export.formats import EXPORT_FORMATS
@@ -226,8 +227,12 @@ def build_parser() -> argparse.ArgumentParser:
                         help=f"camera preset (default: {DEFAULT_CAMERA})")
     _creature_arguments(render, time_help="time in seconds of the PNG frame, or of a clip's first frame (default: 0)")
     _world_arguments(render)
-    render.add_argument("--msaa", metavar="N", type=_samples, default=4,
-                        help="antialiasing samples: 0 (off), 2, 4 or 8 (default: 4)")
+    render.add_argument("--antialias", choices=ANTIALIAS_MODES, default=None,
+                        help="smooth edges: fxaa (one fast pass over the creature), msaa (multisampling: the "
+                             "finest edges, about twice the time without a GPU) or off (default: fxaa)")
+    render.add_argument("--msaa", metavar="N", type=_samples, default=None,
+                        help="multisampling with N samples: 2, 4 or 8; 0 turns antialiasing off "
+                             "(the same as --antialias msaa or off; default: 4 with --antialias msaa)")
     render.add_argument("--gif-quality", choices=GIF_QUALITIES, default=DEFAULT_GIF_QUALITY,
                         help="GIF size against fidelity: best (255 colours, lossless), good (about half the size, "
                              "no visible loss), small (about a third, some grain); smaller GIFs need gifsicle "
@@ -372,7 +377,12 @@ def cmd_render(args: argparse.Namespace) -> int:
     from .kinematics.path import StraightPath
 
     turns = not isinstance(world.path, StraightPath)  # a straight line under the body says little
-    view = ViewSettings(size=args.size, camera=args.camera, samples=args.msaa,
+    antialias = args.antialias or (DEFAULT_ANTIALIAS if args.msaa is None else "msaa" if args.msaa else "off")
+    if args.antialias is not None and args.antialias != "msaa" and args.msaa:
+        raise GaitlabError(f"--msaa {args.msaa} asks for multisampling but --antialias is {args.antialias}; "
+                           "give one of them")
+    view = ViewSettings(size=args.size, camera=args.camera, antialias=antialias,
+                        samples=4 if args.msaa is None else args.msaa,
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
                                               joints=not args.no_joints, path=turns and not args.no_path))
     request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,

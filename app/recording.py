@@ -105,7 +105,7 @@ class Recording:
         self.total = self.motion.frame_count
         self.done = 0
         self._png: np.ndarray | None = None
-        self._renderer: ClipRenderer | None = ClipRenderer(view.size, view.samples, ctx=ctx)
+        self._renderer: ClipRenderer | None = ClipRenderer(view.size, view.antialias, view.samples, ctx=ctx)
         self._writer: GifWriter | Mp4Writer | None = None
         try:
             if self.format == "mp4":

@@ -76,7 +76,7 @@ def main() -> None:
     drawn = out.with_suffix(".glb.png")
     fig.savefig(drawn)
     view = ViewSettings(size=(480, 360), camera="side")
-    ours = ClipRenderer(view.size, 4).frame(motion, t, clip_cameras(motion, view)[t], RenderOptions())
+    ours = ClipRenderer(view.size, "msaa").frame(motion, t, clip_cameras(motion, view)[t], RenderOptions())
     theirs = np.asarray(Image.open(drawn).convert("RGB").resize((480, 360)))
     Image.fromarray(np.concatenate([ours, theirs], axis=1)).save(out)
     print(f"wrote {out}: frame {t}, Gaitlab's renderer left, the .glb alone right")

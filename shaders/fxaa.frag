@@ -19,11 +19,15 @@ float luma(vec3 c) {
 }
 
 void main() {
-    vec3 centre = texture(u_image, v_uv).rgb;
-    float nw = luma(texture(u_image, v_uv + vec2(-1.0, -1.0) * u_texel).rgb);
-    float ne = luma(texture(u_image, v_uv + vec2(1.0, -1.0) * u_texel).rgb);
-    float sw = luma(texture(u_image, v_uv + vec2(-1.0, 1.0) * u_texel).rgb);
-    float se = luma(texture(u_image, v_uv + vec2(1.0, 1.0) * u_texel).rgb);
+    // The centre and its diagonal neighbours by texelFetch: unfiltered reads are several
+    // times cheaper than filtered ones on a software rasteriser, and most pixels stop here.
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    ivec2 last = textureSize(u_image, 0) - 1;
+    vec3 centre = texelFetch(u_image, p, 0).rgb;
+    float nw = luma(texelFetch(u_image, clamp(p + ivec2(-1, -1), ivec2(0), last), 0).rgb);
+    float ne = luma(texelFetch(u_image, clamp(p + ivec2(1, -1), ivec2(0), last), 0).rgb);
+    float sw = luma(texelFetch(u_image, clamp(p + ivec2(-1, 1), ivec2(0), last), 0).rgb);
+    float se = luma(texelFetch(u_image, clamp(p + ivec2(1, 1), ivec2(0), last), 0).rgb);
     float m = luma(centre);
     float lo = min(m, min(min(nw, ne), min(sw, se)));
     float hi = max(m, max(max(nw, ne), max(sw, se)));

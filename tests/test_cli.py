@@ -138,6 +138,9 @@ BAD_INPUTS = {
     "fps zero": (["render", "dog", "--fps", "0", "-o", "x.gif"], "greater than 0"),
     "seconds and cycles": (["render", "dog", "--seconds", "1", "--cycles", "2", "-o", "x.gif"], "not allowed with"),
     "odd mp4 size": (["render", "dog", "--size", "95x72", "-o", "x.mp4"], "even width and height"),
+    "unknown antialias": (["render", "dog", "--antialias", "ssaa", "-o", "x.gif"], "choose from 'fxaa', 'msaa', 'off'"),
+    "msaa with fxaa": (["render", "dog", "--antialias", "fxaa", "--msaa", "4", "-o", "x.gif"],
+                       "--msaa 4 asks for multisampling but --antialias is fxaa"),
 }
 
 

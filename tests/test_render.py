@@ -22,7 +22,7 @@ SIZE = (192, 144)
 
 @pytest.fixture(scope="module")
 def renderer(gl_ctx):
-    r = ClipRenderer(SIZE, samples=0, ctx=gl_ctx)
+    r = ClipRenderer(SIZE, antialias="off", ctx=gl_ctx)
     yield r
     r.release()
 
@@ -32,7 +32,7 @@ def render(renderer, creature: str, gait: str | None = None, frame: int = 4, cam
     if gait:
         spec = spec.with_overrides({"gait.preset": gait})
     motion, cycles = clip_motion(build_rig(spec), 25.0, cycles=1.0, world=IN_PLACE)
-    view = ViewSettings(size=SIZE, camera=camera, samples=0)
+    view = ViewSettings(size=SIZE, camera=camera, antialias="off")
     options = RenderOptions(grid_spacing=loop_grid_spacing(motion, cycles))
     return renderer.frame(motion, frame % motion.frame_count, clip_camera(motion, view), options)
 

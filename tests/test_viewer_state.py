@@ -128,9 +128,11 @@ def test_record_request_matches_the_cli_defaults(state: ViewerState, tmp_path: P
     request = state.record_request()
     assert request.output == tmp_path / "dog.gif" and request.cycles == 2.0 and request.seconds is None
     assert request.view.size == (480, 360) and request.view.camera == "three-quarter" and request.fps == 25.0
+    assert request.view.antialias == "fxaa" and request.view.samples == 4  # as gaitlab render
     state.record.format, state.record.unit, state.record.length = "mp4", "seconds", 3.0
+    state.record.antialias = "msaa"
     request = state.record_request()
-    assert request.output.suffix == ".mp4" and request.seconds == 3.0
+    assert request.output.suffix == ".mp4" and request.seconds == 3.0 and request.view.antialias == "msaa"
 
 
 def test_save_never_overwrites_a_preset_or_a_file_unasked(state: ViewerState, tmp_path: Path,

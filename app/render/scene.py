@@ -59,6 +59,14 @@ class SceneInstances:
         """One frame of a clip's instances."""
         return SceneInstances(self.capsules[index], self.ellipsoids[index], self.ellipsoid_casters)
 
+    def box(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """World box (lo, hi), each (3,) in metres, around every shape of one frame,
+        radii included."""
+        caps, ells = self.capsules.astype(np.float64), self.ellipsoids.astype(np.float64)
+        centres = np.concatenate([caps[:, 0:3], caps[:, 3:6], ells[:, 0:3]])
+        radii = np.concatenate([caps[:, 6], caps[:, 7], ells[:, 12:15].max(axis=1)])[:, None]
+        return (centres - radii).min(axis=0), (centres + radii).max(axis=0)
+
 
 def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)

@@ -16,7 +16,7 @@ from ..gaits import GAIT_PRESETS, gaits_for
 from ..export.formats import EXPORT_FORMATS
 from ..output import GIF_QUALITIES, MAX_CRF
 from ..render.camera import CAMERA_PRESETS
-from ..choices import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
+from ..choices import ANTIALIAS_MODES, KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
 from ..spec import rule_for
 from .state import ViewerState
 
@@ -400,6 +400,14 @@ def record_panel(state: ViewerState, pc: PanelContext) -> None:
                               "original, each +6 roughly halves the file")
             imgui.set_next_item_width(-1)
             _, r.crf = imgui.slider_int("##crf", r.crf, 0, MAX_CRF, "crf %d")
+        imgui.table_next_column()
+        _label("edges", "antialiasing: fxaa is fast and nearly as smooth as msaa (multisampling), which "
+                        "takes about twice as long without a GPU; off is raw pixels")
+        for i, mode in enumerate(ANTIALIAS_MODES):
+            if i:
+                imgui.same_line()
+            if imgui.radio_button(f"{mode}##aa", r.antialias == mode):
+                r.antialias = mode  # type: ignore[assignment]
         imgui.table_next_column()
         _label("length", "how long the clip is, in gait cycles (which loop seamlessly) or seconds")
         _, r.length = imgui.input_float("##length", r.length, 0.0, 0.0, "%.2f")

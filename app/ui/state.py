@@ -15,6 +15,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from ..choices import DEFAULT_ANTIALIAS, Antialias
 from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
 from ..kinematics.live import LiveMotion
@@ -75,6 +76,7 @@ class RecordSettings:
     name: str = ""  # default: <creature>.<format>
     gif_quality: GifQuality = DEFAULT_GIF_QUALITY
     crf: int = DEFAULT_CRF
+    antialias: Antialias = DEFAULT_ANTIALIAS
     export_format: ExportFormat = "glb"  # File panel: the skeleton's motion as BVH, glTF or USD
 
     def path(self, creature: str) -> Path:
@@ -517,6 +519,7 @@ class ViewerState:
         seconds = r.length if r.unit == "seconds" else None
         cycles = r.length if r.unit == "cycles" else None
         view = ViewSettings(size=(int(r.width), int(r.height)), camera=r.camera,  # type: ignore[arg-type]
+                            antialias=r.antialias,
                             options=replace(RenderOptions(), grid=self.options.grid, shadow=self.options.shadow,
                                             joints=self.options.joints, path=self.options.path))
         return RecordRequest(spec=self.spec, output=r.path(self.spec.name), fps=float(r.fps), seconds=seconds,
