@@ -40,10 +40,16 @@ def test_json_csv_and_plot(tmp_path: Path) -> None:
 
 
 def test_speed_ramp_reports_gait_per_time_span(tmp_path: Path) -> None:
-    out = gaitlab("analyze", "dog", "--speed", "0.4:6", "--seconds", "10", "--json", cwd=tmp_path)
+    """Issue 8: from a walk to a gallop, the named walk, trot and gallop spans cover at
+    least 80% of the ramp (the switches are short; the clip's ends are measured too)."""
+    out = gaitlab("analyze", "dog", "--speed", "0.5:9", "--seconds", "12", "--json", cwd=tmp_path)
     assert out.returncode == 0, out.stderr
-    spans = [s["gait"] for s in json.loads(out.stdout)["spans"]]
-    assert spans[0] == "walk" and spans[-1] == "gallop" and "trot" in spans
+    spans = json.loads(out.stdout)["spans"]
+    gaits = [s["gait"] for s in spans]
+    assert gaits[0] == "walk" and gaits[-1] == "gallop" and "trot" in gaits
+    named = sum(s["end"] - s["start"] for s in spans if s["gait"] in ("walk", "trot", "gallop"))
+    assert named >= 0.8 * 12.0, spans
+    assert all(s["end"] - s["start"] < 0.5 for s in spans if s["gait"] == "transition"), spans
 
 
 def test_csv_input(tmp_path: Path) -> None:

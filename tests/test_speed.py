@@ -70,3 +70,31 @@ def steady_max_step(gait: str, speed: float, fps: float) -> float:
     feet = motion.joints[:, :, 3].copy()
     feet[:, :, 2] += motion.ground_offset[:, None]
     return float(np.linalg.norm(np.diff(feet, axis=0), axis=-1).max())
+
+
+def test_gait_switches_complete_within_a_cycle_and_a_half() -> None:
+    """Issue 8: speeding up from a slow walk to a gallop (2 m/s per second, as in drive
+    mode), every foot is within 1% of a cycle of the new gait's phases 1.5 cycles after each switch
+    (before: 8 and 6 cycles)."""
+    from app.kinematics.live import LiveMotion
+
+    fps = 240.0
+    speeds = np.linspace(0.3, 9.0, int(4.35 * fps))
+    rig = gait_at_speed(RIG, speeds[0])
+    gait, live = rig.gait.preset, LiveMotion(rig)
+    switches: list[tuple[str, float]] = []
+    done: list[float] = []
+    for v in speeds[1:]:
+        target = gait_at_speed(RIG, float(v), gait)
+        if target.gait.preset != gait:
+            switches.append((target.gait.preset, live.clock))
+        gait = target.gait.preset
+        live.set_rig(target)
+        live.step(1.0 / fps)
+        error = np.abs(np.mod(live.offsets - live.target_offsets() + 0.5, 1.0) - 0.5).max()
+        if switches and len(done) < len(switches) and error < 0.01:  # within 1% of a cycle
+            done.append(live.clock)
+    assert [g for g, _ in switches] == ["trot", "gallop"]
+    assert len(done) == 2
+    cycles = [end - start for (_, start), end in zip(switches, done)]
+    assert max(cycles) <= 1.5, cycles

@@ -149,13 +149,26 @@ def _preset_phases() -> dict[str, np.ndarray]:
     return {name: preset_phases(name, TETRAPOD_FEET) for name, p in GAIT_PRESETS.items() if p.fits(2)}
 
 
+# The duty factors each two-pair gait is seen with in real animals (shared/reference:
+# Hildebrand 1965, Cartmill et al. 2002; a walk is DF > 0.5, a run below it): a gait's
+# duty factor falls with speed, so a cycle is scored by how far its duty factor lies
+# outside its gait's range, not by the distance to one typical value.
+DUTY_RANGES: dict[str, tuple[float, float]] = {
+    "walk": (0.50, 0.85), "diagonal-walk": (0.50, 0.85), "amble": (0.35, 0.55), "trot": (0.30, 0.50),
+    "pace": (0.30, 0.50), "canter": (0.35, 0.50), "gallop": (0.18, 0.29), "rotary-gallop": (0.20, 0.35),
+    "half-bound": (0.30, 0.50), "bound": (0.30, 0.50), "pronk": (0.30, 0.40),
+}
+
+
 @functools.lru_cache(maxsize=1)
-def _tetrapod_table() -> tuple[tuple[str, ...], np.ndarray, np.ndarray]:
-    """The two-pair gaits as arrays: names, phases (gaits, 4) and duty factors (gaits,)."""
+def _tetrapod_table() -> tuple[tuple[str, ...], np.ndarray, np.ndarray, np.ndarray]:
+    """The two-pair gaits as arrays: names, phases (gaits, 4) and the low and high ends
+    of their duty factors (gaits,) each (a preset's own value where no range is known)."""
     presets = _preset_phases()
     names = tuple(presets)
+    ranges = [DUTY_RANGES.get(n, (GAIT_PRESETS[n].duty_factor,) * 2) for n in names]
     return (names, np.array([presets[n] for n in names], dtype=np.float64),
-            np.array([GAIT_PRESETS[n].duty_factor for n in names], dtype=np.float64))
+            np.array([r[0] for r in ranges], dtype=np.float64), np.array([r[1] for r in ranges], dtype=np.float64))
 
 
 def wave_lag(phases: dict[str, float]) -> float | None:
@@ -187,9 +200,10 @@ def gait_distance(phases: dict[str, float], duty: float) -> tuple[str, float]:
     if feet >= set(TETRAPOD_FEET):
         first = {k: phases[k] for k in TETRAPOD_FEET}
         measured = np.array([[m[k] for k in TETRAPOD_FEET] for m in (first, _mirror(first))])  # (2, 4)
-        names, expected, duties = _tetrapod_table()
+        names, expected, low, high = _tetrapod_table()
         d = (measured[None, :, :] - expected[:, None, :]) % 1.0  # (gaits, leads, feet)
-        score = np.minimum(d, 1.0 - d).mean(axis=2) + np.abs(duty - duties)[:, None]
+        outside = np.maximum(0.0, np.maximum(low - duty, duty - high))
+        score = np.minimum(d, 1.0 - d).mean(axis=2) + outside[:, None]
         best = int(np.argmin(score.min(axis=1)))  # the first gait, on its better lead, at a tie
         return names[best], float(score[best].min())
     if {"L", "R"} <= feet:
@@ -334,9 +348,13 @@ def _single_stride_phases(events: list[FootEvents], times: np.ndarray, ref: str,
 
 
 def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, np.ndarray], ref: str) -> list[GaitSpan]:
-    """The gait of each reference-foot cycle, merged into spans of the same gait."""
-    ref_strikes = strikes[ref]
-    spans: list[GaitSpan] = []
+    """The gait over time, as spans of one gait.
+
+    Every foot's cycles (touchdown to touchdown) are classified, with the phases taken
+    relative to the reference foot as everywhere else, so the stretch before the
+    reference foot's first touchdown, and a cycle in which the reference foot's
+    neighbours miss a step, are still named. Each moment takes the gait most of the
+    cycles around it agree on ("transition" where none is near a named gait)."""
     # Each foot's complete steps as sorted strike and liftoff times: one binary search per cycle.
     contacts = []
     for fe in events:
@@ -345,20 +363,39 @@ def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, n
         off = np.array([times[s.liftoff] for s in complete])
         order = np.argsort(on, kind="stable")
         contacts.append((fe.name, on[order], off[order]))
-    for t0, t1 in zip(ref_strikes, ref_strikes[1:]):
-        phases, duties = {}, []
-        for name, on, off in contacts:
-            i = int(np.searchsorted(on, t0, side="left"))
-            if i >= len(on) or not on[i] < t1:
-                break
-            phases[name] = (on[i] - t0) / (t1 - t0)
-            duties.append((off[i] - on[i]) / (t1 - t0))
-        else:
-            name, distance = gait_distance(phases, float(np.mean(duties)))
-            if distance > TRANSITION_DISTANCE:
-                name = "transition"
-            if spans and spans[-1].gait == name and abs(spans[-1].end - t0) < 1e-9:
-                spans[-1].end = float(t1)
+    windows: list[tuple[float, float, str]] = []
+    for _, cycle_on, _ in contacts:
+        for t0, t1 in zip(cycle_on, cycle_on[1:]):
+            phases, duties = {}, []
+            for name, on, off in contacts:
+                i = int(np.searchsorted(on, t0, side="left"))
+                if i >= len(on) or not on[i] < t1:
+                    break
+                phases[name] = (on[i] - t0) / (t1 - t0)
+                duties.append((off[i] - on[i]) / (t1 - t0))
             else:
-                spans.append(GaitSpan(float(t0), float(t1), name))
+                base = phases[ref]
+                phases = {k: (v - base) % 1.0 for k, v in phases.items()}
+                name, distance = gait_distance(phases, float(np.mean(duties)))
+                windows.append((float(t0), float(t1), "transition" if distance > TRANSITION_DISTANCE else name))
+    if not windows:
+        return []
+    starts = np.array([w[0] for w in windows])
+    ends = np.array([w[1] for w in windows])
+    bounds = np.unique(np.concatenate([starts, ends]))
+    spans: list[GaitSpan] = []
+    for a, b in zip(bounds, bounds[1:]):
+        around = [windows[k][2] for k in np.nonzero((starts <= a) & (ends >= b))[0]]
+        if not around:
+            continue
+        named = [g for g in around if g != "transition"]
+        if not named and len(around) < 2:
+            continue  # one foot's odd cycle at the clip's edge says too little
+        votes = {g: named.count(g) for g in named}
+        name = max(votes, key=lambda g: (votes[g], -named.index(g))) if votes and max(votes.values()) * 2 >= len(
+            around) else "transition"
+        if spans and spans[-1].gait == name and abs(spans[-1].end - a) < 1e-9:
+            spans[-1].end = float(b)
+        else:
+            spans.append(GaitSpan(float(a), float(b), name))
     return spans

@@ -11,8 +11,11 @@ reaches each foot without a jump:
 - each foot takes the new duty factor and step height at its next touchdown, and the new
   stride at its next lift-off (the body's speed follows the feet's strides);
 - each foot moves its phase offset towards the new one only while it is in the air, at
-  most :data:`SWING_RETIME` of the clock's rate (its swing runs up to that much faster or
-  slower), taking the shorter way round the cycle;
+  most :data:`SWING_RETIME` of the clock's rate; during a switch the new gait is aimed
+  at in the alignment that slowing swings alone reaches soonest (:func:`slowing_shift`:
+  a gait is its feet's phases relative to each other, so all its offsets may be shifted
+  together), re-aimed at every step, so a foot slowed for the speed cap never has to
+  catch up; a speed ramp's small changes of duty, stride and frequency are no switch;
 - no foot swings faster (peak speed over the ground) than in the faster of the two gaits'
   steady swings: a foot whose swing would be faster is slowed by retiming it, and catches
   up in later swings;
@@ -52,6 +55,19 @@ _DEASE = {"planted": 30.0 * _S ** 2 * (_S - 1.0) ** 2, "skewed-sine": 0.5 * np.p
 _DLIFT = np.pi * np.abs(np.cos(np.pi * _S))
 
 
+def slowing_shift(current: NDArray[np.float64], target: NDArray[np.float64]) -> float:
+    """The shift (cycles) to add to every ``target`` offset so that the feet reach the new
+    gait by slowing their swings only, as little as possible: each foot's change
+    ``(target + shift - current) mod 1`` is >= 0 and the largest is smallest. (A swing
+    may always be slowed; speeding one up is limited by how fast a foot may move.)
+
+    The changes lie on a circle; the best shift starts the arc after its widest gap."""
+    d = np.sort(np.mod(target - current, 1.0))
+    gaps = np.diff(np.append(d, d[0] + 1.0))
+    start = d[(int(np.argmax(gaps)) + 1) % len(d)]
+    return float(-start)
+
+
 class LiveMotion:
     """A creature moving in real time. Call :meth:`step` with the elapsed time, then
     :meth:`pose`. Deterministic given the sequence of calls.
@@ -78,6 +94,7 @@ class LiveMotion:
         g = self.rig.gait
         n = self.rig.leg_count
         self.offsets = np.array(g.offsets, dtype=np.float64)
+        self.offset_shift = 0.0  # cycles added to every offset of the gait (see _set_rig)
         self.duty = np.full(n, g.duty_factor)
         self.stride = np.full(n, g.stride)
         self.stride_lift = self.stride.copy()  # the stride of the stance a foot last left
@@ -116,6 +133,11 @@ class LiveMotion:
 
     def _wave_now(self) -> str:
         return self._wave_to if smoothstep(self._blend) >= 0.5 else self._wave_from
+
+    def target_offsets(self) -> NDArray[np.float64]:
+        """The phase offsets (L,) the feet are heading for: the gait's, all shifted by
+        :attr:`offset_shift` (a gait is its feet's phases relative to each other)."""
+        return np.mod(np.asarray(self.rig.gait.offsets, dtype=np.float64) + self.offset_shift, 1.0)
 
     def foot_phase(self) -> NDArray[np.float64]:
         """Each foot's phase since its touchdown, (L,)."""
@@ -204,7 +226,7 @@ class LiveMotion:
 
     def _update_settled(self) -> None:
         g = self.rig.gait
-        offset_error = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max()
+        offset_error = np.abs(np.mod(self.offsets - self.target_offsets() + 0.5, 1.0) - 0.5).max()
         self._feet_settled = bool(
             offset_error <= 1e-12 and np.all(self.duty == g.duty_factor) and np.all(self.stride == g.stride)
             and np.all(self.stride_lift == g.stride) and np.all(self.step_height == g.step_height)
@@ -238,24 +260,34 @@ class LiveMotion:
         frequency, bob, wave = self.frequency, self.bob, self._wave_now()
         speed_now = max(self._speed_cap, float(np.max(self._swing_speed(
             frequency, self.duty, self._swing_travel(), self.step_height, self.travel_per_cycle() * frequency, wave))))
+        before = self.rig.gait  # the gait asked for until now (the feet may still be on their way)
         self.rig = rig
         g = rig.gait
         if not blend or rig.leg_count != len(self.offsets):
             self._adopt_all()
             return
         self._update_settled()
-        offsets_change = not np.allclose(np.mod(g.offsets - self.offsets + 0.5, 1.0) - 0.5, 0.0, atol=1e-9)
-        big_change = (abs(g.frequency - frequency) > SMALL_CHANGE * frequency or g.wave != wave
-                      or not np.allclose(self.duty, g.duty_factor, rtol=0, atol=SMALL_CHANGE)
-                      or not np.allclose(self.stride, g.stride, rtol=SMALL_CHANGE, atol=0))
+        # A switch is judged against the gait asked for before, not against where the feet
+        # are: a speed ramp changes duty, stride and frequency a little at every call, and
+        # the feet take those at their next touchdown or lift-off; that is no switch.
+        offsets_change = not np.allclose(np.mod(np.asarray(g.offsets) - before.offsets + 0.5, 1.0) - 0.5, 0.0,
+                                         atol=1e-9)
+        big_change = (abs(g.frequency - before.frequency) > SMALL_CHANGE * before.frequency or g.wave != wave
+                      or abs(g.duty_factor - before.duty_factor) > SMALL_CHANGE
+                      or abs(g.stride - before.stride) > SMALL_CHANGE * before.stride)
+        if offsets_change:
+            self.offset_shift = slowing_shift(self.offsets, np.asarray(g.offsets, dtype=np.float64))
         if offsets_change or big_change:
             # A gait switch: the speed cap guards it until every foot has reached the new
-            # phase and taken a full step in the new gait. (Gradual changes, like a speed
-            # ramp frame by frame, need no guard.)
+            # phase and taken a full step in the new gait.
             self._speed_cap = max(speed_now, self._steady_swing_speed())
             self._guard = True
             self._stepped = np.zeros(rig.leg_count, dtype=bool)
             self._landed = np.zeros(rig.leg_count, dtype=bool)
+        elif self._guard:
+            # A gradual change during a switch (speeding up through it): the cap never falls
+            # below the new gait's own steady swings, or the feet could never settle into it.
+            self._speed_cap = max(self._speed_cap, self._steady_swing_speed())
         if (g.frequency, g.bob, g.wave) == (self._freq_to, self._bob_to, self._wave_to):
             return
         small = (abs(g.frequency - frequency) <= SMALL_CHANGE * frequency and abs(g.bob - bob) <= SMALL_CHANGE
@@ -317,12 +349,17 @@ class LiveMotion:
         # (offset up) is always safe; speeding it up (offset down) only while the speed cap
         # leaves room, otherwise the foot goes the long way round by slowing.
         airborne = ~landed & (after >= self.duty)
-        need = np.mod(g.offsets - self.offsets + 0.5, 1.0) - 0.5
         limit = SWING_RETIME * cycles
         if self._guard:
+            # Aim at the alignment of the new gait that slowing alone reaches soonest: a
+            # foot slowed for the speed cap then never has to speed up again (or go the
+            # long way round) to get back in step.
+            self.offset_shift = slowing_shift(self.offsets, np.asarray(g.offsets, dtype=np.float64))
+        if self._guard:
+            need = np.mod(self.target_offsets() - self.offsets, 1.0)  # >= 0: by slowing only
+            need = np.where(need > 1.0 - 1e-9, 0.0, need)  # on target (up to rounding)
             fastest = self._phase_speed_cap() * dt  # phase advance this step may not exceed it
             room = np.maximum(cycles - fastest, -limit)  # lowest allowed change (< 0: room to speed up)
-            need = np.where((need < 0) & (room >= 0), need + 1.0, need)
             settled = (np.isclose(self.duty, g.duty_factor) & np.isclose(self.stride, g.stride)
                        & np.isclose(self.stride_lift, g.stride) & np.isclose(self.step_height, g.step_height)
                        & np.isclose(self._swing_travel(), self._nominal_travel(), rtol=self._travel_tolerance(1e-3)))
@@ -332,6 +369,7 @@ class LiveMotion:
             change = np.clip(need, low, limit)
             change = np.maximum(change, np.where(settled, -limit, low))
         else:
+            need = np.mod(self.target_offsets() - self.offsets + 0.5, 1.0) - 0.5
             change = np.clip(need, -limit, limit)
         # Keep a retimed foot inside its swing: not past touchdown (phase 1), not back into
         # the stance it has just left (phase = duty).
@@ -340,7 +378,7 @@ class LiveMotion:
         if not self._feet_settled:  # once settled, only a new gait (set_rig) unsettles the feet
             self._update_settled()
         if self._guard:
-            offsets_done = np.abs(np.mod(self.offsets - g.offsets + 0.5, 1.0) - 0.5).max() <= 1e-9
+            offsets_done = np.abs(np.mod(self.offsets - self.target_offsets() + 0.5, 1.0) - 0.5).max() <= 1e-9
             if offsets_done and self._stepped.all() and np.allclose(
                     self._swing_travel(), self._nominal_travel(), rtol=self._travel_tolerance(0.03)):
                 self._guard = False
