@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .camera import Camera
+from .scene import box_corners
 from .shaders import ShaderLibrary
 
 Region = tuple[int, int, int, int]  # x, y (from the bottom left), width, height in pixels
@@ -56,7 +57,7 @@ def screen_region(lo: NDArray[np.float64], hi: NDArray[np.float64], camera: Came
     (each (3,), metres) as ``camera`` sees it in an image of ``size``, padded by ``pad``
     pixels and clipped to the image; the whole image when the box reaches behind the eye."""
     w, h = size
-    corners = np.array([[x, y, z, 1.0] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
+    corners = np.column_stack([box_corners(lo, hi), np.ones(8)])
     clip = corners @ np.array(camera.view_proj(w / max(h, 1)), dtype=np.float64).T
     if np.any(clip[:, 3] <= 1e-6):
         return (0, 0, w, h)
