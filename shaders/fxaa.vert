@@ -1,8 +1,10 @@
 #version 330 core
-// One triangle covering the screen; v_uv runs 0..1 over the visible part.
+// Rectangles of the image given in pixels (from the bottom left); v_uv is the texture
+// coordinate of the same spot of the source image.
+in vec2 in_pixel;
+uniform vec2 u_texel;  // 1 / image size
 out vec2 v_uv;
 void main() {
-    vec2 corner = vec2(float((gl_VertexID & 1) << 2), float((gl_VertexID & 2) << 1)) - 1.0;
-    v_uv = 0.5 * corner + 0.5;
-    gl_Position = vec4(corner, 0.0, 1.0);
+    v_uv = in_pixel * u_texel;
+    gl_Position = vec4(v_uv * 2.0 - 1.0, 0.0, 1.0);
 }

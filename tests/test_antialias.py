@@ -11,7 +11,7 @@ from app.kinematics.clip import clip_motion
 from app.kinematics.world import IN_PLACE
 from app.render.camera import Camera
 from app.render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
-from app.render.fxaa import screen_region
+from app.render.fxaa import TILE, screen_region, screen_tiles, sphere_boxes
 from app.render.renderer import RenderOptions
 from app.render.scene import motion_instances
 
@@ -35,6 +35,47 @@ def test_screen_region_is_the_whole_image_when_the_box_reaches_behind_the_eye() 
     assert screen_region(np.full(3, -5.0), np.full(3, 5.0), camera, SIZE) == (0, 0, *SIZE)
 
 
+def _tile_mask(rects: np.ndarray, size: tuple[int, int]) -> np.ndarray:
+    """Image-shaped (rows top down) mask of the pixels inside ``rects`` (bottom-left origin)."""
+    mask = np.zeros(size[::-1], dtype=bool)
+    for x, y, w, h in rects:
+        mask[size[1] - (y + h):size[1] - y, x:x + w] = True
+    return mask
+
+
+def test_screen_tiles_cover_every_shape_and_little_else() -> None:
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    camera = clip_camera(motion, ViewSettings(size=SIZE))
+    scene = motion_instances(motion).frame(3)
+    rects = screen_tiles(scene, camera, SIZE)
+    assert rects.shape[1] == 4 and len(rects) > 3
+    # Whole tiles (clipped at the image's right and top edges), inside the image.
+    assert np.all(rects[:, :2] % TILE == 0)
+    assert np.all((rects[:, 2] % TILE == 0) | (rects[:, 0] + rects[:, 2] == SIZE[0]))
+    assert np.all((rects[:, 3] == TILE) | (rects[:, 1] + rects[:, 3] == SIZE[1]))
+    assert np.all(rects[:, 0] + rects[:, 2] <= SIZE[0]) and np.all(rects[:, 1] + rects[:, 3] <= SIZE[1])
+    mask = _tile_mask(rects, SIZE)
+    # Every shape's screen box (its bounding spheres, padded) lies within the tiles.
+    caps, ells = scene.capsules.astype(float), scene.ellipsoids.astype(float)
+    centres = np.concatenate([caps[:, 0:3], caps[:, 3:6], ells[:, 0:3]])
+    radii = np.concatenate([caps[:, 6], caps[:, 7], ells[:, 12:15].max(axis=1)])
+    boxes = sphere_boxes(centres, radii, camera, SIZE)
+    assert boxes is not None
+    for x0, y0, x1, y1 in np.clip(boxes, 0, [SIZE[0] - 1, SIZE[1] - 1] * 2).astype(int):
+        assert mask[SIZE[1] - 1 - y1:SIZE[1] - y0, x0:x1 + 1].all()
+    # Much less than the creature's whole screen rectangle.
+    x, y, w, h = screen_region(*scene.box(), camera, SIZE)
+    assert mask.sum() < 0.75 * w * h
+
+
+def test_screen_tiles_are_the_whole_image_when_a_shape_is_behind_the_eye() -> None:
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    scene = motion_instances(motion).frame(0)
+    centre = scene.capsules[0, 0:3].astype(float)
+    camera = Camera(target=tuple(centre), azimuth=0.0, elevation=0.0, distance=0.01)
+    assert screen_tiles(scene, camera, SIZE).tolist() == [[0, 0, *SIZE]]
+
+
 @pytest.mark.gl
 def test_fxaa_smooths_the_creature_and_leaves_the_rest_alone(gl_ctx) -> None:
     motion, cycles = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
@@ -48,10 +89,8 @@ def test_fxaa_smooths_the_creature_and_leaves_the_rest_alone(gl_ctx) -> None:
         finally:
             renderer.release()
     scene = motion_instances(motion).frame(5)
-    x, y, w, h = screen_region(*scene.box(), camera, SIZE)
-    assert 0 < w * h < 0.8 * SIZE[0] * SIZE[1]
-    outside = np.ones(SIZE[::-1], dtype=bool)
-    outside[SIZE[1] - (y + h):SIZE[1] - y, x:x + w] = False  # image rows run top down
+    outside = ~_tile_mask(screen_tiles(scene, camera, SIZE), SIZE)
+    assert 0.3 * outside.size < outside.sum() < outside.size
     changed = np.abs(images["fxaa"] - images["off"]).max(axis=-1) > 0
     assert not changed[outside].any()
     assert changed.sum() > 100  # the silhouette's edge pixels were blended

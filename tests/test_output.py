@@ -215,10 +215,16 @@ def leftovers(folder: Path) -> list[str]:
     return sorted(p.name for p in folder.iterdir() if ".partial" in p.name)
 
 
+def _default_sigint() -> None:
+    # A test run started in the background by a shell ignores SIGINT, and so would the
+    # render it starts (Python installs no Ctrl-C handler then): give it the default.
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def start_render(folder: Path, output: str) -> subprocess.Popen:
     return subprocess.Popen([sys.executable, "-m", "app", "render", "dog", "--seconds", "60", "--size", "160x120",
                              "--msaa", "0", "-q", "-o", output], cwd=folder, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+                            stderr=subprocess.PIPE, text=True, preexec_fn=_default_sigint)
 
 
 def wait_for_partial(folder: Path, process: subprocess.Popen, timeout: float = 60.0) -> None:

@@ -17,7 +17,7 @@ from ..choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS, Antialias
 from ..kinematics.motion import Motion
 from .camera import DEFAULT_CAMERA, Camera, CameraPreset, clear_elevations, frame_points
 from .context import create_headless_context
-from .fxaa import screen_region
+from .fxaa import screen_tiles
 from .renderer import GroundView, RenderOptions, SceneRenderer, nice_grid_spacing
 from .scene import SceneInstances, box_corners, creature_points, motion_bounds, motion_instances
 from .target import OffscreenTarget
@@ -29,7 +29,7 @@ FOLLOW_SMOOTHING = 1.0  # seconds over which the follow camera averages the grou
 class ViewSettings:
     """How a clip is filmed: image size (pixels), camera preset, antialiasing, options.
 
-    ``antialias``: "fxaa" (the default: one pass over the creature's part of each frame,
+    ``antialias``: "fxaa" (the default: one pass over the pixels near the creature,
     about half the time of multisampling on a software renderer, nearly the same look),
     "msaa" (``samples`` per pixel, the finest edges) or "off"."""
 
@@ -131,8 +131,8 @@ class ClipRenderer:
         ground = GroundView(terrain=motion.terrain, offset=float(motion.ground_offset[index]),
                             path=None if motion.in_place else motion.path, travel=float(motion.travel[index]))
         self.scene.draw_instances(scene, ground, camera, self.target.fbo, options)
-        region = screen_region(*scene.box(), camera, self.target.size) if self.target.fxaa else None
-        return self.target.read(region)
+        tiles = screen_tiles(scene, camera, self.target.size) if self.target.fxaa else None
+        return self.target.read(tiles)
 
     def frames(self, motion: Motion, cameras: list[Camera], options: RenderOptions) -> Iterator[NDArray[np.uint8]]:
         for index in range(motion.frame_count):

@@ -191,9 +191,11 @@ class SceneRenderer:
 
     def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
                        target: moderngl.Framebuffer, options: RenderOptions,
-                       viewport: tuple[int, int, int, int] | None = None) -> None:
+                       viewport: tuple[int, int, int, int] | None = None, multisampled: bool | None = None) -> None:
         """Draw creature instances over ``ground`` (a GroundView, or the in-place ground
-        offset in metres) seen by ``camera`` into ``target`` (cleared first)."""
+        offset in metres) seen by ``camera`` into ``target`` (cleared first).
+        ``multisampled``: whether ``target`` has several samples per pixel (default: from
+        its colour attachments; give it for a window's framebuffer)."""
         if not isinstance(ground, GroundView):
             ground = GroundView(offset=float(ground))
         terrain = ground.terrain
@@ -226,29 +228,34 @@ class SceneRenderer:
                 mesh.vao_depth.program["u_view_proj"].write(light_vp)
                 mesh.draw(depth_only=True)
 
-        # 2. Main pass: the ground and the sky first with multisampling off, then the
-        #    creature with it on. A software rasteriser (llvmpipe) shades every sample of a
-        #    multisampled target, so the ground, most of the picture, would cost four times
-        #    over for nothing: its grid lines antialias themselves and its far edge fades
-        #    into the fog. Drawn first, it sits under the creature's antialiased edges.
+        # 2. Main pass. Without multisampling the creature goes first, nearest shapes
+        #    first, so the depth test rejects the ground hidden behind it before shading
+        #    it (a software rasteriser's cost is per pixel shaded). With multisampling the
+        #    ground and the sky go first with it off, then the creature with it on: a
+        #    software rasteriser (llvmpipe) shades every sample of a multisampled target,
+        #    so the ground, most of the picture, would cost four times over for nothing
+        #    (its grid lines antialias themselves and its far edge fades into the fog);
+        #    drawn first, it sits under the creature's antialiased edges.
         target.use()
         target.viewport = viewport
         sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
         target.clear(*np.sqrt(horizon), 1.0, depth=1.0, viewport=viewport)  # beyond the floor: horizon
         view_proj = camera.view_proj(aspect)
-        eye = camera.eye
         self.shadow_map.use(location=0)
         for prog in self._lit_programs:
             self._set(prog, "u_view_proj", view_proj)
             self._set(prog, "u_light_view_proj", light_vp)
             self._set(prog, "u_light_dir", tuple(LIGHT_DIR))
-            self._set(prog, "u_camera_pos", tuple(eye))
+            self._set(prog, "u_camera_pos", tuple(camera.eye))
             self._set(prog, "u_sky_color", tuple(sky))
             self._set(prog, "u_bounce_color", tuple(srgb_to_linear(options.ground_color) * 0.8))
             self._set(prog, "u_shadow_map", 0)
             self._set(prog, "u_shadow_strength", 0.7 if options.shadow else 0.0)
             self._set(prog, "u_shadow_texel", shadow_texel)
-
+        if multisampled is None:
+            multisampled = any(getattr(a, "samples", 0) > 0 for a in target.color_attachments)
+        if not multisampled:
+            self._draw_creature()
         ctx.disable_direct(GL_MULTISAMPLE)
         ctx.disable(moderngl.CULL_FACE)
         reach = radius * self.FOG_END * 1.05
@@ -279,8 +286,13 @@ class SceneRenderer:
             self._set(self.background_prog, "u_horizon_color", tuple(horizon))
             self.background_vao.render(moderngl.TRIANGLE_STRIP)
             ctx.depth_func = "<"
-
         ctx.enable_direct(GL_MULTISAMPLE)
+        if multisampled:
+            self._draw_creature()
+
+    def _draw_creature(self) -> None:
+        """The creature's shapes as uploaded for this frame, lit and shadowed."""
+        ctx = self.ctx
         ctx.enable(moderngl.CULL_FACE)
         ctx.disable(moderngl.BLEND)
         for mesh in (self.capsules, self.ellipsoids, self.thin_capsules, self.small_ellipsoids):

@@ -55,14 +55,14 @@ class OffscreenTarget:
         """The framebuffer to draw into."""
         return self._draw or self._resolve
 
-    def read(self, region: Region | None = None) -> NDArray[np.uint8]:
+    def read(self, region: Region | NDArray[np.integer] | None = None) -> NDArray[np.uint8]:
         """The drawn image, (H, W, 3) uint8, top row first. With FXAA, only ``region``
-        (x, y from the bottom left, width, height; default the whole image) is
-        antialiased, the rest copied as drawn."""
+        (x, y from the bottom left, width, height, or (N, 4) such rectangles; default
+        the whole image) is antialiased, the rest copied as drawn."""
         if self._draw is not None:
             self.ctx.copy_framebuffer(self._resolve, self._draw)
         if self._fxaa is not None and self._image is not None:
-            self._fxaa.apply(self._image, self._resolve, region or (0, 0, *self.size))
+            self._fxaa.apply(self._image, self._resolve, (0, 0, *self.size) if region is None else region)
         data = self._resolve.read(components=3, alignment=1)
         w, h = self.size
         return np.frombuffer(data, dtype=np.uint8).reshape(h, w, 3)[::-1]
