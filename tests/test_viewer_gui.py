@@ -351,3 +351,56 @@ def test_minimised_window_zero_framebuffer_does_not_crash(display: str, tmp_path
                          capture_output=True, text=True, timeout=120, cwd=tmp_path)
     assert out.returncode == 0, out.stderr
     assert shot.exists()
+
+
+def dumps_while(display: str, dump: Path, seconds: float, *keys: str) -> list[dict]:
+    """Hold ``keys`` for ``seconds`` (xdotool keydown/keyup), collecting every state dump
+    written meanwhile (one before the keys go down, one after they come up)."""
+    seen = [read_state(dump)]
+    for key in keys:
+        xdotool(display, "keydown", key)
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        state = read_state(dump, until=lambda s: s["frame"] > seen[-1]["frame"])
+        seen.append(state)
+    for key in keys:
+        xdotool(display, "keyup", key)
+    seen.append(read_state(dump, until=lambda s: s["frame"] > seen[-1]["frame"]))
+    return seen
+
+
+def moved_against_speed(states: list[dict]) -> tuple[float, float]:
+    """Distance the body moved over ``states`` and the integral of its reported speed."""
+    root = np.array([s["root"] for s in states])[:, [0, 2]]
+    steps = np.linalg.norm(np.diff(root, axis=0), axis=1)
+    speed = np.array([s["drive"]["speed"] for s in states])
+    t = np.array([s["time"] for s in states])
+    return float(steps.sum()), float((0.5 * (speed[1:] + speed[:-1]) * np.diff(t)).sum())
+
+
+def test_drive_mode_w_speeds_up_by_the_reported_speed_and_a_turns_left(display: str, tmp_path: Path) -> None:
+    with running_viewer(display, tmp_path, "dog", "--size", "1024x640") as (proc, dump, window):
+        xdotool(display, "mousemove", "--window", window, "700", "300")
+        xdotool(display, "key", "w")  # the first press starts driving
+        start = read_state(dump, until=lambda s: s["drive"] is not None)
+        held = dumps_while(display, dump, 2.0, "w")
+        moving = [s for s in held if s["drive"] is not None]
+        moved, expected = moved_against_speed(moving)
+        assert abs(moved - expected) <= 0.1 * expected, (moved, expected)
+        assert moving[-1]["drive"]["speed"] > 2.0 * start["drive"]["speed"]
+        root0, root1 = np.array(moving[0]["root"]), np.array(moving[-1]["root"])
+        assert root1[2] - root0[2] > 0.9 * moved  # straight ahead, +Z
+        # At a steady speed the body covers its reported speed x time.
+        steady = read_state(dump, until=lambda s: abs(s["drive"]["speed"] - s["drive"]["target"]) < 1e-6)
+        later = read_state(dump, until=lambda s: s["time"] > steady["time"] + 1.0)
+        moved, expected = moved_against_speed([steady, later])
+        assert abs(moved - expected) <= 0.1 * expected, (moved, expected)
+        # A turns left (+X for a creature facing +Z), with the curvature positive meanwhile.
+        turning = dumps_while(display, dump, 1.5, "a")
+        assert max(s["drive"]["curvature"] for s in turning) > 0.0
+        assert turning[-1]["root"][0] - turning[0]["root"][0] > 0.3
+        assert all(s["error"] is None for s in turning)
+        # Esc stops driving: the panels' gait again.
+        xdotool(display, "key", "Escape")
+        assert read_state(dump, until=lambda s: s["drive"] is None)["error"] is None
+        quit_viewer(display, proc, window)

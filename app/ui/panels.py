@@ -37,7 +37,11 @@ _ACCENT = imgui.ImVec4(0.26, 0.52, 0.85, 1.0)
 
 SHORTCUTS: tuple[tuple[str, str], ...] = (
     ("Space", "play / pause"),
-    ("Right", "step one frame"),
+    ("Right", "step one frame (when not driving)"),
+    ("W / Up", "drive: faster (the first press starts driving)"),
+    ("S / Down", "drive: slower"),
+    ("A / D, Left / Right", "drive: turn left / right"),
+    ("Esc", "stop driving (the Gait panel's gait again)"),
     ("R", "reset the view"),
     ("F12", "screenshot of the 3-D view (PNG)"),
     ("Shift+F12", "screenshot of the whole window"),
@@ -372,6 +376,23 @@ def playback_panel(state: ViewerState, pc: PanelContext) -> None:
         imgui.table_next_column()
         if imgui.small_button(f"{ICON_RESET if pc.icons else 'R'}##reset-phase"):
             state.scrub(0.0)
+        _label("drive", "Steer the creature with the keyboard: W/S or Up/Down set the speed, A/D or "
+                        "Left/Right turn, Esc stops. The gait follows the speed (walk, trot, gallop by "
+                        "Froude number).")
+        changed, on = imgui.checkbox("W A S D##drive", state.driver is not None)
+        _remember(state, "drive")
+        if changed:
+            state.start_driving() if on else state.stop_driving()
+        imgui.table_next_column()
+        driver = state.driver
+        if driver is not None:
+            _label("asked speed", "The speed W and S move; the creature reaches it at its acceleration limit.")
+            changed, speed = imgui.slider_float("##drive-speed", driver.target_speed, driver.min_speed,
+                                                driver.max_speed, "%.2f m/s")
+            _remember(state, "drive-speed")
+            if changed:
+                driver.set_target_speed(float(speed))
+            imgui.table_next_column()
         imgui.end_table()
 
 
@@ -596,7 +617,8 @@ def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     # No ImGui background: the viewer clears the sidebar's rectangle to SIDEBAR_COLOR, which
     # is much cheaper than a blended full-height quad on a software rasteriser.
     imgui.begin("Gaitlab", None, flags)
-    imgui.text(f"Gaitlab  -  {state.spec.name}, {state.spec.gait.preset}")
+    gait = f"{state.driver.gait} (driving)" if state.driver is not None else state.spec.gait.preset
+    imgui.text(f"Gaitlab  -  {state.spec.name}, {gait}")
     imgui.text_disabled("F1 help  -  Tab hide UI")
     for title, draw, default_open in (*PANELS, *extra_panels):
         flag = imgui.TreeNodeFlags_.default_open if default_open else 0
@@ -665,6 +687,27 @@ def hud(pc: PanelContext) -> None:
     imgui.end()
 
 
+def drive_hud(state: ViewerState, pc: PanelContext) -> None:
+    """Speed, Froude number and gait over the 3-D view while driving."""
+    driver = state.driver
+    if driver is None:
+        return
+    left = SIDEBAR_WIDTH * pc.scale if state.show_ui else 0.0
+    pad = 10 * pc.scale
+    imgui.set_next_window_pos(imgui.ImVec2(left + pad, pad), 0, imgui.ImVec2(0.0, 0.0))
+    imgui.set_next_window_bg_alpha(0.72)
+    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
+             | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
+             | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
+    imgui.begin("##drive-hud", None, flags)
+    imgui.text_colored(imgui.ImVec4(0.55, 0.85, 1.0, 1.0), "DRIVING")
+    imgui.same_line()
+    imgui.text(f"{driver.ground_speed:5.2f} m/s   Froude {driver.ground_froude:5.2f}   {driver.gait}")
+    turn = "left" if driver.curvature > 1e-6 else "right" if driver.curvature < -1e-6 else "straight"
+    imgui.text_disabled(f"asked {driver.target_speed:.2f} m/s, turning {turn}   W/S speed  A/D turn  Esc stop")
+    imgui.end()
+
+
 def help_overlay(state: ViewerState, pc: PanelContext) -> None:
     io = imgui.get_io()
     imgui.set_next_window_pos(imgui.ImVec2(io.display_size.x * 0.5, io.display_size.y * 0.5), 0,
@@ -690,6 +733,7 @@ def draw_ui(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     if state.show_ui:
         sidebar(state, pc, extra_panels)
         hud(pc)
+    drive_hud(state, pc)
     if not state.playing:
         paused_marker(state, pc)
     message_bar(state, pc)

@@ -18,6 +18,7 @@ import numpy as np
 from ..choices import DEFAULT_ANTIALIAS, Antialias
 from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
+from ..kinematics.drive import Driver
 from ..kinematics.live import LiveMotion
 from ..kinematics.motion import Pose
 from ..kinematics.path import StraightPath
@@ -117,6 +118,8 @@ class ViewerState:
     reset_pending: bool = False  # "reset everything" asked once
     recent: list[str] = field(default_factory=list)  # files saved or loaded this session, newest first
     message: tuple[str, str, str] | None = field(default=None, init=False)  # (kind, text, time) shown in the bar
+    driver: Driver | None = field(default=None, init=False)  # drive mode: W/S speed, A/D turn
+    drive_input: tuple[float, float] = (0.0, 0.0)  # held keys: throttle (S -1 .. W 1), steer (D -1 .. A 1)
     _undo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
     _redo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
     _last_edit: tuple[str, float] = field(default=("", 0.0), init=False, repr=False)  # key(s), when
@@ -190,7 +193,10 @@ class ViewerState:
         changes that are not edits (undo itself, loading)."""
         previous = self.spec
         try:
-            self.live.set_rig(build_rig(spec), blend=blend)
+            if self.driver is not None:  # the speed picks the gait; the rest of the creature applies
+                self.driver.set_rig(build_rig(spec))
+            else:
+                self.live.set_rig(build_rig(spec), blend=blend)
         except GaitlabError as exc:
             self.error = str(exc)
             return False
@@ -408,11 +414,49 @@ class ViewerState:
         steps = max(1, int(np.ceil(dt * rate - 1e-9))) if dt > 0 else 0
         try:
             for _ in range(steps):
-                self.live.step(dt / steps)
+                if self.driver is not None:
+                    self.driver.step(dt / steps, *self.drive_input)
+                else:
+                    self.live.step(dt / steps)
                 self.samples.append(self.live.frame_inputs())
         except GaitlabError as exc:  # ground with no foothold ahead: stop there and say why
             self.playing = False
             self.error = f"paused: {exc}"
+
+    # -- drive mode -------------------------------------------------------------------
+
+    def start_driving(self) -> bool:
+        """Drive the creature: W/S (Up/Down) set the speed, A/D (Left/Right) turn; the gait
+        follows the speed. The path from here on is laid down by the steering."""
+        if self.driver is not None:
+            return True
+        try:
+            if self.world.in_place:  # driving means travelling
+                self.world = replace(self.world, in_place=False)
+                self.live.world = self.world
+            self.driver = Driver(self.live, build_rig(self.spec))
+        except GaitlabError as exc:
+            self.error = f"cannot drive: {exc}"
+            return False
+        self.world = self.live.world
+        self.options = replace(self.options, path=True)
+        self.playing = True
+        self.status = "driving: W/S or Up/Down speed, A/D or Left/Right turn, Esc to stop"
+        return True
+
+    def stop_driving(self) -> None:
+        """Back to the panels' gait, going straight on along the path driven so far."""
+        if self.driver is None:
+            return
+        self.driver.release()
+        self.driver = None
+        self.drive_input = (0.0, 0.0)
+        try:
+            self.live.set_rig(build_rig(self.spec))
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return
+        self.status = "stopped driving: the gait is the Gait panel's again"
 
     def take_samples(self) -> list[dict]:
         """The sub-steps' inputs since the last call (see :meth:`_step`)."""

@@ -137,7 +137,18 @@ class Viewer:
         pressed = lambda key, repeat=False: imgui.is_key_pressed(key, repeat)  # noqa: E731
         if pressed(imgui.Key.space):
             state.toggle_play()
-        if pressed(imgui.Key.right_arrow, True):
+        down = imgui.is_key_down
+        if state.driver is None and (pressed(imgui.Key.w) or pressed(imgui.Key.up_arrow)) and not io.key_ctrl:
+            state.start_driving()
+        if state.driver is not None:
+            throttle = float(down(imgui.Key.w) or down(imgui.Key.up_arrow)) - float(
+                down(imgui.Key.s) or down(imgui.Key.down_arrow))
+            steer = float(down(imgui.Key.a) or down(imgui.Key.left_arrow)) - float(
+                down(imgui.Key.d) or down(imgui.Key.right_arrow))
+            state.drive_input = (0.0, 0.0) if io.key_ctrl else (throttle, steer)
+            if pressed(imgui.Key.escape) and not state.show_help:
+                state.stop_driving()
+        elif pressed(imgui.Key.right_arrow, True):
             state.step_frame()
         if pressed(imgui.Key.r) and not io.key_ctrl:
             state.default_view()
@@ -271,6 +282,11 @@ class Viewer:
                        "elevation": state.camera.elevation, "distance": state.camera.distance,
                        "ortho": state.camera.ortho},
             "error": state.error, "status": state.status,
+            "root": [float(v) for v in state.pose().root[:3, 3]], "travel": state.live.travel,
+            "drive": None if state.driver is None else {
+                "speed": state.driver.ground_speed, "target": state.driver.target_speed,
+                "froude": state.driver.ground_froude, "gait": state.driver.gait,
+                "curvature": state.driver.curvature},
             "measured": None if self.monitor.report is None else self.monitor.report.to_json(),
             "window": {"size": list(self.window.window_size), "framebuffer": list(self.window.framebuffer_size)},
             "widgets": {k: list(v) for k, v in state.widget_rects.items()},
@@ -322,7 +338,8 @@ class Viewer:
                 if viewport[0] > 0:  # the sidebar's background (the panels draw none)
                     self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
                 self.scene.draw_instances(pose_instances(pose, state.live.rig, state.options.joints),
-                                          state.ground(pose), state.camera, self.ctx.screen, state.options, viewport)
+                                          state.ground(pose), state.camera, self.ctx.screen, state.options, viewport,
+                                          multisampled=self.options.samples > 0)
                 self._resolve_pick(viewport)
                 if state.screenshot_requested and not state.screenshot_with_ui:
                     self._screenshot(viewport=viewport)  # the 3-D view alone, before the UI
