@@ -23,3 +23,7 @@ LEG_TYPES: tuple[str, ...] = get_args(LegType)
 Antialias = Literal["fxaa", "msaa", "off"]
 ANTIALIAS_MODES: tuple[str, ...] = get_args(Antialias)
 DEFAULT_ANTIALIAS: Antialias = "fxaa"
+
+# What the viewer can draw on the ground besides the creature (View panel, --overlays).
+Overlay = Literal["footprints", "targets", "support"]
+OVERLAYS: tuple[str, ...] = get_args(Overlay)

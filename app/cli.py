@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Sequence
 
 from . import __version__
-from .choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS
+from .choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS, OVERLAYS
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
 from .export.formats import EXPORT_FORMATS
@@ -75,6 +75,14 @@ def _speed(text: str) -> tuple[float, float]:
     if len(values) not in (1, 2) or any(not math.isfinite(v) or v <= 0 or v > 30 for v in values):
         raise argparse.ArgumentTypeError(f"{text!r}: speeds must be in (0, 30] m/s, as V or V0:V1")
     return (values[0], values[-1])
+
+
+def _overlays(text: str) -> tuple[str, ...]:
+    names = tuple(dict.fromkeys(n.strip() for n in text.split(",") if n.strip()))
+    unknown = [n for n in names if n not in OVERLAYS]
+    if unknown or not names:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a comma-separated list of {', '.join(OVERLAYS)}")
+    return names
 
 
 def _samples(text: str) -> int:
@@ -317,6 +325,10 @@ def build_parser() -> argparse.ArgumentParser:
     view.add_argument("--frames", metavar="N", type=int, help="run N frames (fixed 1/60 s steps), then exit")
     view.add_argument("--screenshot", metavar="PATH", type=Path,
                       help="with --frames: save the window (with UI) as PNG after the last frame")
+    view.add_argument("--overlays", metavar="LIST", type=_overlays, default=(),
+                      help=f"draw on the ground (View panel): {', '.join(OVERLAYS)} - the last footprints, "
+                           "where swinging feet will land, the planted feet's support polygon with the trunk's "
+                           "centre in it (e.g. --overlays footprints,support)")
     view.add_argument("--hide-ui", action="store_true", help="start with the panels hidden (Tab shows them)")
     view.add_argument("--report-fps", action="store_true", help="print the frame rate and time split at exit")
     view.add_argument("--dump-state", metavar="PATH", type=Path, help=argparse.SUPPRESS)
@@ -505,7 +517,7 @@ def cmd_view(args: argparse.Namespace) -> int:
 
     options = ViewerOptions(size=args.size, vsync=not args.no_vsync, samples=args.msaa, frames=args.frames,
                             screenshot=args.screenshot, hide_ui=args.hide_ui, report_fps=args.report_fps,
-                            dump_state=args.dump_state, presets=preset_creature_names())
+                            dump_state=args.dump_state, presets=preset_creature_names(), overlays=args.overlays)
     return run_viewer(spec, options, world)
 
 

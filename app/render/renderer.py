@@ -20,6 +20,7 @@ from ..kinematics.rig import Rig
 from ..kinematics.terrain import FlatTerrain, Terrain
 from .camera import Camera
 from .meshes import unit_capsule, unit_sphere
+from .overlays import SUPPORT_COLOR, Overlays
 from .scene import CAPSULE_FLOATS, ELLIPSOID_FLOATS, SceneInstances, pose_instances, srgb_to_linear
 from .shaders import ShaderLibrary
 
@@ -45,6 +46,10 @@ class RenderOptions:
     line_color: str = "#a89f91"
     path: bool = False  # draw the body's path on the ground
     path_color: str = "#3b7dd8"
+    footprints: bool = False  # the last footprint_count footprints, fading (viewer overlays)
+    footprint_count: int = 24
+    targets: bool = False  # where the swinging feet will land
+    support: bool = False  # the planted feet's support polygon and the trunk's centre in it
 
 
 @dataclass(frozen=True)
@@ -143,6 +148,9 @@ class SceneRenderer:
                                          *ellipsoid_layout)
         self.small_ellipsoids = _InstancedMesh(ctx, lit_ell, depth_ell, unit_sphere(6, 9), unit_sphere(3, 4),
                                                *ellipsoid_layout)
+        # Overlay markers on the ground (footprints, targets): flat discs, no shadow.
+        self.markers = _InstancedMesh(ctx, lit_ell, depth_ell, unit_sphere(4, 12), unit_sphere(2, 4),
+                                      *ellipsoid_layout)
         self.ground_prog = self.shaders.program("ground.vert", "ground.frag")
         # The floor is a disc (a fan) out to where the fog has reached the horizon colour.
         angles = np.linspace(0.0, 2.0 * np.pi, FLOOR_SEGMENTS + 1)
@@ -171,6 +179,9 @@ class SceneRenderer:
         self.path_vbo = ctx.buffer(reserve=64, dynamic=True)
         self._path_capacity = 64
         self.path_vao = ctx.vertex_array(self.overlay_prog, [(self.path_vbo, "3f", "in_position")])
+        self.outline_vbo = ctx.buffer(reserve=64, dynamic=True)
+        self._outline_capacity = 64
+        self.outline_vao = ctx.vertex_array(self.overlay_prog, [(self.outline_vbo, "3f", "in_position")])
         self._lit_programs = (lit_caps, lit_ell, self.ground_prog, self.ground_shadow_prog, self.terrain_prog,
                               self.overlay_prog)
         self._members: dict[int, set[str]] = {}
@@ -191,9 +202,11 @@ class SceneRenderer:
 
     def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
                        target: moderngl.Framebuffer, options: RenderOptions,
-                       viewport: tuple[int, int, int, int] | None = None, multisampled: bool | None = None) -> None:
+                       viewport: tuple[int, int, int, int] | None = None, multisampled: bool | None = None,
+                       overlays: Overlays | None = None) -> None:
         """Draw creature instances over ``ground`` (a GroundView, or the in-place ground
-        offset in metres) seen by ``camera`` into ``target`` (cleared first).
+        offset in metres) seen by ``camera`` into ``target`` (cleared first), with
+        ``overlays`` (footprints, targets, support polygon) on the ground.
         ``multisampled``: whether ``target`` has several samples per pixel (default: from
         its colour attachments; give it for a window's framebuffer)."""
         if not isinstance(ground, GroundView):
@@ -277,6 +290,8 @@ class SceneRenderer:
             self._draw_terrain(terrain, centre, reach)
         if options.path and ground.path is not None:
             self._draw_path(ground, terrain, reach, radius, options)
+        if overlays is not None:
+            self._draw_overlays(overlays, terrain, options)
 
         band = self._sky_band(camera, aspect, centre, reach, ground_level)
         if band is not None:
@@ -371,6 +386,24 @@ class SceneRenderer:
         self.path_vbo.write(data)
         self._set(self.overlay_prog, "u_color", tuple(srgb_to_linear(options.path_color)))
         self.path_vao.render(moderngl.TRIANGLE_STRIP, vertices=len(strip))
+
+    def _draw_overlays(self, overlays: Overlays, terrain: Terrain, options: RenderOptions) -> None:
+        """Footprints, touchdown targets and the support polygon, on the ground."""
+        markers = overlays.markers(srgb_to_linear(options.ground_color), terrain)
+        strip = overlays.outline(terrain)
+        if strip is not None:
+            data = strip.tobytes()
+            if len(data) > self._outline_capacity:
+                self._outline_capacity = len(data) * 2
+                self.outline_vbo.orphan(self._outline_capacity)
+            self.outline_vbo.write(data)
+            self._set(self.overlay_prog, "u_color", tuple(SUPPORT_COLOR))
+            self.outline_vao.render(moderngl.TRIANGLE_STRIP, vertices=len(strip))
+        if len(markers):
+            self.markers.upload(markers)
+            self.ctx.enable(moderngl.CULL_FACE)
+            self.markers.draw(depth_only=False)
+            self.ctx.disable(moderngl.CULL_FACE)
 
     def _set(self, prog: moderngl.Program, name: str, value) -> None:
         """Set a uniform if the program has it and its value changed since the last frame."""
@@ -472,9 +505,9 @@ class SceneRenderer:
 
     def release(self) -> None:
         """Free every GL object this renderer made."""
-        for mesh in (self.capsules, self.thin_capsules, self.ellipsoids, self.small_ellipsoids):
+        for mesh in (self.capsules, self.thin_capsules, self.ellipsoids, self.small_ellipsoids, self.markers):
             mesh.release()
-        for obj in (*self._terrain_objects, self.path_vao, self.path_vbo):
+        for obj in (*self._terrain_objects, self.path_vao, self.path_vbo, self.outline_vao, self.outline_vbo):
             obj.release()
         for obj in (self.ground_vao, self.ground_shadow_vao, self.ground_vbo, self.quad_vbo, self.background_vao,
                     self.sky_vbo, self.shadow_fbo, self.shadow_map):

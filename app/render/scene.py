@@ -99,6 +99,12 @@ def _ellipsoids(centre, axis_z, radii, color) -> NDArray[np.float64]:
                            np.broadcast_to(color, shape + (3,))], axis=-1)
 
 
+def leg_colors(rig: Rig) -> NDArray[np.float64]:
+    """Each leg's colour (L, 3), linear: the look's left or right colour by its side."""
+    side_colors = np.stack([srgb_to_linear(rig.look.left_color), srgb_to_linear(rig.look.right_color)])
+    return side_colors[(rig.hip_side < 0).astype(int)]
+
+
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
                show_joints: bool) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
@@ -108,8 +114,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     ear_length = rig.body.ear_length
     frames = joints.shape[0]
     body_color = srgb_to_linear(look.body_color)
-    side_colors = np.stack([srgb_to_linear(look.left_color), srgb_to_linear(look.right_color)])
-    leg_color = side_colors[(rig.hip_side < 0).astype(int)]  # (L, 3)
+    leg_color = leg_colors(rig)
 
     # Legs: four tapered bones each.
     radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)

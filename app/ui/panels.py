@@ -346,6 +346,32 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     changed_p, path = imgui.checkbox("path", options.path)
     if changed_g or changed_s or changed_j or changed_p:
         state.options = replace(options, grid=grid, shadow=shadow, joints=joints, path=path)
+    imgui.separator_text("overlays")
+    options = state.options
+    changed_f, footprints = imgui.checkbox("footprints", options.footprints)
+    _remember(state, "overlay.footprints")
+    if imgui.is_item_hovered():
+        imgui.set_tooltip("The last footprints on the ground, in each leg's side colour, fading with age.")
+    imgui.same_line()
+    changed_t, targets = imgui.checkbox("targets", options.targets)
+    _remember(state, "overlay.targets")
+    if imgui.is_item_hovered():
+        imgui.set_tooltip("Amber rings where the swinging feet will touch down.")
+    imgui.same_line()
+    changed_u, support = imgui.checkbox("support", options.support)
+    _remember(state, "overlay.support")
+    if imgui.is_item_hovered():
+        imgui.set_tooltip("The polygon of the planted feet and the trunk's centre dropped onto the ground:\n"
+                          "green inside (statically stable), red outside.")
+    count = options.footprint_count
+    if options.footprints:
+        imgui.set_next_item_width(-1)
+        changed_n, count = imgui.slider_int("##footprint-count", options.footprint_count, 2, 200,
+                                            "%d footprints")
+        _remember(state, "overlay.footprint_count")
+    if changed_f or changed_t or changed_u or count != options.footprint_count:
+        state.options = replace(options, footprints=footprints, targets=targets, support=support,
+                                footprint_count=int(count))
 
 
 def playback_panel(state: ViewerState, pc: PanelContext) -> None:

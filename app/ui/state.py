@@ -20,6 +20,8 @@ from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
 from ..kinematics.drive import Driver
 from ..kinematics.live import LiveMotion
+from ..kinematics.overlays import (FootprintTrail, inside_polygon, planted_points, support_polygon,
+                                   touchdown_targets, trunk_centre)
 from ..kinematics.motion import Pose
 from ..kinematics.path import StraightPath
 from ..kinematics.world import World
@@ -29,7 +31,9 @@ from ..output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, MAX_CRF, GifQuality
 from ..recording import RecordRequest
 from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, clear_elevations, frame_points
 from ..render.clip import ViewSettings
+from ..render.overlays import Overlays
 from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
+from ..render.scene import leg_colors
 from ..resources import creatures_dir
 from ..rigging import build_rig
 from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, load_creature, spec_value,
@@ -118,6 +122,7 @@ class ViewerState:
     reset_pending: bool = False  # "reset everything" asked once
     recent: list[str] = field(default_factory=list)  # files saved or loaded this session, newest first
     message: tuple[str, str, str] | None = field(default=None, init=False)  # (kind, text, time) shown in the bar
+    footprints: FootprintTrail = field(default_factory=FootprintTrail, init=False, repr=False)
     driver: Driver | None = field(default=None, init=False)  # drive mode: W/S speed, A/D turn
     drive_input: tuple[float, float] = (0.0, 0.0)  # held keys: throttle (S -1 .. W 1), steer (D -1 .. A 1)
     _undo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
@@ -569,6 +574,28 @@ class ViewerState:
         return RecordRequest(spec=self.spec, output=r.path(self.spec.name), fps=float(r.fps), seconds=seconds,
                              cycles=cycles, view=view, world=self.world, gif_quality=r.gif_quality,
                              crf=int(np.clip(r.crf, 0, MAX_CRF)))
+
+    def overlays(self, pose: Pose) -> Overlays | None:
+        """The View panel's overlays for ``pose`` (None when all are off): the last
+        footprints (recorded here, every frame), the swinging feet's touchdown targets and
+        the support polygon with the trunk's centre."""
+        o = self.options
+        self.footprints.record(pose, self.live.time)
+        if not (o.footprints or o.targets or o.support):
+            return None
+        rig = self.live.rig
+        size = 0.12 * float(np.mean(rig.l_rest))
+        parts: dict = {}
+        if o.footprints:
+            points, legs, age = self.footprints.recent(o.footprint_count, pose.ground_offset)
+            parts.update(footprints=points, footprint_age=age, footprint_colors=leg_colors(rig)[legs] * 0.55)
+        if o.targets:
+            parts["targets"] = touchdown_targets(self.live)[0]
+        if o.support:
+            hull = support_polygon(planted_points(pose)[:, [0, 2]])
+            centre = trunk_centre(pose)[[0, 2]]
+            parts.update(support=hull, centre=centre, stable=inside_polygon(centre, hull))
+        return Overlays(size=size, **parts)
 
     def ground(self, pose: Pose) -> GroundView:
         """What the renderer draws under ``pose``."""

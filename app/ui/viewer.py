@@ -10,7 +10,7 @@ import json
 import statistics
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 from .window import GlfwWindow  # noqa: I001  (imports glfw before imgui_bundle)
@@ -50,6 +50,7 @@ class ViewerOptions:
     report_fps: bool = False
     dump_state: Path | None = None  # write the viewer state as JSON (automation, tests)
     presets: list[str] = field(default_factory=list)
+    overlays: tuple[str, ...] = ()  # turned on at start: footprints, targets, support
 
 
 def _setup_style(scale: float) -> bool:
@@ -116,6 +117,8 @@ class Viewer:
         self.ui = ImguiRenderer(self.ctx, self.scene.shaders)
         self.state = ViewerState(spec, world=world or World())
         self.state.show_ui = not options.hide_ui
+        if options.overlays:
+            self.state.options = replace(self.state.options, **{name: True for name in options.overlays})
         _, _, vw, vh = self._scene_viewport()
         if vw > 0 and vh > 0:  # frame the creature for the part of the window the scene gets
             self.state.aspect = vw / vh
@@ -339,7 +342,7 @@ class Viewer:
                     self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
                 self.scene.draw_instances(pose_instances(pose, state.live.rig, state.options.joints),
                                           state.ground(pose), state.camera, self.ctx.screen, state.options, viewport,
-                                          multisampled=self.options.samples > 0)
+                                          multisampled=self.options.samples > 0, overlays=state.overlays(pose))
                 self._resolve_pick(viewport)
                 if state.screenshot_requested and not state.screenshot_with_ui:
                     self._screenshot(viewport=viewport)  # the 3-D view alone, before the UI
