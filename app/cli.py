@@ -18,7 +18,7 @@ from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
 from .export.formats import EXPORT_FORMATS
 from .output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_QUALITIES, MAX_CRF, MAX_SIZE
-from .render.camera import CAMERA_PRESETS, DEFAULT_CAMERA
+from .render.camera import CAMERA_CHOICES, DEFAULT_CAMERA
 
 EXIT_BAD_INPUT = 2
 from .limits import MAX_FPS, MAX_SECONDS
@@ -231,8 +231,10 @@ def build_parser() -> argparse.ArgumentParser:
     _clip_arguments(render, output_help="output file: .png, .gif or .mp4 (default: CREATURE.gif)",
                     cycles_help="clip length in gait cycles (default: 2; loops seamlessly)", fps=25.0)
     render.add_argument("--size", metavar="WxH", type=_size, default=(480, 360), help="image size (default: 480x360)")
-    render.add_argument("--camera", choices=CAMERA_PRESETS, default=DEFAULT_CAMERA,
-                        help=f"camera preset (default: {DEFAULT_CAMERA})")
+    render.add_argument("--camera", choices=CAMERA_CHOICES, default=DEFAULT_CAMERA,
+                        help=f"camera preset (default: {DEFAULT_CAMERA}); a travelling creature is followed "
+                             "at the preset's angle to its heading; 'chase' films from behind, looking ahead; "
+                             "'follow' is the default angle")
     _creature_arguments(render, time_help="time in seconds of the PNG frame, or of a clip's first frame (default: 0)")
     _world_arguments(render)
     render.add_argument("--antialias", choices=ANTIALIAS_MODES, default=None,

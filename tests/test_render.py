@@ -83,7 +83,7 @@ def test_legs_of_the_two_sides_are_distinguishable() -> None:
     assert np.abs(left - right).max() > 0.2
 
 
-@pytest.mark.parametrize("camera", ["side", "front", "top", "three-quarter"])
+@pytest.mark.parametrize("camera", ["side", "front", "top", "three-quarter", "chase"])
 def test_camera_presets_keep_the_creature_in_frame(camera: str) -> None:
     motion, _ = clip_motion(build_rig(load_creature("horse")), 25.0, cycles=1.0)
     cam = frame_points(motion_bounds(motion), camera, aspect=4 / 3)
@@ -92,3 +92,31 @@ def test_camera_presets_keep_the_creature_in_frame(camera: str) -> None:
     ndc = pts[:, :3] / pts[:, 3:]
     assert np.all(np.abs(ndc[:, :2]) <= 1.0)
     assert np.abs(ndc[:, :2]).max() > 0.6  # and fills the frame reasonably
+
+
+@pytest.mark.parametrize("camera", ["follow", "chase", "side"])
+def test_travelling_cameras_keep_the_creature_in_frame_and_chase_stays_behind(camera: str) -> None:
+    from app.kinematics.world import World
+    from app.render.clip import ViewSettings, clip_cameras
+    from app.render.scene import creature_points
+    from app.scenes import parse_path
+
+    rig = build_rig(load_creature("dog"))
+    world = World(path=parse_path(f"figure-eight:r={2 * rig.body_length:.3f}"))
+    motion, _ = clip_motion(rig, 25.0, seconds=8.0, world=world)
+    cameras = clip_cameras(motion, ViewSettings(size=(480, 360), camera=camera))
+    points = creature_points(motion)
+    root = motion.root[:, :3, 3]
+    _, tangents = motion.path.sample(motion.travel)
+    for i, cam in enumerate(cameras):
+        vp = np.array(cam.view_proj(480 / 360))
+        clip = np.c_[points[i], np.ones(len(points[i]))] @ vp.T
+        ndc = clip[:, :2] / clip[:, 3:]
+        assert np.all(np.abs(ndc) <= 1.0), (camera, i)
+        if camera == "chase":  # behind the body, looking the way it goes
+            behind = (np.asarray(cam.eye) - root[i])[[0, 2]] @ tangents[i]
+            assert behind < -0.5 * rig.body_length, i
+    if camera == "chase":  # smooth: no jumps of the eye between frames
+        eyes = np.array([c.eye for c in cameras])
+        steps = np.linalg.norm(np.diff(eyes, axis=0), axis=1)
+        assert steps.max() < 3.0 * np.median(steps) + 1e-3

@@ -1,4 +1,4 @@
-"""Cameras: presets (side, front, top, three-quarter), framing, view/projection matrices."""
+"""Cameras: presets (side, front, top, three-quarter, chase), framing, view/projection matrices."""
 
 from __future__ import annotations
 
@@ -10,9 +10,28 @@ from pyglm import glm
 import numpy as np
 from numpy.typing import NDArray
 
-CameraPreset = Literal["three-quarter", "side", "front", "top"]
+CameraPreset = Literal["three-quarter", "side", "front", "top", "chase"]
 CAMERA_PRESETS: tuple[str, ...] = get_args(CameraPreset)
 DEFAULT_CAMERA: CameraPreset = "three-quarter"
+# What recordings take: a preset, or "follow" (the default preset's angle, kept to the
+# path's heading as every preset is for a travelling creature).
+CameraChoice = Literal["three-quarter", "side", "front", "top", "chase", "follow"]
+CAMERA_CHOICES: tuple[str, ...] = get_args(CameraChoice)
+CHASE_LOOK_AHEAD = 1.2  # body lengths of ground ahead that the chase camera keeps in view
+
+
+def preset_for(choice: str) -> CameraPreset:
+    """The preset a camera choice films with ("follow" is the default preset)."""
+    return DEFAULT_CAMERA if choice == "follow" else choice  # type: ignore[return-value]
+
+
+def look_ahead(points: NDArray[np.float64], preset: str, length: float) -> NDArray[np.float64]:
+    """Points to frame for ``preset``: for "chase", ``points`` (N, 3, in a frame where the
+    creature faces +Z) and the same points ``CHASE_LOOK_AHEAD`` x ``length`` (m) ahead,
+    so the view looks where the creature is going; otherwise ``points`` as they are."""
+    if preset != "chase":
+        return points
+    return np.concatenate([points, points + np.array([0.0, 0.0, CHASE_LOOK_AHEAD * length])])
 
 # (azimuth, elevation) in degrees. Azimuth 0 looks at the creature's right side (camera
 # on -X), so it faces screen-right; 90 looks at its face (camera on +Z).
@@ -21,6 +40,7 @@ _PRESET_ANGLES: dict[str, tuple[float, float]] = {
     "front": (90.0, 8.0),
     "top": (0.0, 89.0),
     "three-quarter": (38.0, 20.0),
+    "chase": (-90.0, 20.0),  # behind (camera on -Z), a little above, looking ahead
 }
 
 
@@ -95,6 +115,7 @@ def frame_points(points: NDArray[np.float64], preset: CameraPreset | str = DEFAU
     that fits all points inside the frustum (exact for a perspective camera), times
     ``margin``.
     """
+    preset = preset_for(preset)
     if preset not in _PRESET_ANGLES:
         raise ValueError(f"unknown camera {preset!r}; expected one of {', '.join(CAMERA_PRESETS)}")
     azimuth, elevation = _PRESET_ANGLES[preset]

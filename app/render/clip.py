@@ -15,7 +15,7 @@ from numpy.typing import NDArray
 
 from ..choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS, Antialias
 from ..kinematics.motion import Motion
-from .camera import DEFAULT_CAMERA, Camera, CameraPreset, clear_elevations, frame_points
+from .camera import DEFAULT_CAMERA, Camera, CameraChoice, clear_elevations, frame_points, look_ahead, preset_for
 from .context import create_headless_context
 from .fxaa import screen_tiles
 from .renderer import GroundView, RenderOptions, SceneRenderer, nice_grid_spacing
@@ -34,7 +34,7 @@ class ViewSettings:
     "msaa" (``samples`` per pixel, the finest edges) or "off"."""
 
     size: tuple[int, int] = (480, 360)
-    camera: CameraPreset = DEFAULT_CAMERA
+    camera: CameraChoice = DEFAULT_CAMERA
     antialias: Antialias = DEFAULT_ANTIALIAS
     samples: int = 4  # multisampling's samples per pixel, for antialias "msaa"
     options: RenderOptions = field(default_factory=RenderOptions)
@@ -54,8 +54,11 @@ def clip_cameras(motion: Motion, view: ViewSettings) -> list[Camera]:
     it never leaves the frame and the camera does not jitter with the steps."""
     w, h = view.size
     aspect = w / h
+    preset = preset_for(view.camera)
+    length = motion.rig.body_length
     if motion.in_place:
-        return [frame_points(motion_bounds(motion), view.camera, aspect=aspect)] * motion.frame_count
+        points = look_ahead(motion_bounds(motion), preset, length)
+        return [frame_points(points, preset, aspect=aspect)] * motion.frame_count
     points, tangents = motion.path.sample(motion.travel)
     heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
     ground = np.zeros(motion.frame_count)
@@ -72,7 +75,7 @@ def clip_cameras(motion: Motion, view: ViewSettings) -> list[Camera]:
                       s[:, None] * rel[..., 0] + c[:, None] * rel[..., 2]], axis=-1).reshape(-1, 3)
     lo, hi = local.min(axis=0), local.max(axis=0)
     lo[1] = min(lo[1], 0.0)
-    base = frame_points(box_corners(lo, hi), view.camera, aspect=aspect)
+    base = frame_points(look_ahead(box_corners(lo, hi), preset, length), preset, aspect=aspect)
     tx, ty, tz = base.target
     targets = anchor + np.stack([c * tx + s * tz, np.full_like(c, ty), -s * tx + c * tz], axis=-1)
     azimuths = base.azimuth + np.degrees(heading)

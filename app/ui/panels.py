@@ -15,7 +15,7 @@ from imgui_bundle import imgui, implot
 from ..gaits import GAIT_PRESETS, gaits_for
 from ..export.formats import EXPORT_FORMATS
 from ..output import GIF_QUALITIES, MAX_CRF
-from ..render.camera import CAMERA_PRESETS
+from ..render.camera import CAMERA_CHOICES, CAMERA_PRESETS
 from ..choices import ANTIALIAS_MODES, KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
 from ..spec import rule_for
 from .state import ViewerState
@@ -320,9 +320,11 @@ def body_panel(state: ViewerState, pc: PanelContext) -> None:
 
 
 def view_panel(state: ViewerState, pc: PanelContext) -> None:
-    width = (imgui.get_content_region_avail().x - 12 * pc.scale) / 4
+    per_row = 3
+    gap = imgui.get_style().item_spacing.x
+    width = (imgui.get_content_region_avail().x - gap * (per_row - 1)) / per_row
     for i, preset in enumerate(CAMERA_PRESETS):
-        if i:
+        if i % per_row:
             imgui.same_line()
         if imgui.button(preset, imgui.ImVec2(width, 0)):
             state.frame_view(preset)
@@ -478,8 +480,9 @@ def record_panel(state: ViewerState, pc: PanelContext) -> None:
         _label("frame rate", "frames per second")
         _, r.fps = imgui.input_float("##fps", r.fps, 0.0, 0.0, "%.0f fps")
         imgui.table_next_column()
-        _label("camera", "the camera preset, following the creature as it travels")
-        cams = list(CAMERA_PRESETS)
+        _label("camera", "the camera preset, following the creature as it travels (chase: from behind, "
+                         "looking ahead; follow: the default angle)")
+        cams = list(CAMERA_CHOICES)
         changed, idx = imgui.combo("##rec-camera", cams.index(r.camera), cams)
         if changed:
             r.camera = cams[idx]

@@ -29,7 +29,8 @@ from ..export import export_clip
 from ..export.formats import ExportFormat
 from ..output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, MAX_CRF, GifQuality
 from ..recording import RecordRequest
-from ..render.camera import CAMERA_PRESETS, DEFAULT_CAMERA, Camera, clear_elevations, frame_points
+from ..render.camera import (CAMERA_PRESETS, CHASE_LOOK_AHEAD, DEFAULT_CAMERA, Camera, clear_elevations, frame_points,
+                             look_ahead)
 from ..render.clip import ViewSettings
 from ..render.overlays import Overlays
 from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
@@ -117,6 +118,7 @@ class ViewerState:
     fine_sampling: bool = True  # sub-step at SAMPLE_RATE (the viewer turns it off while nobody measures)
     _follow_height: float | None = field(default=None, init=False, repr=False)  # camera target above the root
     _heading: float | None = field(default=None, init=False, repr=False)  # path heading last frame (degrees)
+    _follow_ahead: float = field(default=0.0, init=False, repr=False)  # m the camera aims ahead of the root
     _elevation: float | None = field(default=None, init=False, repr=False)  # the user's camera elevation
     _confirm_overwrite: str | None = field(default=None, init=False, repr=False)  # asked once to overwrite this
     reset_pending: bool = False  # "reset everything" asked once
@@ -491,7 +493,10 @@ class ViewerState:
             return
         self.camera_preset = preset
         motion, _ = clip_motion(self.live.rig, 30.0, cycles=1.0, world=World(in_place=True))
-        cam = frame_points(motion_bounds(motion), preset, aspect=self.aspect)
+        length = self.live.rig.body_length
+        cam = frame_points(look_ahead(motion_bounds(motion), preset, length), preset, aspect=self.aspect)
+        # The chase camera aims ahead of the creature (the framed box reaches forward).
+        self._follow_ahead = 0.5 * CHASE_LOOK_AHEAD * length if preset == "chase" else 0.0
         if not self.world.in_place:
             root = self.live.pose().root
             heading = float(np.degrees(np.arctan2(root[0, 2], root[2, 2])))
@@ -549,7 +554,8 @@ class ViewerState:
             offset = self._follow_height = ty - float(root[1])
         ty = ty + (float(root[1]) + offset - ty) * 0.08
         turn = (heading - previous + 180.0) % 360.0 - 180.0
-        camera = replace(self.camera, target=(float(root[0]), ty, float(root[2])),
+        ahead = self._follow_ahead * tangent[0] if not self.world.in_place else np.zeros(2)
+        camera = replace(self.camera, target=(float(root[0] + ahead[0]), ty, float(root[2] + ahead[1])),
                          azimuth=self.camera.azimuth + (0.0 if self.world.in_place else turn))
         if not self.world.terrain.flat and not camera.top_down:
             # Rise over hills that would hide the creature, easing back down after them.
