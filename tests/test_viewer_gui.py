@@ -404,3 +404,33 @@ def test_drive_mode_w_speeds_up_by_the_reported_speed_and_a_turns_left(display: 
         xdotool(display, "key", "Escape")
         assert read_state(dump, until=lambda s: s["drive"] is None)["error"] is None
         quit_viewer(display, proc, window)
+
+
+def click_widget(display: str, dump: Path, key: str) -> None:
+    """Click the centre of the widget ``key`` (from the state dump's widget rectangles)."""
+    rect = read_state(dump, until=lambda s: key in s["widgets"])["widgets"][key]
+    xdotool(display, "mousemove", *centre(rect), "click", "1")
+    time.sleep(0.5)
+
+
+def test_terrain_slider_regenerates_the_ground_without_a_planted_foot_jump(display: str, tmp_path: Path) -> None:
+    with running_viewer(display, tmp_path, "dog", "--terrain", "hills:amp=0.04,wavelength=1.7", "--size",
+                        "1024x720") as (proc, dump, window):
+        for header in ("panel.Creature", "panel.Gait", "panel.Terrain"):
+            click_widget(display, dump, header)
+        before = read_state(dump, until=lambda s: "terrain.amp" in s["widgets"])
+        assert before["terrain"].startswith("hills:amp=0.04")
+        x0, y0, x1, y1 = before["widgets"]["terrain.amp"]
+        # Press on the knob (ImGui sliders jump to where they are pressed): 0.04 of 0..1 m.
+        x, y = x0 + 0.04 * (x1 - x0), int((y0 + y1) / 2)
+        xdotool(display, "mousemove", str(int(x)), str(y), "mousedown", "1")
+        for dx in range(3, 18, 3):  # a drag over several frames, to about 0.1 m
+            xdotool(display, "mousemove", str(int(x) + dx), str(y))
+            time.sleep(0.05)
+        xdotool(display, "mouseup", "1")
+        after = read_state(dump, until=lambda s: s["terrain"] != before["terrain"])
+        later = read_state(dump, until=lambda s: s["time"] > after["time"] + 1.5)
+        amp = float(later["terrain"].split("amp=")[1].split(",")[0])
+        assert amp > 0.04 and later["error"] is None
+        assert later["planted_jump_max"] < 1e-3
+        quit_viewer(display, proc, window)

@@ -244,6 +244,17 @@ class LiveMotion:
             self.__dict__.update(saved)
             raise
 
+    def set_world(self, world: World) -> None:
+        """Walk in ``world`` from now on (new ground or path under a walking creature).
+        Planted feet stay where they stand until they lift; every later foothold is found
+        on the new ground. Raises :class:`WorldError` (nothing changes) when the body
+        cannot follow the path or a foot would find no foothold a step ahead."""
+        check_world(self.rig, world)
+        legs = np.arange(self.rig.leg_count)
+        ahead = self.travel + self.travel_per_cycle() * (1.0 - self.foot_phase()) + 0.5 * self.stride * self.rig.leg_scale
+        plan_footholds(self.rig, world, ahead, legs)  # raises when the new ground offers none
+        self.world = world
+
     def step(self, dt: float) -> None:
         """Advance by ``dt`` seconds of animation time (0 or negative does nothing). On a
         :class:`WorldError` (no foothold ahead) the motion stays where it was."""
@@ -420,7 +431,9 @@ class LiveMotion:
         end_normal = np.where(contact[:, None], self.start_normal, self.end_normal)
         land_at = self.land_at.copy()
         airborne = np.nonzero(~contact)[0]
-        if airborne.size and not self.world.terrain.flat:  # on flat ground the aim changes nothing
+        # On flat ground the aim changes nothing, unless a swing was planned on other
+        # ground (the terrain was changed under the creature).
+        if airborne.size and (not self.world.terrain.flat or np.any(self.end[airborne, 1] != 0.0)):
             # Aim each swing at where it will really land if the body keeps its present speed
             # (the same spot as planned while it does), on the ground there: the foot's height
             # eases towards that, so it meets the ground without a jump even when the speed

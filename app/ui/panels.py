@@ -624,11 +624,70 @@ def plots_panel(state: ViewerState, pc: PanelContext) -> None:
         imgui.end_table()
 
 
+# Terrain panel: (key, label, tooltip, low, high, format) per kind; whole numbers for "%d".
+TERRAIN_CONTROLS: dict[str, tuple[tuple[str, str, str, float, float, str], ...]] = {
+    "flat": (),
+    "slope": (("angle", "angle", "rise of the plane (negative: downhill ahead)", -35.0, 35.0, "%.1f deg"),
+              ("dir", "uphill towards", "direction the slope rises, degrees from straight ahead (+Z)", -180.0,
+               180.0, "%.0f deg")),
+    "hills": (("amp", "height", "about how high and low the hills go", 0.0, 1.0, "%.3f m"),
+              ("wavelength", "wavelength", "typical distance between hilltops", 0.2, 20.0, "%.2f m"),
+              ("seed", "seed", "which random hills", 0, 99, "%d")),
+    "stairs": (("rise", "rise", "each step's height (negative: down)", -0.5, 0.5, "%.3f m"),
+               ("run", "run", "each step's depth", 0.02, 2.0, "%.3f m"),
+               ("steps", "steps", "how many steps", 1, 60, "%d"),
+               ("start", "first riser", "distance from the start to the first step", -10.0, 20.0, "%.2f m"),
+               ("dir", "climbing towards", "direction of the flight, degrees from +Z", -180.0, 180.0, "%.0f deg")),
+    "heightmap": (("size", "width", "the image's width on the ground", 1.0, 200.0, "%.1f m"),
+                  ("height", "white height", "height of white pixels (black is 0)", 0.0, 10.0, "%.2f m")),
+    "mesh": (("cell", "grid spacing", "sampling of the mesh (0: its size / 256)", 0.0, 2.0, "%.3f m"),),
+}
+
+
+def terrain_panel(state: ViewerState, pc: PanelContext) -> None:
+    """The ground under the creature, regenerated live as values change."""
+    kinds = list(TERRAIN_CONTROLS)
+    imgui.set_next_item_width(-1)
+    changed, index = imgui.combo("##terrain-kind", kinds.index(state.terrain_kind), kinds)
+    _remember(state, "terrain.kind")
+    if changed and kinds[index] not in ("heightmap", "mesh"):
+        state.set_terrain(kinds[index])
+    elif changed:
+        state.terrain_kind = kinds[index]  # pick the file first, then load
+    kind = state.terrain_kind
+    values = state.terrain_values[kind]
+    if kind in ("heightmap", "mesh"):
+        imgui.set_next_item_width(-70 * pc.scale)
+        _, values["file"] = imgui.input_text_with_hint("##terrain-file", "image or mesh file path", values["file"])
+        _remember(state, "terrain.file")
+        imgui.same_line()
+        if imgui.button("load##terrain", imgui.ImVec2(-1, 0)):
+            state.set_terrain(kind)
+        _remember(state, "terrain.load")
+    if TERRAIN_CONTROLS[kind] and _begin_rows(f"terrain-{kind}", pc):
+        for key, label, tip, lo, hi, fmt in TERRAIN_CONTROLS[kind]:
+            _label(label, tip)
+            if fmt == "%d":
+                changed, value = imgui.slider_int(f"##terrain-{key}", int(values[key]), int(lo), int(hi), fmt)
+            else:
+                changed, value = imgui.slider_float(f"##terrain-{key}", float(values[key]), lo, hi, fmt)
+                value = shown(float(value), fmt.split()[0])
+            _remember(state, f"terrain.{key}")
+            imgui.table_next_column()
+            if changed and value != values[key] and (kind not in ("heightmap", "mesh") or values["file"]):
+                state.set_terrain(kind, **{key: value})
+            elif changed:
+                values[key] = value
+        imgui.end_table()
+    imgui.text_disabled(f"now: {state.world.terrain.describe()}"[:60])
+
+
 PANELS = (
     ("Creature", creature_panel, True),
     ("Gait", gait_panel, True),
     ("Body", body_panel, False),
     ("View", view_panel, False),
+    ("Terrain", terrain_panel, False),
     ("Playback", playback_panel, True),
     ("Plots", plots_panel, False),
     ("Record", record_panel, False),

@@ -124,7 +124,12 @@ class ViewerState:
     reset_pending: bool = False  # "reset everything" asked once
     recent: list[str] = field(default_factory=list)  # files saved or loaded this session, newest first
     message: tuple[str, str, str] | None = field(default=None, init=False)  # (kind, text, time) shown in the bar
+    terrain_kind: str = field(default="flat", init=False)  # the Terrain panel's kind and values
+    terrain_values: dict[str, dict[str, Any]] = field(default_factory=dict, init=False)
     footprints: FootprintTrail = field(default_factory=FootprintTrail, init=False, repr=False)
+    planted_jump: float = field(default=0.0, init=False)  # m a planted foot moved last frame (see note_pose)
+    planted_jump_max: float = field(default=0.0, init=False)
+    _last_pose: Pose | None = field(default=None, init=False, repr=False)
     driver: Driver | None = field(default=None, init=False)  # drive mode: W/S speed, A/D turn
     drive_input: tuple[float, float] = (0.0, 0.0)  # held keys: throttle (S -1 .. W 1), steer (D -1 .. A 1)
     _undo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
@@ -148,6 +153,7 @@ class ViewerState:
         self.spec = self.base
         self.live = LiveMotion(build_rig(self.base), self.world)
         self.file_path = self._save_path_for(self.base)
+        self._init_terrain_values()
         self.frame_view()
 
     # -- reading values ---------------------------------------------------------------
@@ -430,6 +436,73 @@ class ViewerState:
             self.playing = False
             self.error = f"paused: {exc}"
 
+    # -- terrain ----------------------------------------------------------------------
+
+    def _init_terrain_values(self) -> None:
+        """The Terrain panel's starting values: sized to the creature, then the world's own."""
+        rig = self.live.rig
+        h, length = rig.hip_height, rig.body_length
+        self.terrain_values = {
+            "flat": {},
+            "slope": {"angle": 10.0, "dir": 0.0},
+            "hills": {"amp": round(0.12 * h, 3), "wavelength": round(3.0 * length, 2), "seed": 1},
+            "stairs": {"rise": round(0.2 * h, 3), "run": round(max(0.6 * rig.leg_scale, 0.12), 3), "steps": 6,
+                       "start": round(0.8 * length, 2), "dir": 0.0},
+            "heightmap": {"file": "", "size": 20.0, "height": 1.0},
+            "mesh": {"file": "", "cell": 0.0},
+        }
+        kind, _, rest = self.world.terrain.describe().partition(":")
+        kind = {"grid": "heightmap"}.get(kind, kind)
+        if kind in self.terrain_values:
+            self.terrain_kind = kind
+            for item in filter(None, rest.split(",")):
+                key, _, value = item.partition("=")
+                if key in self.terrain_values[kind]:
+                    old = self.terrain_values[kind][key]
+                    try:
+                        self.terrain_values[kind][key] = value if isinstance(old, str) else type(old)(float(value))
+                    except ValueError:
+                        pass
+
+    def terrain_text(self, kind: str | None = None) -> str:
+        """The Terrain panel's ground as ``--terrain`` text."""
+        kind = kind or self.terrain_kind
+        values = self.terrain_values.get(kind, {})
+        items = [f"{k}={v:g}" if not isinstance(v, str) else f"{k}={v}" for k, v in values.items()
+                 if not (k == "cell" and not v)]
+        return kind + (":" + ",".join(items) if items else "")
+
+    def set_terrain(self, kind: str | None = None, **values: Any) -> bool:
+        """Regenerate the ground from the Terrain panel's kind and values (given ones
+        replace the panel's) while the creature walks: planted feet stay where they stand
+        until they lift, later footholds are on the new ground. A value out of range, a
+        file that does not load or ground the creature cannot walk shows the error and
+        changes nothing (the panel keeps its previous values)."""
+        from ..scenes import parse_terrain
+
+        kind = kind or self.terrain_kind
+        if kind not in self.terrain_values:
+            self.error = f"unknown terrain {kind!r}"
+            return False
+        saved = (self.terrain_kind, {k: dict(v) for k, v in self.terrain_values.items()})
+        self.terrain_values[kind].update(values)
+        text = self.terrain_text(kind)
+        try:
+            if kind in ("heightmap", "mesh") and not self.terrain_values[kind]["file"]:
+                raise GaitlabError(f"{kind}: give the file to load")
+            terrain = parse_terrain(text)
+            world = World(path=self.world.path, terrain=terrain, in_place=self.world.in_place and terrain.flat)
+            self.live.set_world(world)
+        except GaitlabError as exc:
+            self.terrain_kind, self.terrain_values = saved
+            message = str(exc)
+            self.error = message if text in message or message.startswith("--terrain") else f"terrain {text}: {message}"
+            return False
+        self.terrain_kind = kind
+        self.world = world
+        self.error = None
+        return True
+
     # -- drive mode -------------------------------------------------------------------
 
     def start_driving(self) -> bool:
@@ -581,12 +654,27 @@ class ViewerState:
                              cycles=cycles, view=view, world=self.world, gif_quality=r.gif_quality,
                              crf=int(np.clip(r.crf, 0, MAX_CRF)))
 
+    def note_pose(self, pose: Pose) -> None:
+        """Take in the pose drawn this frame: record new footprints, and how far any foot
+        planted in both this frame and the last moved between them (:attr:`planted_jump`,
+        m; the largest since the viewer started in :attr:`planted_jump_max`)."""
+        self.footprints.record(pose, self.live.time)
+        last = self._last_pose
+        self._last_pose = pose
+        if last is None or len(last.contact) != len(pose.contact):
+            return
+        still = last.contact & pose.contact & (pose.phase > last.phase)
+        offset = np.array([0.0, 0.0, pose.ground_offset - last.ground_offset])  # in place: the ground moves
+        if still.any():
+            moved = np.linalg.norm(pose.joints[still, 3] + offset - last.joints[still, 3], axis=-1)
+            self.planted_jump = float(moved.max())
+            self.planted_jump_max = max(self.planted_jump_max, self.planted_jump)
+
     def overlays(self, pose: Pose) -> Overlays | None:
         """The View panel's overlays for ``pose`` (None when all are off): the last
         footprints (recorded here, every frame), the swinging feet's touchdown targets and
         the support polygon with the trunk's centre."""
         o = self.options
-        self.footprints.record(pose, self.live.time)
         if not (o.footprints or o.targets or o.support):
             return None
         rig = self.live.rig

@@ -286,6 +286,7 @@ class Viewer:
                        "ortho": state.camera.ortho},
             "error": state.error, "status": state.status,
             "root": [float(v) for v in state.pose().root[:3, 3]], "travel": state.live.travel,
+            "terrain": state.world.terrain.describe(), "planted_jump_max": state.planted_jump_max,
             "drive": None if state.driver is None else {
                 "speed": state.driver.ground_speed, "target": state.driver.target_speed,
                 "froude": state.driver.ground_froude, "gait": state.driver.gait,
@@ -329,6 +330,7 @@ class Viewer:
             use_sample = sampled is not None and not state.live.cross_fading
             pose = sampled.pose(sampled.frame_count - 1) if use_sample else state.pose()
             state.follow_creature(pose)
+            state.note_pose(pose)
             if opts.dump_state is not None:
                 self.monitor.measure(state.live.time)  # in step with the dumped state
             elif self.monitor.wanted:
