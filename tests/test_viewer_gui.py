@@ -434,3 +434,28 @@ def test_terrain_slider_regenerates_the_ground_without_a_planted_foot_jump(displ
         assert amp > 0.04 and later["error"] is None
         assert later["planted_jump_max"] < 1e-3
         quit_viewer(display, proc, window)
+
+
+def test_a_click_on_the_ground_adds_a_waypoint_and_the_creature_goes_there(display: str, tmp_path: Path) -> None:
+    with running_viewer(display, tmp_path, "dog", "--size", "1024x720") as (proc, dump, window):
+        for header in ("panel.Creature", "panel.Gait", "panel.Path", "path.edit"):
+            click_widget(display, dump, header)
+        # Move first, then click: ImGui would read a jump and a press in one frame as a drag.
+        xdotool(display, "mousemove", "900", "620")
+        time.sleep(0.4)
+        xdotool(display, "click", "1")
+        added = read_state(dump, until=lambda s: s["waypoints"] or s["error"])
+        assert added["error"] is None and len(added["waypoints"]) == 1
+        target = np.array(added["waypoints"][0])
+        start = np.array(added["root"])[[0, 2]]
+        assert np.linalg.norm(target - start) > 0.3  # somewhere to go
+        reached = read_state(dump, timeout=40.0, until=lambda s: not s["waypoints"])
+        assert np.linalg.norm(np.array(reached["root"])[[0, 2]] - target) < 0.6  # just passed it
+        assert reached["planted_jump_max"] < 1e-3 and reached["error"] is None
+        # A click on the sky adds nothing and says why.
+        xdotool(display, "mousemove", "700", "30")
+        time.sleep(0.4)
+        xdotool(display, "click", "1")
+        sky = read_state(dump, until=lambda s: s["error"] is not None)
+        assert "no ground under the cursor" in sky["error"] and not sky["waypoints"]
+        quit_viewer(display, proc, window)

@@ -257,3 +257,39 @@ def path_distance(path: Path, points: NDArray[np.float64], s_hint: NDArray[np.fl
     d = np.linalg.norm(pts - points[:, None, :], axis=-1)
     best = d.argmin(axis=1)
     return d[np.arange(len(points)), best], s[np.arange(len(points)), best]
+
+
+class SplicedPath(Path):
+    """``base`` up to arc length ``s0``, then ``then`` (whose own arc length 0 is at
+    ``s0``): a new route taken from where the body is, the way it came kept behind it.
+    ``then`` should start where ``base`` is at ``s0``, along its tangent there."""
+
+    kind = "spliced"
+
+    def __init__(self, base: Path, s0: float, then: Path) -> None:
+        super().__init__()
+        self.base = base
+        self.s0 = float(s0)
+        self.then = then
+
+    @property
+    def closed(self) -> bool:
+        return False
+
+    def sample(self, s: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        s = np.asarray(s, dtype=np.float64)
+        flat = s.reshape(-1)
+        points, tangents = self.then.sample(flat - self.s0)
+        old = flat < self.s0
+        if old.any():
+            points[old], tangents[old] = self.base.sample(flat[old])
+        return points.reshape(s.shape + (2,)), tangents.reshape(s.shape + (2,))
+
+    def _local(self, s):  # sample() is overridden
+        raise NotImplementedError
+
+    def curvature_radius(self) -> float:
+        return min(self.base.curvature_radius(), self.then.curvature_radius())
+
+    def describe(self) -> str:
+        return self.then.describe()

@@ -157,3 +157,35 @@ def clear_elevations(targets: NDArray[np.float64], azimuths: NDArray[np.float64]
     clear = np.all(points[..., 1] >= ground + margin, axis=-1)  # (T, C)
     first = np.where(clear.any(axis=1), clear.argmax(axis=1), len(candidates) - 1)
     return candidates[first] if frames else np.zeros(0)
+
+
+def ground_point(camera: Camera, aspect: float, ndc: tuple[float, float], height,
+                 reach: float = 500.0, samples: int = 512) -> NDArray[np.float64] | None:
+    """Where the ray through ``ndc`` (x, y in -1..1 of the view) first meets the ground
+    ``height`` (a function of (N, 2) x, z giving (N,) heights): (x, y, z), or None when
+    it meets no ground within ``reach`` m (the sky). Marched in ``samples`` steps, then
+    refined by bisection within the step that crosses the ground."""
+    inverse = np.linalg.inv(np.array(camera.view_proj(aspect), dtype=np.float64))
+    near = inverse @ np.array([ndc[0], ndc[1], -1.0, 1.0])
+    far = inverse @ np.array([ndc[0], ndc[1], 1.0, 1.0])
+    origin = near[:3] / near[3]
+    direction = far[:3] / far[3] - origin
+    direction /= np.linalg.norm(direction)
+    t = np.linspace(0.0, reach, samples) ** 2 / reach  # finer near the eye
+    points = origin + t[:, None] * direction
+    above = points[:, 1] - height(points[:, [0, 2]])
+    below = np.nonzero(above <= 0.0)[0]
+    if not len(below):
+        return None
+    i = int(below[0])
+    if i == 0:
+        return points[0]
+    lo, hi = float(t[i - 1]), float(t[i])
+    for _ in range(30):  # bisection within the bracketing step: well under a millimetre
+        mid = 0.5 * (lo + hi)
+        p = origin + mid * direction
+        if p[1] - float(height(p[None, [0, 2]])[0]) > 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return origin + hi * direction

@@ -23,6 +23,7 @@ TARGET_COLOR = np.array([0.95, 0.55, 0.05]) ** 2  # amber (linear)
 STABLE_COLOR = np.array([0.20, 0.75, 0.30]) ** 2
 UNSTABLE_COLOR = np.array([0.90, 0.20, 0.15]) ** 2
 SUPPORT_COLOR = np.array([0.30, 0.30, 0.34]) ** 2
+WAYPOINT_COLOR = np.array([0.23, 0.49, 0.85]) ** 2  # the path's blue
 
 
 @dataclass(frozen=True)
@@ -35,6 +36,7 @@ class Overlays:
     footprint_age: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))  # (N,) 0 new .. 1 oldest
     footprint_colors: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 3)))  # (N, 3) linear
     targets: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 3)))  # (S, 3)
+    waypoints: NDArray[np.float64] = field(default_factory=lambda: np.zeros((0, 3)))  # (W, 3) the route's points
     support: NDArray[np.float64] | None = None  # (K, 2) the polygon's corners (x, z), in order
     centre: NDArray[np.float64] | None = None  # (2,) the trunk's centre on the ground (x, z)
     stable: bool = False  # the centre lies inside the support polygon
@@ -48,6 +50,9 @@ class Overlays:
         if len(self.targets):
             rows.append(_discs(self.targets, terrain, 0.55 * s, 0.015 * s, TARGET_COLOR * 0.35))
             rows.append(_discs(self.targets, terrain, 0.38 * s, 0.03 * s, TARGET_COLOR))
+        if len(self.waypoints):
+            rows.append(_discs(self.waypoints, terrain, 1.1 * s, 0.03 * s, WAYPOINT_COLOR * 0.3))
+            rows.append(_discs(self.waypoints, terrain, 0.8 * s, 0.06 * s, WAYPOINT_COLOR))
         if self.centre is not None:
             c = np.array([[self.centre[0], 0.0, self.centre[1]]])
             rows.append(_discs(c, terrain, 0.35 * s, 0.04 * s, STABLE_COLOR if self.stable else UNSTABLE_COLOR))

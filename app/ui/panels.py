@@ -7,7 +7,7 @@ gives it back its value from the loaded creature. No logic lives here beyond lay
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from imgui_bundle import imgui, implot
@@ -682,12 +682,57 @@ def terrain_panel(state: ViewerState, pc: PanelContext) -> None:
     imgui.text_disabled(f"now: {state.world.terrain.describe()}"[:60])
 
 
+def path_panel(state: ViewerState, pc: PanelContext) -> None:
+    """The route from here on: a kind with its values, or waypoints edited on the ground."""
+    kinds = list(state.path_values)
+    imgui.set_next_item_width(-1)
+    changed, index = imgui.combo("##path-kind", kinds.index(state.path_kind), kinds)
+    _remember(state, "path.kind")
+    if changed:
+        state.set_path(kinds[index])
+    kind = state.path_kind
+    values = state.path_values[kind]
+    if kind in ("circle", "figure-eight") and _begin_rows(f"path-{kind}", pc):
+        _label("radius", "the turning circle's radius, from where the creature is now")
+        changed, radius = imgui.slider_float("##path-r", float(values["r"]), 0.1, 20.0, "%.2f m")
+        _remember(state, "path.r")
+        imgui.table_next_column()
+        if changed:  # live: each value re-routes from where the creature is
+            state.set_path(kind, r=shown(float(radius), "%.2f"))
+        if kind == "circle":
+            _label("turning", "which way the circle turns")
+            sides = ["left", "right"]
+            changed, side = imgui.combo("##path-dir", sides.index(values["dir"]), sides)
+            imgui.table_next_column()
+            if changed:
+                state.set_path(kind, dir=sides[side])
+        imgui.end_table()
+    changed, edit = imgui.checkbox("edit waypoints on the ground", state.waypoint_edit)
+    _remember(state, "path.edit")
+    if imgui.is_item_hovered():
+        imgui.set_tooltip("Click on the ground to add a waypoint (the creature goes there next), drag one to move "
+                          "it, right-click one to delete it. Reached waypoints are dropped.")
+    if changed:
+        state.waypoint_edit = edit
+        if edit:
+            state.leave_in_place()
+        if edit and not state.options.path:
+            state.options = replace(state.options, path=True)
+    imgui.text_disabled(f"{len(state.waypoints)} waypoint(s) ahead")
+    if state.waypoints:
+        imgui.same_line()
+        if imgui.small_button("clear##waypoints"):
+            state.set_waypoints([])
+        _remember(state, "path.clear")
+
+
 PANELS = (
     ("Creature", creature_panel, True),
     ("Gait", gait_panel, True),
     ("Body", body_panel, False),
     ("View", view_panel, False),
     ("Terrain", terrain_panel, False),
+    ("Path", path_panel, False),
     ("Playback", playback_panel, True),
     ("Plots", plots_panel, False),
     ("Record", record_panel, False),

@@ -14,6 +14,7 @@ from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..choices import DEFAULT_ANTIALIAS, Antialias
 from ..errors import GaitlabError
@@ -23,7 +24,8 @@ from ..kinematics.live import LiveMotion
 from ..kinematics.overlays import (FootprintTrail, inside_polygon, planted_points, support_polygon,
                                    touchdown_targets, trunk_centre)
 from ..kinematics.motion import Pose
-from ..kinematics.path import StraightPath
+from ..kinematics.path import Path as GroundPath
+from ..kinematics.path import SplicedPath, StraightPath, WaypointPath
 from ..kinematics.world import World
 from ..export import export_clip
 from ..export.formats import ExportFormat
@@ -127,6 +129,13 @@ class ViewerState:
     terrain_kind: str = field(default="flat", init=False)  # the Terrain panel's kind and values
     terrain_values: dict[str, dict[str, Any]] = field(default_factory=dict, init=False)
     footprints: FootprintTrail = field(default_factory=FootprintTrail, init=False, repr=False)
+    waypoints: list[tuple[float, float]] = field(default_factory=list, init=False)  # (x, z) the route goes through
+    waypoint_edit: bool = False  # mouse on the ground: click adds, drag moves, right-click deletes
+    path_values: dict[str, dict[str, Any]] = field(default_factory=lambda: {
+        "straight": {}, "circle": {"r": 2.0, "dir": "left"}, "figure-eight": {"r": 2.0}, "waypoints": {}},
+        init=False)
+    path_kind: str = field(default="straight", init=False)
+    _waypoint_s: list[float] = field(default_factory=list, init=False, repr=False)
     planted_jump: float = field(default=0.0, init=False)  # m a planted foot moved last frame (see note_pose)
     planted_jump_max: float = field(default=0.0, init=False)
     _last_pose: Pose | None = field(default=None, init=False, repr=False)
@@ -503,6 +512,134 @@ class ViewerState:
         self.error = None
         return True
 
+    # -- paths ------------------------------------------------------------------------
+
+    def _here(self) -> tuple[NDArray[np.float64], float]:
+        """The body's point on its path (x, z) and its heading (radians) now."""
+        (point,), (tangent,) = self.world.path.sample(np.array([self.live.travel]))
+        return point, float(np.arctan2(tangent[0], tangent[1]))
+
+    def _take_route(self, route: GroundPath) -> bool:
+        """Go on along ``route`` (which starts where the body is, along its heading) from
+        now, the path behind kept; on a route the creature cannot take, say why and keep
+        the current one."""
+        if self.driver is not None:
+            self.stop_driving()
+        try:
+            path = SplicedPath(self.world.path, self.live.travel, route)
+            world = World(path=path, terrain=self.world.terrain)
+            self.live.set_world(world)
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        self.world = world
+        self.options = replace(self.options, path=True)
+        self.error = None
+        return True
+
+    def set_path(self, kind: str | None = None, **values: Any) -> bool:
+        """From here on, follow a path of ``kind`` (straight, circle, figure-eight, or the
+        waypoints) with the Path panel's values (given ones replace them), starting where
+        the body is, along its heading. Bad values show the error and change nothing."""
+        from ..scenes import parse_path
+
+        kind = kind or self.path_kind
+        if kind not in self.path_values:
+            self.error = f"unknown path {kind!r}; choose one of {', '.join(self.path_values)}"
+            return False
+        if kind == "waypoints":
+            self.path_kind = kind
+            return self.set_waypoints(self.waypoints)
+        merged = {**self.path_values[kind], **values}
+        text = kind + (":" + ",".join(f"{k}={v:g}" if not isinstance(v, str) else f"{k}={v}"
+                                      for k, v in merged.items()) if merged else "")
+        point, heading = self._here()
+        try:
+            route = parse_path(text)
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        route.start, route.heading = (float(point[0]), float(point[1])), heading
+        if not self._take_route(route):
+            return False
+        self.path_kind = kind
+        self.path_values[kind] = merged
+        return True
+
+    def leave_in_place(self) -> None:
+        """Walk in the world (the view and the ground then agree, for picking on it)."""
+        if self.world.in_place:
+            world = replace(self.world, in_place=False)
+            self.live.set_world(world)
+            self.world = world
+
+    def set_waypoints(self, points: list[tuple[float, float]]) -> bool:
+        """Go through ``points`` (x, z, m) from here, in order; none: straight on. Points
+        within half a body length of the body count as reached; a first point behind
+        the body gets turning points on its side, so the route turns round in a loop
+        (over two body lengths across) instead of on the spot."""
+        from ..scenes import waypoint_path
+
+        point, heading = self._here()
+        length = self.live.rig.body_length
+        forward = np.array([np.sin(heading), np.cos(heading)])
+        lead = point + 0.8 * length * forward
+        pts = [tuple(map(float, p)) for p in points
+               if not np.all(np.isfinite(p)) or np.linalg.norm(np.asarray(p, dtype=float) - point) > 0.5 * length]
+        turn: list = []
+        if pts and np.all(np.isfinite(pts[0])):
+            to_first = np.asarray(pts[0]) - point
+            if to_first @ forward < 0.5 * np.linalg.norm(to_first):  # more than 60 degrees off the heading
+                left = np.array([forward[1], -forward[0]])
+                side = 1.0 if to_first @ left >= 0 else -1.0
+                turn = [point + length * (1.2 * forward + 1.2 * side * left)]
+                if to_first @ forward < 0:  # behind: round the half loop
+                    turn.append(point + length * (0.4 * forward + 2.6 * side * left))
+        try:
+            if not pts:
+                route: GroundPath = StraightPath(start=(float(point[0]), float(point[1])), heading=heading)
+            else:
+                if not all(np.all(np.isfinite(p)) and max(abs(p[0]), abs(p[1])) <= 1e4 for p in pts):
+                    raise GaitlabError("a waypoint must be within 10 km of the origin")
+                route = waypoint_path(np.array([point, lead, *turn, *pts]), False, "waypoints")
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        if not self._take_route(route):
+            return False
+        self.waypoints = pts
+        # Where along the path each waypoint lies (m), to drop those the body has passed.
+        knots = np.arange(2 + len(turn), len(pts) + 2 + len(turn)) * WaypointPath.SAMPLES_PER_SEGMENT
+        self._waypoint_s = (self.live.travel + route._table.s[knots]).tolist() if pts else []
+        self.path_kind = "waypoints"
+        return True
+
+    def _drop_passed_waypoints(self) -> None:
+        """Waypoints the body has reached are done: they leave the list (the route stays)."""
+        passed = sum(1 for s in self._waypoint_s if s <= self.live.travel)
+        if passed:
+            del self.waypoints[:passed]
+            del self._waypoint_s[:passed]
+
+    def add_waypoint(self, x: float, z: float) -> bool:
+        return self.set_waypoints([*self.waypoints, (x, z)])
+
+    def move_waypoint(self, index: int, x: float, z: float) -> bool:
+        points = list(self.waypoints)
+        points[index] = (x, z)
+        return self.set_waypoints(points)
+
+    def delete_waypoint(self, index: int) -> bool:
+        return self.set_waypoints([p for i, p in enumerate(self.waypoints) if i != index])
+
+    def nearest_waypoint(self, x: float, z: float, within: float) -> int | None:
+        """The waypoint nearest (x, z) if within ``within`` m, else None."""
+        if not self.waypoints:
+            return None
+        d = np.linalg.norm(np.array(self.waypoints) - np.array([x, z]), axis=1)
+        i = int(d.argmin())
+        return i if d[i] <= within else None
+
     # -- drive mode -------------------------------------------------------------------
 
     def start_driving(self) -> bool:
@@ -659,6 +796,7 @@ class ViewerState:
         planted in both this frame and the last moved between them (:attr:`planted_jump`,
         m; the largest since the viewer started in :attr:`planted_jump_max`)."""
         self.footprints.record(pose, self.live.time)
+        self._drop_passed_waypoints()
         last = self._last_pose
         self._last_pose = pose
         if last is None or len(last.contact) != len(pose.contact):
@@ -675,7 +813,8 @@ class ViewerState:
         footprints (recorded here, every frame), the swinging feet's touchdown targets and
         the support polygon with the trunk's centre."""
         o = self.options
-        if not (o.footprints or o.targets or o.support):
+        marks = self.waypoints if (self.waypoint_edit or self.path_kind == "waypoints") else []
+        if not (o.footprints or o.targets or o.support or marks):
             return None
         rig = self.live.rig
         size = 0.12 * float(np.mean(rig.l_rest))
@@ -689,6 +828,8 @@ class ViewerState:
             hull = support_polygon(planted_points(pose)[:, [0, 2]])
             centre = trunk_centre(pose)[[0, 2]]
             parts.update(support=hull, centre=centre, stable=inside_polygon(centre, hull))
+        if marks:
+            parts["waypoints"] = np.column_stack([np.array(marks)[:, 0], np.zeros(len(marks)), np.array(marks)[:, 1]])
         return Overlays(size=size, **parts)
 
     def ground(self, pose: Pose) -> GroundView:

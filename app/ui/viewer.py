@@ -22,6 +22,7 @@ from imgui_bundle import imgui, implot
 from ..errors import GaitlabError
 from ..output import atomic_write_text, write_png
 from ..recording import Recording
+from ..render.camera import ground_point
 from ..render.renderer import SceneRenderer
 from ..render.scene import pose_instances
 from ..kinematics.world import World
@@ -128,6 +129,7 @@ class Viewer:
                                   file_dialog=FileDialog(), dialogs_available=dialogs_available())
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
+        self._press: tuple[np.ndarray, int | None, tuple[float, float]] | None = None  # waypoint press
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
         self.extra_panels: tuple = ()
 
@@ -176,7 +178,9 @@ class Viewer:
         if io.want_capture_mouse:
             return
         dx, dy = io.mouse_delta.x, io.mouse_delta.y
-        if imgui.is_mouse_double_clicked(0):
+        if state.waypoint_edit and self._edit_waypoints():
+            pass  # the mouse edited the route
+        elif imgui.is_mouse_double_clicked(0):
             self._pick = (io.mouse_pos.x, io.mouse_pos.y)
         elif imgui.is_mouse_down(0) and (dx or dy):
             state.orbit(dx, dy)
@@ -184,6 +188,61 @@ class Viewer:
             state.pan(dx, dy, view_height)
         if io.mouse_wheel:
             state.zoom(io.mouse_wheel)
+
+    def _ground_under_mouse(self) -> np.ndarray | None:
+        """The ground point (x, y, z) under the mouse, or None (the sky, or off the view)."""
+        io = imgui.get_io()
+        vx, vy, vw, vh = self._scene_viewport()
+        fb_w, fb_h = self.window.framebuffer_size
+        win_w, win_h = self.window.window_size
+        x = io.mouse_pos.x * fb_w / max(win_w, 1)
+        y = fb_h - io.mouse_pos.y * fb_h / max(win_h, 1)
+        if not (vx <= x < vx + vw and vy <= y < vy + vh) or vw <= 0 or vh <= 0:
+            return None
+        ndc = (2.0 * (x - vx) / vw - 1.0, 2.0 * (y - vy) / vh - 1.0)
+        point = ground_point(self.state.camera, vw / vh, ndc, self.state.world.terrain.height)
+        # Only the ground that is drawn: it fades into the horizon a few body sizes away.
+        rig = self.state.live.rig
+        root = self.state.pose().root[:3, 3]
+        if point is None or np.linalg.norm((point - root)[[0, 2]]) > 5.0 * (rig.body_length + rig.hip_height):
+            return None
+        return point
+
+    def _edit_waypoints(self) -> bool:
+        """Waypoint editing on the ground: a click adds one, a drag from one moves it, a
+        right-click deletes the nearest. True when the mouse did one of these (no orbit);
+        a drag that starts away from every waypoint orbits as usual."""
+        state, io = self.state, imgui.get_io()
+        grab = 0.35 * state.live.rig.body_length  # m: how near a waypoint a press takes it
+        mouse = (io.mouse_pos.x, io.mouse_pos.y)
+        if imgui.is_mouse_clicked(0):
+            point = self._ground_under_mouse()
+            if point is None:
+                self._press = None
+                state.error = "no ground under the cursor: click on the ground to add a waypoint"
+                return True
+            self._press = (point, state.nearest_waypoint(point[0], point[2], grab), mouse)
+            return self._press[1] is not None
+        if self._press is None:
+            if imgui.is_mouse_clicked(1):
+                point = self._ground_under_mouse()
+                index = None if point is None else state.nearest_waypoint(point[0], point[2], grab)
+                if index is not None:
+                    state.delete_waypoint(index)
+                    return True
+            return False
+        point, index, start = self._press
+        moved = (mouse[0] - start[0]) ** 2 + (mouse[1] - start[1]) ** 2 > 16.0  # more than 4 px
+        if imgui.is_mouse_down(0):
+            if index is not None and moved:
+                here = self._ground_under_mouse()
+                if here is not None:
+                    state.move_waypoint(index, float(here[0]), float(here[2]))
+            return index is not None
+        self._press = None  # released
+        if index is None and not moved:
+            state.add_waypoint(float(point[0]), float(point[2]))
+        return True
 
     def _scene_viewport(self) -> tuple[int, int, int, int]:
         fb_w, fb_h = self.window.framebuffer_size
@@ -287,6 +346,7 @@ class Viewer:
             "error": state.error, "status": state.status,
             "root": [float(v) for v in state.pose().root[:3, 3]], "travel": state.live.travel,
             "terrain": state.world.terrain.describe(), "planted_jump_max": state.planted_jump_max,
+            "waypoints": [list(p) for p in state.waypoints], "path": state.world.path.describe(),
             "drive": None if state.driver is None else {
                 "speed": state.driver.ground_speed, "target": state.driver.target_speed,
                 "froude": state.driver.ground_froude, "gait": state.driver.gait,
