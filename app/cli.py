@@ -85,6 +85,18 @@ def _overlays(text: str) -> tuple[str, ...]:
     return names
 
 
+def _herd(text: str) -> int:
+    from .kinematics.herd import MAX_HERD
+
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if not 1 <= value <= MAX_HERD:
+        raise argparse.ArgumentTypeError(f"{text!r}: give 1 to {MAX_HERD} animals (the creature and N - 1 more)")
+    return value
+
+
 def _samples(text: str) -> int:
     if text not in ("0", "2", "4", "8"):
         raise argparse.ArgumentTypeError(f"{text!r}: expected 0 (off), 2, 4 or 8 samples")
@@ -231,6 +243,9 @@ def build_parser() -> argparse.ArgumentParser:
     _clip_arguments(render, output_help="output file: .png, .gif or .mp4 (default: CREATURE.gif)",
                     cycles_help="clip length in gait cycles (default: 2; loops seamlessly)", fps=25.0)
     render.add_argument("--size", metavar="WxH", type=_size, default=(480, 360), help="image size (default: 480x360)")
+    render.add_argument("--herd", metavar="N", type=_herd, default=1,
+                        help="N animals in all: the creature and N - 1 more of its kind following it, each a "
+                             "little different in size (+-10%%), speed and step (travelling only)")
     render.add_argument("--camera", choices=CAMERA_CHOICES, default=DEFAULT_CAMERA,
                         help=f"camera preset (default: {DEFAULT_CAMERA}); a travelling creature is followed "
                              "at the preset's angle to its heading; 'chase' films from behind, looking ahead; "
@@ -327,6 +342,9 @@ def build_parser() -> argparse.ArgumentParser:
     view.add_argument("--frames", metavar="N", type=int, help="run N frames (fixed 1/60 s steps), then exit")
     view.add_argument("--screenshot", metavar="PATH", type=Path,
                       help="with --frames: save the window (with UI) as PNG after the last frame")
+    view.add_argument("--herd", metavar="N", type=_herd, default=1,
+                      help="N animals in all: the creature you edit and N - 1 more of its kind following it "
+                           "(size +-10%%, speed, step), keeping apart from each other")
     view.add_argument("--overlays", metavar="LIST", type=_overlays, default=(),
                       help=f"draw on the ground (View panel): {', '.join(OVERLAYS)} - the last footprints, "
                            "where swinging feet will land, the planted feet's support polygon with the trunk's "
@@ -401,7 +419,7 @@ def cmd_render(args: argparse.Namespace) -> int:
                                               joints=not args.no_joints, path=turns and not args.no_path))
     request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,
                             start=args.time, view=view, speed=speed, world=world, gif_quality=args.gif_quality,
-                            crf=args.crf)
+                            crf=args.crf, herd=args.herd)
     if fmt == "gif" and (warning := gif_fps_warning(args.fps)) and not args.quiet:
         print(warning, file=sys.stderr)
 
@@ -519,7 +537,8 @@ def cmd_view(args: argparse.Namespace) -> int:
 
     options = ViewerOptions(size=args.size, vsync=not args.no_vsync, samples=args.msaa, frames=args.frames,
                             screenshot=args.screenshot, hide_ui=args.hide_ui, report_fps=args.report_fps,
-                            dump_state=args.dump_state, presets=preset_creature_names(), overlays=args.overlays)
+                            dump_state=args.dump_state, presets=preset_creature_names(), overlays=args.overlays,
+                            herd=args.herd)
     return run_viewer(spec, options, world)
 
 

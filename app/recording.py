@@ -15,10 +15,12 @@ import numpy as np
 from .errors import GaitlabError
 from .limits import MAX_FPS, MAX_SECONDS, MAX_SPEED, check_clip  # noqa: F401  (re-exported)
 from .kinematics.clip import clip_motion, frame_at
+from .kinematics.herd import Herd, HerdTrack, check_herd_size, follow_leader
 from .kinematics.world import World
 from .output import (DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_MAX_FPS, GIF_QUALITIES, MAX_SIZE, GifQuality, GifWriter,
                      Mp4Writer, cannot_write, check_crf, check_output_dir, output_format, write_png)
 from .render.clip import ClipRenderer, ViewSettings, clip_cameras, loop_grid_spacing
+from .render.herd import HerdInstances
 from .render.renderer import RenderOptions
 from .rigging import build_rig
 from .spec import CreatureSpec
@@ -44,6 +46,7 @@ class RecordRequest:
     world: World = field(default_factory=World)  # path and terrain (default: straight ahead, flat)
     gif_quality: GifQuality = DEFAULT_GIF_QUALITY  # GIF size against fidelity: best, good, small
     crf: int = DEFAULT_CRF  # MP4 (H.264) constant rate factor: 0 lossless .. 51 smallest
+    herd: int = 1  # animals in all: the creature and herd - 1 more of its kind following it
 
     def __post_init__(self) -> None:
         if self.gif_quality not in GIF_QUALITIES:
@@ -53,6 +56,9 @@ class RecordRequest:
         if not (1 <= w <= MAX_SIZE and 1 <= h <= MAX_SIZE):
             raise GaitlabError(f"size {w}x{h}: width and height must be between 1 and {MAX_SIZE}")
         check_clip(self.fps, self.seconds, self.cycles, self.start, self.speed)
+        check_herd_size(self.herd)
+        if self.herd > 1 and self.world.in_place:
+            raise GaitlabError(f"a herd of {self.herd} travels: drop --in-place")
 
 
 @dataclass(frozen=True)
@@ -89,18 +95,21 @@ class Recording:
         self.frequency = rig.gait.frequency
         view = request.view
         world = request.world
+        self._herd: tuple[Herd, HerdTrack, HerdInstances] | None = None
         if self.format == "png":
             # Framed as the cycle around the frame would be (no jitter between frames of a
             # film strip made with --time).
             cycle, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=world)
             self.motion = frame_at(rig, request.start, request.fps, world)
-            self.cameras = clip_cameras(cycle, view)[:1]
+            self.cameras = clip_cameras(cycle, view, self._herd_points(rig, cycle, request))[:1]
+            if self._herd is not None:  # the herd as it is at the frame: the cycle's first
+                self._herd = (self._herd[0], _first_frame(self._herd[1]), self._herd[2])
             self.options = _with_grid(view.options, loop_grid_spacing(cycle, None))
             self.cycles: float | None = None
         else:
             self.motion, self.cycles = clip_motion(rig, request.fps, request.seconds, request.cycles, request.start,
                                                    request.speed, world=world)
-            self.cameras = clip_cameras(self.motion, view)
+            self.cameras = clip_cameras(self.motion, view, self._herd_points(rig, self.motion, request))
             self.options = _with_grid(view.options, loop_grid_spacing(self.motion, self.cycles))
         self.total = self.motion.frame_count
         self.done = 0
@@ -122,9 +131,29 @@ class Recording:
             self.cancel()
             raise
 
+    def _herd_points(self, rig, motion, request: RecordRequest) -> np.ndarray | None:
+        """With a herd: simulate it after the creature over ``motion`` and return every
+        animal's body point per frame (T, N, 3), for the camera to keep in view."""
+        if request.herd <= 1:
+            return None
+        points, tangents = motion.path.sample(motion.travel)
+        heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
+        herd = Herd(rig, request.herd - 1)
+        track = follow_leader(herd, points, heading, request.fps)
+        self._herd = (herd, track, HerdInstances(herd, request.view.options.joints))
+        top = float(rig.hip_height + rig.body.head_radius)
+        reach = 0.75 * float(rig.body_length + rig.body.head_length) * 1.1  # nose and tail of the largest
+        xyz = np.stack([track.position[..., 0], np.zeros(track.heading.shape), track.position[..., 1]], axis=-1)
+        corners = [np.array([dx, dy, dz]) for dx in (-reach, reach) for dy in (0.0, top) for dz in (-reach, reach)]
+        return np.concatenate([xyz + c for c in corners], axis=1)
+
     def _render(self, index: int) -> np.ndarray:
         assert self._renderer is not None
-        return self._renderer.frame(self.motion, index, self.cameras[index], self.options)
+        extra = None
+        if self._herd is not None:
+            herd, track, instances = self._herd
+            extra = instances.frame(track.apply(herd, min(index, len(track.phase) - 1)), self.motion.terrain.height)
+        return self._renderer.frame(self.motion, index, self.cameras[index], self.options, extra)
 
     @property
     def finished(self) -> bool:
@@ -219,6 +248,10 @@ def record(request: RecordRequest, progress: Progress | None = None,
         if progress:
             progress(job.done, job.total)
     return job.finish()
+
+
+def _first_frame(track: HerdTrack) -> HerdTrack:
+    return HerdTrack(track.position[:1], track.heading[:1], track.phase[:1])
 
 
 def _with_grid(options: RenderOptions, spacing: float) -> RenderOptions:

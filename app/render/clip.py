@@ -46,12 +46,13 @@ def clip_camera(motion: Motion, view: ViewSettings) -> Camera:
     return clip_cameras(motion, view)[0]
 
 
-def clip_cameras(motion: Motion, view: ViewSettings) -> list[Camera]:
+def clip_cameras(motion: Motion, view: ViewSettings, extra: NDArray[np.float64] | None = None) -> list[Camera]:
     """A camera per frame. In place: one fixed preset camera framing the whole clip. A
     travelling creature is followed: the preset's angle is kept relative to the path's
     heading, the target moves with the body along its path (at the ground's height,
     smoothed), and the distance frames the creature's whole motion about that point, so
-    it never leaves the frame and the camera does not jitter with the steps."""
+    it never leaves the frame and the camera does not jitter with the steps. ``extra``
+    (T, K, 3): more points to keep in view (a herd around a travelling creature)."""
     w, h = view.size
     aspect = w / h
     preset = preset_for(view.camera)
@@ -69,7 +70,10 @@ def clip_cameras(motion: Motion, view: ViewSettings) -> list[Camera]:
         ground = uniform_filter1d(motion.terrain.height(points), size=window, mode="nearest")
     anchor = np.column_stack([points[:, 0], ground, points[:, 1]])
     c, s = np.cos(heading), np.sin(heading)
-    rel = creature_points(motion) - anchor[:, None, :]
+    points_all = creature_points(motion)
+    if extra is not None:
+        points_all = np.concatenate([points_all, extra], axis=1)
+    rel = points_all - anchor[:, None, :]
     # Into each frame's heading frame (the creature facing +Z): rotate by -heading about Y.
     local = np.stack([c[:, None] * rel[..., 0] - s[:, None] * rel[..., 2], rel[..., 1],
                       s[:, None] * rel[..., 0] + c[:, None] * rel[..., 2]], axis=-1).reshape(-1, 3)
@@ -128,9 +132,12 @@ class ClipRenderer:
             self._cache = (motion, joints, motion_instances(motion, show_joints=joints))
         return self._cache[2]
 
-    def frame(self, motion: Motion, index: int, camera: Camera, options: RenderOptions) -> NDArray[np.uint8]:
-        """Frame ``index`` of ``motion`` as (H, W, 3) uint8."""
+    def frame(self, motion: Motion, index: int, camera: Camera, options: RenderOptions,
+              extra: SceneInstances | None = None) -> NDArray[np.uint8]:
+        """Frame ``index`` of ``motion`` (and ``extra`` shapes, e.g. a herd) as (H, W, 3) uint8."""
         scene = self._instances(motion, options.joints).frame(index)
+        if extra is not None:
+            scene = scene + extra
         ground = GroundView(terrain=motion.terrain, offset=float(motion.ground_offset[index]),
                             path=None if motion.in_place else motion.path, travel=float(motion.travel[index]))
         self.scene.draw_instances(scene, ground, camera, self.target.fbo, options)

@@ -59,6 +59,12 @@ class SceneInstances:
         """One frame of a clip's instances."""
         return SceneInstances(self.capsules[index], self.ellipsoids[index], self.ellipsoid_casters)
 
+    def __add__(self, other: "SceneInstances") -> "SceneInstances":
+        """Both sets of shapes in one (one frame each); the shadow casters stay first."""
+        a, b = self.ellipsoid_casters, other.ellipsoid_casters
+        ells = np.concatenate([self.ellipsoids[:a], other.ellipsoids[:b], self.ellipsoids[a:], other.ellipsoids[b:]])
+        return SceneInstances(np.concatenate([self.capsules, other.capsules]), ells, a + b)
+
     def box(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """World box (lo, hi), each (3,) in metres, around every shape of one frame,
         radii included."""

@@ -20,6 +20,7 @@ from ..choices import DEFAULT_ANTIALIAS, Antialias
 from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
 from ..kinematics.drive import Driver
+from ..kinematics.herd import Herd
 from ..kinematics.live import LiveMotion
 from ..kinematics.overlays import (FootprintTrail, inside_polygon, planted_points, support_polygon,
                                    touchdown_targets, trunk_centre)
@@ -140,6 +141,7 @@ class ViewerState:
     planted_jump_max: float = field(default=0.0, init=False)
     _last_pose: Pose | None = field(default=None, init=False, repr=False)
     driver: Driver | None = field(default=None, init=False)  # drive mode: W/S speed, A/D turn
+    herd: Herd | None = field(default=None, init=False)  # more animals of the creature's kind following it
     drive_input: tuple[float, float] = (0.0, 0.0)  # held keys: throttle (S -1 .. W 1), steer (D -1 .. A 1)
     _undo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
     _redo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
@@ -215,10 +217,13 @@ class ViewerState:
         changes that are not edits (undo itself, loading)."""
         previous = self.spec
         try:
+            rig = build_rig(spec)
             if self.driver is not None:  # the speed picks the gait; the rest of the creature applies
-                self.driver.set_rig(build_rig(spec))
+                self.driver.set_rig(rig)
             else:
-                self.live.set_rig(build_rig(spec), blend=blend)
+                self.live.set_rig(rig, blend=blend)
+            if self.herd is not None:
+                self.herd.set_rig(rig)
         except GaitlabError as exc:
             self.error = str(exc)
             return False
@@ -440,6 +445,9 @@ class ViewerState:
                     self.driver.step(dt / steps, *self.drive_input)
                 else:
                     self.live.step(dt / steps)
+            if self.herd is not None and dt > 0:
+                point, heading = self._here()
+                self.herd.step(dt, point, heading)
                 self.samples.append(self.live.frame_inputs())
         except GaitlabError as exc:  # ground with no foothold ahead: stop there and say why
             self.playing = False
@@ -510,6 +518,28 @@ class ViewerState:
         self.terrain_kind = kind
         self.world = world
         self.error = None
+        return True
+
+    # -- herd -------------------------------------------------------------------------
+
+    def set_herd(self, count: int) -> bool:
+        """``count`` animals in all: this creature and ``count - 1`` more of its kind
+        following it (1: none). Out of range shows the error and changes nothing."""
+        from ..kinematics.herd import check_herd_size
+
+        try:
+            count = check_herd_size(count)
+            if count > 1:
+                self.leave_in_place()
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        if count == 1:
+            self.herd = None
+            return True
+        point, heading = self._here()
+        self.herd = Herd(self.live.rig, count - 1, leader=(float(point[0]), float(point[1])), heading=heading)
+        self.frame_view()
         return True
 
     # -- paths ------------------------------------------------------------------------
@@ -714,6 +744,9 @@ class ViewerState:
             c, s = np.cos(np.radians(heading)), np.sin(np.radians(heading))
             target = (float(root[0, 3] + c * tx + s * tz), ty, float(root[2, 3] - s * tx + c * tz))
             cam = replace(cam, target=target, azimuth=cam.azimuth + heading)
+        if self.herd is not None:  # back off so the group behind the creature is in view
+            extent = float(np.abs(self.herd.slot).max()) + length
+            cam = replace(cam, distance=cam.distance * max(1.0, 0.4 * extent / length))
         self.camera = replace(cam, ortho=ortho)
         self._follow_height = None
         self._elevation = self.camera.elevation
@@ -765,6 +798,8 @@ class ViewerState:
         ty = ty + (float(root[1]) + offset - ty) * 0.08
         turn = (heading - previous + 180.0) % 360.0 - 180.0
         ahead = self._follow_ahead * tangent[0] if not self.world.in_place else np.zeros(2)
+        if self.herd is not None:  # aim between the creature and its herd's middle
+            ahead = ahead + 0.5 * (self.herd.position.mean(axis=0) - root[[0, 2]])
         camera = replace(self.camera, target=(float(root[0] + ahead[0]), ty, float(root[2] + ahead[1])),
                          azimuth=self.camera.azimuth + (0.0 if self.world.in_place else turn))
         if not self.world.terrain.flat and not camera.top_down:

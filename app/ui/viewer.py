@@ -23,6 +23,7 @@ from ..errors import GaitlabError
 from ..output import atomic_write_text, write_png
 from ..recording import Recording
 from ..render.camera import ground_point
+from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
 from ..render.scene import pose_instances
 from ..kinematics.world import World
@@ -52,6 +53,7 @@ class ViewerOptions:
     dump_state: Path | None = None  # write the viewer state as JSON (automation, tests)
     presets: list[str] = field(default_factory=list)
     overlays: tuple[str, ...] = ()  # turned on at start: footprints, targets, support
+    herd: int = 1  # animals in all: the creature and herd - 1 following it
 
 
 def _setup_style(scale: float) -> bool:
@@ -118,6 +120,9 @@ class Viewer:
         self.ui = ImguiRenderer(self.ctx, self.scene.shaders)
         self.state = ViewerState(spec, world=world or World())
         self.state.show_ui = not options.hide_ui
+        if options.herd > 1 and not self.state.set_herd(options.herd):
+            raise GaitlabError(self.state.error or "herd")
+        self._herd_instances: HerdInstances | None = None
         if options.overlays:
             self.state.options = replace(self.state.options, **{name: True for name in options.overlays})
         _, _, vw, vh = self._scene_viewport()
@@ -347,6 +352,7 @@ class Viewer:
             "root": [float(v) for v in state.pose().root[:3, 3]], "travel": state.live.travel,
             "terrain": state.world.terrain.describe(), "planted_jump_max": state.planted_jump_max,
             "waypoints": [list(p) for p in state.waypoints], "path": state.world.path.describe(),
+            "herd": 1 if state.herd is None else state.herd.count + 1,
             "drive": None if state.driver is None else {
                 "speed": state.driver.ground_speed, "target": state.driver.target_speed,
                 "froude": state.driver.ground_froude, "gait": state.driver.gait,
@@ -402,7 +408,12 @@ class Viewer:
                 self.ctx.screen.use()
                 if viewport[0] > 0:  # the sidebar's background (the panels draw none)
                     self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
-                self.scene.draw_instances(pose_instances(pose, state.live.rig, state.options.joints),
+                instances = pose_instances(pose, state.live.rig, state.options.joints)
+                if state.herd is not None:
+                    if self._herd_instances is None or self._herd_instances.show_joints != state.options.joints:
+                        self._herd_instances = HerdInstances(state.herd, state.options.joints)
+                    instances = instances + self._herd_instances.frame(state.herd, state.world.terrain.height)
+                self.scene.draw_instances(instances,
                                           state.ground(pose), state.camera, self.ctx.screen, state.options, viewport,
                                           multisampled=self.options.samples > 0, overlays=state.overlays(pose))
                 self._resolve_pick(viewport)

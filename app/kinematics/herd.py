@@ -1,0 +1,212 @@
+"""A herd: many animals of one kind moving together, vectorised across animals.
+
+One gait cycle of the creature is solved once, in place (:func:`cycle_motion`); every
+animal is that cycle played at its own phase and rate, scaled by its own size and set
+down at its own position and heading. Per frame the whole herd is a handful of array
+operations whatever its size: steering (follow a leader along the path, keep a place in
+the group, keep apart from neighbours), clocks, and the pose transform.
+
+An animal's planted feet stand still on the ground when it walks straight: its body
+moves at exactly the speed the cycle's feet sweep back at (size x rate x the cycle's
+speed). Turning, they slide by the turn's angle about the body (a herd's animals turn
+gently; the creature being edited, outside the herd, keeps every foot planted).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import GaitlabError
+from .clip import clip_motion
+from .motion import Motion
+from .rig import Rig
+from .world import IN_PLACE
+
+MAX_HERD = 1000
+CYCLE_FRAMES = 64  # frames of the solved cycle; poses between them are blended
+
+
+def check_herd_size(n: int) -> int:
+    """``n`` if it is a herd size Gaitlab draws (1 to MAX_HERD), else a one-line error."""
+    if isinstance(n, bool) or int(n) != n or not 1 <= n <= MAX_HERD:
+        raise GaitlabError(f"herd of {n}: give 1 to {MAX_HERD} animals")
+    return int(n)
+
+
+def cycle_motion(rig: Rig) -> Motion:
+    """One whole gait cycle of ``rig`` in place, CYCLE_FRAMES frames (the last leads into
+    the first)."""
+    fps = CYCLE_FRAMES * rig.gait.frequency
+    motion, _ = clip_motion(rig, fps, cycles=1.0, world=IN_PLACE)
+    return motion
+
+
+@dataclass(frozen=True)
+class HerdVariation:
+    """How much animals differ: size and speed as +- fractions."""
+
+    size: float = 0.10
+    speed: float = 0.10
+
+
+def _wrap(angle: NDArray[np.float64]) -> NDArray[np.float64]:
+    return (angle + np.pi) % (2.0 * np.pi) - np.pi
+
+
+class Herd:
+    """``count`` animals of ``rig`` around a leader point that moves along the ground.
+
+    State (arrays over animals, N = count): ``position`` (N, 2) x, z in metres,
+    ``heading`` (N,) radians (0 faces +Z, positive turns left), ``size`` (N,) scale,
+    ``phase`` (N,) cycle fraction, ``rate`` (N,) how fast each plays the cycle relative to
+    the rig's frequency, ``slot`` (N, 2) each animal's place in the group (metres to the
+    leader's left and ahead).
+    """
+
+    def __init__(self, rig: Rig, count: int, leader: tuple[float, float] = (0.0, 0.0), heading: float = 0.0,
+                 seed: int = 1, variation: HerdVariation = HerdVariation()) -> None:
+        count = check_herd_size(count)
+        rng = np.random.default_rng(seed)
+        self.count = count
+        self.variation = variation
+        self.size = 1.0 + variation.size * rng.uniform(-1.0, 1.0, count)
+        self.pace = 1.0 + variation.speed * rng.uniform(-1.0, 1.0, count)  # each one's preferred speed factor
+        self.phase = rng.uniform(0.0, 1.0, count)
+        self.rate = self.pace.copy()
+        self.set_rig(rig)
+        # Places in the group: rows of animals behind and beside the leader, jittered.
+        spacing = 1.6 * max(rig.body_length, rig.body.width * 3.0)
+        per_row = max(1, int(math.ceil(math.sqrt(count))))
+        index = np.arange(count)
+        row, col = index // per_row, index % per_row
+        lateral = (col - (per_row - 1) / 2.0) * spacing * 0.8
+        back = -(row + 1) * spacing  # all behind the leader
+        self.slot = np.column_stack([lateral, back]) + rng.uniform(-0.12, 0.12, (count, 2)) * spacing
+        self.spacing = spacing
+        c, s = math.cos(heading), math.sin(heading)
+        leader_xz = np.asarray(leader, dtype=np.float64)
+        self.position = leader_xz + np.column_stack([c * self.slot[:, 0] + s * self.slot[:, 1],
+                                                     -s * self.slot[:, 0] + c * self.slot[:, 1]])
+        self.heading = np.full(count, float(heading))
+        self.rng = rng
+
+    def set_rig(self, rig: Rig) -> None:
+        """A new creature (edited in the panels): re-solve the cycle every animal plays."""
+        self.rig = rig
+        self.cycle = cycle_motion(rig)
+        self.frequency = rig.gait.frequency
+        travel = self.cycle.travel
+        frames = len(travel)
+        self.cycle_speed = float((travel[-1] - travel[0]) * frames / (frames - 1) * self.frequency)  # m/s
+
+    @property
+    def speed(self) -> NDArray[np.float64]:
+        """Each animal's ground speed now (m/s)."""
+        return self.cycle_speed * self.size * self.rate
+
+    def step(self, dt: float, leader: NDArray[np.float64], leader_heading: float) -> None:
+        """Advance ``dt`` seconds, the group following ``leader`` (x, z) heading
+        ``leader_heading`` (radians): each animal steers for its place in the group,
+        away from neighbours nearer than a body length and a half, and sets its speed to
+        keep its place (within +-35% of its own pace)."""
+        if dt <= 0:
+            return
+        c, s = math.cos(leader_heading), math.sin(leader_heading)
+        target = np.asarray(leader, dtype=np.float64) + np.column_stack(
+            [c * self.slot[:, 0] + s * self.slot[:, 1], -s * self.slot[:, 0] + c * self.slot[:, 1]])
+        to_target = target - self.position
+        forward = np.column_stack([np.sin(self.heading), np.cos(self.heading)])
+        # Separation: push from every neighbour within reach, stronger when nearer. Reach is
+        # measured with sideways distance counted double: animals walk side by side closer
+        # than nose to tail.
+        delta = self.position[:, None, :] - self.position[None, :, :]  # (N, N, 2): from j to i
+        along = np.sum(delta * forward[:, None, :], axis=-1)
+        sideways = delta[..., 0] * forward[:, None, 1] - delta[..., 1] * forward[:, None, 0]
+        dist = np.hypot(along, 2.0 * sideways)
+        np.fill_diagonal(dist, np.inf)
+        reach = 1.3 * self.rig.body_length * self.size[:, None]
+        near = dist < reach
+        finite = np.where(near, dist, 1.0)
+        push = np.where(near, (reach - finite) / np.maximum(finite, 1e-6), 0.0)[..., None] * delta
+        separation = push.sum(axis=1)
+        steer = to_target / max(self.spacing, 1e-6) + 2.0 * separation / max(self.rig.body_length, 1e-6)
+        steer = steer + 0.6 * np.array([s, c])  # and along the way the group is going
+        wanted = np.arctan2(steer[:, 0], steer[:, 1])
+        # Turn no faster than a turn of two body lengths' radius at the present speed.
+        max_turn = self.speed / (2.0 * self.rig.body_length * self.size) * dt
+        self.heading = self.heading + np.clip(_wrap(wanted - self.heading), -max_turn, max_turn)
+        # Speed: behind its place, faster; ahead, slower; a neighbour close ahead, slower.
+        along = np.sum(to_target * forward, axis=1) / max(self.spacing, 1e-6)
+        ahead = np.sum(-delta * forward[:, None, :], axis=-1)  # (N, N): j in front of i
+        blocked = np.any((ahead > 0) & (dist < 1.1 * self.rig.body_length * self.size[:, None]), axis=1)
+        rate = self.pace * np.clip(1.0 + 0.5 * along, 0.65, 1.35) * np.where(blocked, 0.75, 1.0)
+        self.rate += np.clip(rate - self.rate, -0.5 * dt, 0.5 * dt)  # speed changes ease in
+        forward = np.column_stack([np.sin(self.heading), np.cos(self.heading)])
+        self.position = self.position + forward * (self.speed * dt)[:, None]
+        self.phase = (self.phase + self.frequency * self.rate * dt) % 1.0
+
+    def blend(self) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
+        """Each animal's pose as a blend of two cycle frames: first (N,), second (N,) and
+        the weight of the second (N,)."""
+        frames = self.cycle.frame_count
+        f = self.phase * frames
+        f0 = np.floor(f).astype(np.int64) % frames
+        return f0, (f0 + 1) % frames, f - np.floor(f)
+
+    def transforms(self, ground_height=None) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """Per animal: scale (N,), rotation about +Y (N, 3, 3) and translation (N, 3) that
+        take the in-place cycle's pose to the world (on ground of height
+        ``ground_height((N, 2)) -> (N,)`` under each animal, default flat)."""
+        c, s = np.cos(self.heading), np.sin(self.heading)
+        rot = np.zeros((self.count, 3, 3))
+        rot[:, 0, 0], rot[:, 0, 2] = c, s
+        rot[:, 1, 1] = 1.0
+        rot[:, 2, 0], rot[:, 2, 2] = -s, c
+        y = np.zeros(self.count) if ground_height is None else ground_height(self.position)
+        return self.size, rot, np.column_stack([self.position[:, 0], y, self.position[:, 1]])
+
+    def joints(self, ground_height=None) -> NDArray[np.float64]:
+        """Every animal's leg joints in the world, (N, L, 5, 3)."""
+        f0, f1, w = self.blend()
+        # In place, the body stays at the origin and planted feet sweep back with the
+        # ground: in the body's frame, which is what each animal carries along.
+        local = self.cycle.joints[f0] * (1.0 - w)[:, None, None, None] + self.cycle.joints[f1] * w[:, None, None, None]
+        scale, rot, move = self.transforms(ground_height)
+        return np.einsum("nij,nlkj->nlki", rot, local * scale[:, None, None, None]) + move[:, None, None, :]
+
+
+@dataclass(frozen=True)
+class HerdTrack:
+    """A herd over a clip's frames: position (T, N, 2), heading (T, N), phase (T, N)."""
+
+    position: NDArray[np.float64]
+    heading: NDArray[np.float64]
+    phase: NDArray[np.float64]
+
+    def apply(self, herd: Herd, index: int) -> Herd:
+        """Put ``herd`` where it is at frame ``index`` (and return it)."""
+        herd.position, herd.heading, herd.phase = self.position[index], self.heading[index], self.phase[index]
+        return herd
+
+
+def follow_leader(herd: Herd, leader: NDArray[np.float64], heading: NDArray[np.float64], fps: float) -> HerdTrack:
+    """Step ``herd`` after a leader at ``leader`` (T, 2) heading ``heading`` (T,) radians,
+    one step per frame at ``fps``; the herd starts in its places around the first frame's
+    leader. One vectorised step per frame (a loop over frames, never over animals)."""
+    frames = len(leader)
+    c, s = math.cos(float(heading[0])), math.sin(float(heading[0]))
+    slot = herd.slot
+    herd.position = leader[0] + np.column_stack([c * slot[:, 0] + s * slot[:, 1], -s * slot[:, 0] + c * slot[:, 1]])
+    herd.heading = np.full(herd.count, float(heading[0]))
+    position = np.empty((frames, herd.count, 2))
+    headings = np.empty((frames, herd.count))
+    phase = np.empty((frames, herd.count))
+    for i in range(frames):
+        if i:
+            herd.step(1.0 / fps, leader[i], float(heading[i]))
+        position[i], headings[i], phase[i] = herd.position, herd.heading, herd.phase
+    return HerdTrack(position, headings, phase)

@@ -1,0 +1,159 @@
+"""Herds: many animals of one kind, vectorised across animals, drawn with instancing."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import moderngl
+import numpy as np
+import pytest
+
+from app import build_rig, load_creature
+from app.errors import GaitlabError
+from app.kinematics.herd import MAX_HERD, Herd, check_herd_size, follow_leader
+from app.kinematics.world import World
+from app.recording import RecordRequest
+from app.render.camera import frame_points
+from app.render.clip import ClipRenderer, ViewSettings
+from app.render.herd import HerdInstances
+from app.render.renderer import GroundView, RenderOptions
+from app.scenes import make_world
+
+DT = 1.0 / 60.0
+
+
+def straight_leader(herd: Herd, seconds: float) -> tuple[np.ndarray, np.ndarray]:
+    frames = int(round(seconds / DT))
+    z = herd.cycle_speed * DT * np.arange(frames)
+    return np.column_stack([np.zeros(frames), z]), np.zeros(frames)
+
+
+def test_herd_sizes_are_checked() -> None:
+    assert check_herd_size(1) == 1 and check_herd_size(MAX_HERD) == MAX_HERD
+    for bad in (0, -3, MAX_HERD + 1, 100_000, 2.5, True):
+        with pytest.raises(GaitlabError, match="give 1 to"):
+            check_herd_size(bad)  # type: ignore[arg-type]
+
+
+def test_a_herd_keeps_apart_and_keeps_up_with_its_leader() -> None:
+    rig = build_rig(load_creature("dog"))
+    herd = Herd(rig, 40, seed=3)
+    assert 0.89 <= herd.size.min() and herd.size.max() <= 1.11 and np.ptp(herd.size) > 0.1  # +-10% sizes
+    leader, heading = straight_leader(herd, 12.0)
+    track = follow_leader(herd, leader, heading, 1.0 / DT)
+    for i in range(len(leader) // 2, len(leader), 30):  # once settled
+        p = track.position[i]
+        d = np.linalg.norm(p[:, None] - p[None], axis=-1)
+        np.fill_diagonal(d, np.inf)
+        assert d.min() > 0.7 * rig.body_length, i  # nobody walks through anybody
+        centre = p.mean(axis=0)
+        assert np.linalg.norm(centre - leader[i]) < 8.0 * rig.body_length  # the group keeps up
+    assert np.abs(track.heading[-1]).max() < 0.3  # all facing the way the leader goes
+
+
+def test_herd_feet_stay_planted_while_walking_straight() -> None:
+    rig = build_rig(load_creature("dog"))
+    herd = Herd(rig, 12, seed=2)
+    leader, heading = straight_leader(herd, 8.0)
+    track = follow_leader(herd, leader, heading, 1.0 / DT)
+    joints = []
+    contact = []
+    for i in range(len(leader) - 120, len(leader)):
+        track.apply(herd, i)
+        joints.append(herd.joints()[:, :, 3])
+        f0, f1, _ = herd.blend()
+        contact.append(herd.cycle.contact[f0] & herd.cycle.contact[f1])
+    ball, planted = np.array(joints), np.array(contact)
+    still = planted[1:] & planted[:-1]
+    slip = np.linalg.norm(ball[1:] - ball[:-1], axis=-1)[still]
+    assert still.sum() > 500
+    # Straight and steady, a planted foot holds; an animal turning to keep its place slides
+    # its planted feet by the turn (a few millimetres a frame at most).
+    assert np.median(slip) < 1e-4 and np.quantile(slip, 0.95) < 4e-3 and slip.max() < 1e-2
+
+
+def test_herd_kinematics_are_vectorised_across_animals() -> None:
+    rig = build_rig(load_creature("dog"))
+    herd = Herd(rig, 100)
+    joints = herd.joints()
+    assert joints.shape == (100, rig.leg_count, 5, 3)
+    herd.step(DT, np.array([0.0, 0.1]), 0.0)
+    # Each animal's pose is the cycle's, scaled, turned and moved: bone lengths scale with size.
+    femur = np.linalg.norm(joints[:, 0, 1] - joints[:, 0, 0], axis=-1)
+    assert np.allclose(femur / herd.size, rig.femur[0], rtol=2e-3)  # (blending two frames shortens a hair)
+
+
+@pytest.mark.gl
+def test_a_herd_is_drawn_with_the_same_draw_calls_as_one_animal(gl_ctx, monkeypatch) -> None:
+    rig = build_rig(load_creature("dog"))
+    calls: list[int] = []
+    original = moderngl.VertexArray.render
+
+    def counting(self, *args, **kwargs):
+        calls.append(1)
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(moderngl.VertexArray, "render", counting)
+    renderer = ClipRenderer((160, 120), "off", ctx=gl_ctx)
+    counts, pixels = [], []
+    try:
+        for n in (2, 60):
+            herd = Herd(rig, n)
+            scene = HerdInstances(herd).frame(herd)
+            assert scene.capsules.shape[0] % n == 0 and scene.ellipsoid_casters == n
+            points = np.concatenate([scene.capsules[:, :3], scene.ellipsoids[:, :3]]).astype(float)
+            camera = frame_points(points, "three-quarter", aspect=4 / 3)
+            calls.clear()
+            renderer.scene.draw_instances(scene, GroundView(), camera, renderer.target.fbo, RenderOptions())
+            counts.append(len(calls))
+            pixels.append(renderer.target.read())
+    finally:
+        renderer.release()
+    assert counts[0] == counts[1]
+    body = np.sqrt(np.array([0.78, 0.58, 0.38]) ** 2) * 255  # roughly the dog's tan
+    assert all((np.abs(p.astype(float) - body).max(axis=-1) < 60).sum() > 50 for p in pixels)
+
+
+def test_render_refuses_bad_herds_in_one_line(tmp_path) -> None:
+    for args, words in ((["--herd", "0"], "give 1 to 1000"), (["--herd", "100000"], "give 1 to 1000"),
+                        (["--herd", "5", "--in-place"], "drop --in-place")):
+        out = subprocess.run([sys.executable, "-m", "app", "render", "dog", *args, "-o", "x.png"], cwd=tmp_path,
+                             capture_output=True, text=True, timeout=60)
+        assert out.returncode == 2, out.stderr
+        assert words in out.stderr and "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
+        assert not (tmp_path / "x.png").exists()
+    with pytest.raises(GaitlabError):
+        RecordRequest(spec=load_creature("dog"), output=tmp_path / "x.png", herd=0)
+    with pytest.raises(GaitlabError, match="in-place"):
+        RecordRequest(spec=load_creature("dog"), output=tmp_path / "x.png", herd=3, world=World(in_place=True))
+
+
+@pytest.mark.gl
+def test_herd_golden(gl_ctx, snapshot, tmp_path) -> None:
+    from app.recording import Recording
+
+    request = RecordRequest(spec=load_creature("dog"), output=tmp_path / "herd.png", herd=8, start=2.0,
+                            view=ViewSettings(size=(192, 144), antialias="off"))
+    job = Recording(request, ctx=gl_ctx)
+    try:
+        image = job._render(0)
+    finally:
+        job.cancel()
+    snapshot.check("herd_of_eight_dogs", image)
+
+
+@pytest.mark.gl
+def test_travelling_on_hills_golden(gl_ctx, snapshot, tmp_path) -> None:
+    from app.recording import Recording
+
+    rig = build_rig(load_creature("dog"))
+    world = make_world("circle:r=2.5", f"hills:amp={0.12 * rig.hip_height:.4f},wavelength={3 * rig.body_length:.3f}")
+    request = RecordRequest(spec=load_creature("dog"), output=tmp_path / "hills.png", start=3.0, world=world,
+                            view=ViewSettings(size=(192, 144), antialias="off"))
+    job = Recording(request, ctx=gl_ctx)
+    try:
+        image = job._render(0)
+    finally:
+        job.cancel()
+    snapshot.check("dog_travelling_on_hills", image)
