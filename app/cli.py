@@ -493,6 +493,8 @@ def _creature_and_world(args: argparse.Namespace):
                   file=sys.stderr)
         if speed is None and first.speed is not None:
             speed = (first.speed, first.speed)
+        if getattr(args, "herd", None) == 1 and first.herd > 1:  # the scene's herd, unless --herd says
+            args.herd = first.herd
         return spec, first.world, speed
     world = make_world(args.path, args.terrain, args.in_place)
     return _load_with_overrides(args), world, speed

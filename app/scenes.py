@@ -20,6 +20,7 @@ from .tomlfile import TomlProblem, read_toml
 from .kinematics.path import CirclePath, FigureEightPath, Path, StraightPath, WaypointPath
 from .kinematics.terrain import (DEFAULT_MAX_SLOPE, FlatTerrain, HeightGrid, HillsTerrain, SlopeTerrain,
                                  StairsTerrain, Terrain)
+from .kinematics.herd import MAX_HERD
 from .kinematics.world import World, WorldError
 from .errors import did_you_mean, shown
 
@@ -277,6 +278,7 @@ class SceneCreature:
     gait: str | None = None
     speed: float | None = None
     overrides: dict[str, Any] = field(default_factory=dict)
+    herd: int = 1  # animals in all: this creature and herd - 1 more of its kind following it
 
 
 @dataclass(frozen=True)
@@ -290,7 +292,7 @@ class Scene:
 
 
 SCENE_KEYS = ("name", "description", "terrain", "paths", "creatures")
-CREATURE_KEYS = ("creature", "gait", "path", "speed", "set")
+CREATURE_KEYS = ("creature", "gait", "path", "speed", "set", "herd")
 
 
 def _text_or_table(value: Any, key: str, where: str) -> str:
@@ -389,8 +391,13 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
         gait = entry.get("gait")
         if gait is not None and not isinstance(gait, str):
             raise WorldError(f"{where}: {here}.gait = {shown(gait)}: expected a gait name")
+        herd = entry.get("herd", 1)
+        if isinstance(herd, bool) or not isinstance(herd, int) or not 1 <= herd <= MAX_HERD:
+            raise WorldError(f"{where}: {here}.herd = {shown(herd)}: give 1 to {MAX_HERD} animals (the creature "
+                             "and herd - 1 more following it)")
         creatures.append(SceneCreature(creature=name, world=World(path=body_path, terrain=terrain), gait=gait,
-                                       speed=None if speed is None else float(speed), overrides=dict(overrides)))
+                                       speed=None if speed is None else float(speed), overrides=dict(overrides),
+                                       herd=herd))
     name = data.get("name", path.stem)
     return Scene(name=str(name), terrain=terrain, creatures=tuple(creatures), source=str(path))
 

@@ -157,3 +157,19 @@ def test_travelling_on_hills_golden(gl_ctx, snapshot, tmp_path) -> None:
     finally:
         job.cancel()
     snapshot.check("dog_travelling_on_hills", image)
+
+
+def test_scene_files_take_a_herd_and_refuse_bad_ones(tmp_path) -> None:
+    from app.kinematics.world import WorldError
+    from app.resources import scenes_dir
+    from app.scenes import load_scene
+
+    scene = load_scene(scenes_dir() / "herd.toml")
+    assert scene.creatures[0].herd == 20
+    for value, words in (("0", "herd = 0"), ("100000", "herd = 100000"), ('"many"', "herd = 'many'"),
+                         ("true", "herd = True")):
+        bad = tmp_path / "bad.toml"
+        bad.write_text(f'[[creatures]]\ncreature = "dog"\nherd = {value}\n')
+        with pytest.raises(WorldError, match="give 1 to 1000") as info:
+            load_scene(bad)
+        assert words in str(info.value) and str(bad) in str(info.value)

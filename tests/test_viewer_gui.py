@@ -459,3 +459,29 @@ def test_a_click_on_the_ground_adds_a_waypoint_and_the_creature_goes_there(displ
         sky = read_state(dump, until=lambda s: s["error"] is not None)
         assert "no ground under the cursor" in sky["error"] and not sky["waypoints"]
         quit_viewer(display, proc, window)
+
+
+def test_a_herd_scene_opens_and_renders(display: str, tmp_path: Path) -> None:
+    from app.resources import scenes_dir
+
+    shots = {}
+    for name, args in (("one", ["dog"]), ("herd", [str(scenes_dir() / "herd.toml")])):
+        shot = tmp_path / f"{name}.png"
+        out = subprocess.run([*GAITLAB, "view", *args, "--frames", "60", "--screenshot", str(shot), "--hide-ui",
+                              "--size", "800x600"], env=env_for(display), capture_output=True, text=True, timeout=180,
+                             cwd=tmp_path)
+        assert out.returncode == 0 and "Traceback" not in out.stderr, out.stderr
+        shots[name] = np.asarray(Image.open(shot).convert("RGB"))
+    body = load_creature("dog").look.body_color
+    one, herd = creature_pixels(shots["one"], body), creature_pixels(shots["herd"], body)
+    assert one > 500 and herd > 500
+    # Many bodies: the herd's tan spreads over more separate places than one dog's.
+    mask = np.zeros(shots["herd"].shape[:2], dtype=bool)
+    rgb = np.sqrt(srgb_to_linear(body)) * 255
+    img = shots["herd"].astype(float)
+    scale = (img @ rgb) / (rgb @ rgb)
+    mask = np.abs(img - scale[..., None] * rgb).max(axis=-1) < 14.0
+    from scipy import ndimage
+
+    blobs = ndimage.label(mask)[1]
+    assert blobs >= 8
