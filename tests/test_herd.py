@@ -173,3 +173,17 @@ def test_scene_files_take_a_herd_and_refuse_bad_ones(tmp_path) -> None:
         with pytest.raises(WorldError, match="give 1 to 1000") as info:
             load_scene(bad)
         assert words in str(info.value) and str(bad) in str(info.value)
+
+
+def test_the_viewer_steps_its_herd_and_still_samples_the_creature() -> None:
+    from app.ui.state import ViewerState
+
+    state = ViewerState(load_creature("dog"))
+    assert not state.set_herd(0) and "give 1 to" in state.error
+    assert state.set_herd(6) and state.herd is not None and state.herd.count == 5
+    start = state.herd.position.copy()
+    for _ in range(30):
+        state.advance(1.0 / 30.0)
+        assert state.take_samples()  # the live measurement keeps its sub-steps
+    assert np.all(np.linalg.norm(state.herd.position - start, axis=1) > 0.2)  # they walk along
+    assert state.set_herd(1) and state.herd is None

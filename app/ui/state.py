@@ -445,10 +445,10 @@ class ViewerState:
                     self.driver.step(dt / steps, *self.drive_input)
                 else:
                     self.live.step(dt / steps)
+                self.samples.append(self.live.frame_inputs())
             if self.herd is not None and dt > 0:
                 point, heading = self._here()
                 self.herd.step(dt, point, heading)
-                self.samples.append(self.live.frame_inputs())
         except GaitlabError as exc:  # ground with no foothold ahead: stop there and say why
             self.playing = False
             self.error = f"paused: {exc}"
