@@ -18,6 +18,11 @@ KNEE_DIRECTIONS: tuple[str, ...] = get_args(KneeDirection)
 LegType = Literal["plantigrade", "digitigrade", "unguligrade"]
 LEG_TYPES: tuple[str, ...] = get_args(LegType)
 
+
+def leg_type(ankle_lift: float) -> LegType:
+    """Which of the three leg types an ankle lift (degrees) reads as."""
+    return "plantigrade" if ankle_lift < 25 else "digitigrade" if ankle_lift < 75 else "unguligrade"
+
 # How recorded frames smooth their edges: FXAA over the creature (fast), multisampling
 # (finest, costly on a software renderer) or nothing.
 Antialias = Literal["fxaa", "msaa", "off"]

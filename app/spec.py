@@ -22,7 +22,7 @@ from typing import Any, Mapping
 
 import tomli_w
 
-from .choices import KNEE_DIRECTIONS, WAVE_SHAPES, KneeDirection, LegType, WaveShape
+from .choices import KNEE_DIRECTIONS, WAVE_SHAPES, KneeDirection, LegType, WaveShape, leg_type  # noqa: F401 (re-exported)
 from .errors import SpecError, did_you_mean
 from .output import atomic_write_text
 from .tomlfile import TomlProblem, parse_toml, read_toml
@@ -756,11 +756,6 @@ def without_adjustment(spec: CreatureSpec, key: str) -> CreatureSpec:
 # (ankle lift in degrees, toe length as a fraction of the metatarsus) typical of each type.
 LEG_TYPE_SHAPES: dict[str, tuple[float, float]] = {
     "plantigrade": (8.0, 0.6), "digitigrade": (62.0, 0.5), "unguligrade": (84.0, 0.18)}
-
-
-def leg_type(ankle_lift: float) -> LegType:
-    """Which of the three leg types an ankle lift (degrees) reads as."""
-    return "plantigrade" if ankle_lift < 25 else "digitigrade" if ankle_lift < 75 else "unguligrade"
 
 
 def parse_override(text: str) -> tuple[str, Any]:

@@ -120,3 +120,40 @@ def test_travelling_cameras_keep_the_creature_in_frame_and_chase_stays_behind(ca
         eyes = np.array([c.eye for c in cameras])
         steps = np.linalg.norm(np.diff(eyes, axis=0), axis=1)
         assert steps.max() < 3.0 * np.median(steps) + 1e-3
+
+
+def test_legs_have_volume_and_feet_by_leg_type() -> None:
+    """Issue 8, looks: thighs thick at the top, paws, hooves and soles by leg type; sprawled
+    legs (insects, spiders) stay plain."""
+    from app.render.scene import _HOOF_COLOR, pose_instances
+
+    def shapes(name: str):
+        rig = build_rig(load_creature(name))
+        motion, _ = clip_motion(rig, 25.0, cycles=1.0, world=IN_PLACE)
+        return rig, motion.pose(0), pose_instances(motion.pose(0), rig, show_joints=False)
+
+    for name in ("dog", "horse", "bear", "ant"):
+        rig, pose, scene = shapes(name)
+        caps = scene.capsules.astype(float)
+        hoofs = np.all(np.abs(caps[:, 8:11] - _HOOF_COLOR) < 1e-6, axis=1)
+        toes = pose.joints[:, 4]
+        near_toe = lambda centres: np.linalg.norm(centres[:, None] - toes[None], axis=-1).min(axis=0)  # noqa: E731
+        if name == "horse":  # a dark hoof at every toe
+            assert hoofs.sum() == rig.leg_count
+            assert near_toe(caps[hoofs, 3:6]).max() < 1e-6
+        else:
+            assert not hoofs.any()
+        # Each mammal leg's thickest capsule is at its top, thicker than the bone.
+        hips = pose.joints[:, 0]
+        thick = caps[:, 6] > 1.4 * rig.bone_radius.max()
+        if name == "ant":
+            assert not np.any(np.linalg.norm(caps[thick, 0:3][:, None] - hips[None], axis=-1).min(axis=1)
+                              < 0.2 * rig.femur.max())
+        else:
+            starts = caps[thick, 0:3]
+            d_hip = np.linalg.norm(starts[:, None] - hips[None], axis=-1).min(axis=0)
+            assert (d_hip < 0.2 * rig.femur.max()).sum() >= rig.leg_count  # one per leg, at its hip
+        ells = scene.ellipsoids.astype(float)
+        feet = near_toe(ells[:, 0:3]) < rig.toe + 0.6 * rig.metatarsus + 0.02  # (a sole spans the foot)
+        if name in ("dog", "bear", "horse"):
+            assert feet.all()  # a paw, sole or fetlock by every toe

@@ -22,7 +22,7 @@ ELLIPSOID_FLOATS = 18  # centre, axis x, axis y, axis z, radii, colour (3 each)
 
 # Bone radius along the leg as a fraction of the leg's radius at the hip:
 # hip, knee, ankle, ball, toe tip.
-_LEG_TAPER = np.array([1.0, 0.78, 0.55, 0.5, 0.38])
+_LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
 _EYE_COLOR = np.array([0.02, 0.02, 0.025])
 _UP = np.array([0.0, 1.0, 0.0])
 
@@ -111,6 +111,55 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
     return side_colors[(rig.hip_side < 0).astype(int)]
 
 
+_HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
+
+
+def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Rig,
+                leg_color: NDArray[np.float64]) -> tuple[list, list]:
+    """Muscle and feet for mammal legs (not sprawled insect or spider legs): a thigh or
+    upper arm thick at the top and tapering down the femur; feet by leg type, a flat
+    sole (plantigrade), a round paw (digitigrade) or a dark hoof with a fetlock
+    (unguligrade). Returns capsule and ellipsoid row arrays (T, K, 11 / 18)."""
+    from ..choices import leg_type
+
+    legs = np.nonzero(~rig.knee_out)[0]
+    if not len(legs):
+        return [], []
+    j = joints[:, legs]  # (T, M, 5, 3)
+    r = radii[legs]  # (M, 5)
+    color = leg_color[legs]
+    hind = rig.girdle[legs] == rig.girdle.max()
+    hip, knee, ankle, ball, toe = (j[:, :, k] for k in range(5))
+    # Thigh (hind) or upper arm (fore): from just above the hip to past the femur's middle.
+    # (It starts a little down the bone, so it never shows above the back.)
+    top = np.where(hind, 1.85, 1.55) * r[:, 0]
+    muscle = _capsules(hip + 0.12 * (knee - hip), hip + 0.6 * (knee - hip), top, 1.1 * r[:, 0], color)
+    kinds = [leg_type(float(np.degrees(a))) for a in rig.ankle_lift[legs]]
+    capsules, ellipsoids = [muscle], []
+    for kind in ("plantigrade", "digitigrade", "unguligrade"):
+        pick = np.array([k == kind for k in kinds])
+        if not pick.any():
+            continue
+        a, b, t, rb, c = ankle[:, pick], ball[:, pick], toe[:, pick], r[pick], color[pick]
+        if kind == "plantigrade":  # a flat sole from heel to toes
+            length = np.linalg.norm(t - a, axis=-1, keepdims=True)
+            radii_e = np.concatenate([np.broadcast_to(1.35 * rb[:, 2:3], length.shape),
+                                      np.broadcast_to(0.6 * rb[:, 2:3], length.shape),
+                                      0.5 * length + 0.3 * rb[:, 2:3]], axis=-1)
+            ellipsoids.append(_ellipsoids(0.5 * (a + t), t - a, radii_e, c))
+        elif kind == "digitigrade":  # a round paw over the toes
+            length = np.linalg.norm(t - b, axis=-1, keepdims=True)
+            radii_e = np.concatenate([np.broadcast_to(1.45 * rb[:, 3:4], length.shape),
+                                      np.broadcast_to(0.95 * rb[:, 3:4], length.shape),
+                                      0.55 * length + 0.7 * rb[:, 3:4]], axis=-1)
+            ellipsoids.append(_ellipsoids(0.55 * t + 0.45 * b, t - b, radii_e, c))
+        else:  # a hoof below the fetlock
+            capsules.append(_capsules(b + 0.35 * (t - b), t, 1.25 * rb[:, 3], 1.45 * rb[:, 3], _HOOF_COLOR))
+            radii_e = np.broadcast_to(1.3 * rb[:, 3:4], b.shape)
+            ellipsoids.append(_ellipsoids(b, t - b, radii_e, c))
+    return capsules, ellipsoids
+
+
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
                show_joints: bool) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
@@ -126,6 +175,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
     legs = _capsules(joints[:, :, :-1], joints[:, :, 1:], radii[:, :-1], radii[:, 1:],
                      leg_color[:, None, :]).reshape(frames, -1, CAPSULE_FLOATS)
+    leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color)
 
     # Trunk: a tube of tapered capsules through the segment centres, capped past both ends.
     r = spine_radius
@@ -133,20 +183,23 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
                                 spine[:, -1:] + spine_tangent[:, -1:] * 0.2 * r[-1]], axis=1)
     trunk_r = np.concatenate([r[:1] * 0.8, r, r[-1:] * 0.9])
     trunk = _capsules(trunk_pts[:, :-1], trunk_pts[:, 1:], trunk_r[:-1], trunk_r[1:], body_color)
-    neck_c = _capsules(neck[:, :1], neck[:, 1:], 0.55 * r[-1], 0.8 * head_radius, body_color)
+    # A deep neck rising from the chest, narrowing to the head.
+    neck_c = _capsules(neck[:, :1], neck[:, 1:], 0.68 * r[-1], 0.85 * head_radius, body_color)
 
     # Head: a round skull and a tapering muzzle towards the nose.
     skull_back, nose = head[:, 0], head[:, 1]  # (T, 3)
     head_len = np.linalg.norm(nose - skull_back, axis=-1, keepdims=True)
     head_dir = _unit(nose - skull_back)
     skull = skull_back + head_dir * np.minimum(0.5 * head_radius, 0.3 * head_len)
-    muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None], 0.62 * head_radius,
-                       0.34 * head_radius, body_color)
+    # Long heads (a horse's: over four skull radii) keep a broad muzzle; short ones taper.
+    long_head = float(np.clip((rig.body.head_length / max(head_radius, 1e-9) - 3.5) / 1.5, 0.0, 1.0))
+    muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
+                       (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius, body_color)
     tail_r = np.linspace(0.32 * r[0], 0.08 * r[0], tail.shape[1])
     tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], body_color)
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
-    capsule_parts = [legs, trunk, neck_c, muzzle, tail_c]
+    capsule_parts = [legs, *leg_parts, trunk, neck_c, muzzle, tail_c]
     if ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
             + sides * hx[:, None] * 0.55 * head_radius
@@ -157,7 +210,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     eye_centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
         + sides * hx[:, None] * 0.5 * head_radius
     eyes = _ellipsoids(eye_centres, head_dir[:, None], np.full(3, 0.17 * head_radius), _EYE_COLOR)
-    ellipsoid_parts = [skull_e, eyes]
+    ellipsoid_parts = [skull_e, eyes, *foot_parts]
     if show_joints:
         inner = joints[:, :, 1:4].reshape(frames, -1, 3)  # knee, ankle, ball
         joint_r = (radii[:, 1:4] * 1.08).reshape(-1, 1)
