@@ -143,7 +143,8 @@ class Recording:
         self._herd = (herd, track, HerdInstances(herd, request.view.options.joints))
         top = float(rig.hip_height + rig.body.head_radius)
         reach = 0.75 * float(rig.body_length + rig.body.head_length) * 1.1  # nose and tail of the largest
-        xyz = np.stack([track.position[..., 0], np.zeros(track.heading.shape), track.position[..., 1]], axis=-1)
+        ground = motion.terrain.height(track.position)  # (T, N): the animals stand on the terrain
+        xyz = np.stack([track.position[..., 0], ground, track.position[..., 1]], axis=-1)
         corners = [np.array([dx, dy, dz]) for dx in (-reach, reach) for dy in (0.0, top) for dz in (-reach, reach)]
         return np.concatenate([xyz + c for c in corners], axis=1)
 

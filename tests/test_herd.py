@@ -187,3 +187,18 @@ def test_the_viewer_steps_its_herd_and_still_samples_the_creature() -> None:
         assert state.take_samples()  # the live measurement keeps its sub-steps
     assert np.all(np.linalg.norm(state.herd.position - start, axis=1) > 0.2)  # they walk along
     assert state.set_herd(1) and state.herd is None
+
+
+def test_a_herd_keeps_up_with_a_driven_leader() -> None:
+    from app.ui.state import ViewerState
+
+    state = ViewerState(load_creature("dog"))
+    assert state.set_herd(8) and state.start_driving()
+    state.drive_input = (1.0, 0.0)
+    for _ in range(int(6 / DT)):  # 6 s of W: up to a gallop
+        state.advance(DT)
+    assert state.driver is not None and state.driver.gait == "gallop"
+    point, _ = state._here()
+    gap = np.linalg.norm(state.herd.position.mean(axis=0) - point)
+    assert gap < 8.0 * state.live.rig.body_length
+    assert state.herd.rig.gait.preset == "gallop"  # the herd's cycle follows the leader's gait

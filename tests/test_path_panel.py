@@ -108,3 +108,45 @@ def test_spliced_path_keeps_the_past() -> None:
     s = np.linspace(-1.0, 2.0, 31)
     assert np.allclose(path.sample(s)[0], base.sample(s)[0])
     assert np.allclose(path.sample([2.0])[0], [[0.0, 2.0]])
+
+
+def test_review_findings_stay_fixed() -> None:
+    """Edits while driving, drags past the list, long editing sessions, close waypoints."""
+    state = ViewerState(load_creature("dog"), world=World())
+    walk(state, 0.3)
+    # Editing the creature while cruising in drive mode (same speed, new rig).
+    assert state.start_driving()
+    walk(state, 0.5)
+    assert state.set("gait.step_height", 0.2), state.error
+    # A rejected route while driving keeps driving.
+    assert not state.set_path("circle", r=0.01) and state.driver is not None
+    # A waypoint just ahead (within a lead distance) is taken, and ends the drive.
+    point, heading = state._here()
+    ahead = point + 0.7 * state.live.rig.body_length * np.array([np.sin(heading), np.cos(heading)])
+    assert state.add_waypoint(*ahead), state.error
+    assert state.driver is None
+    # Moving or deleting a waypoint that is gone changes nothing.
+    assert not state.move_waypoint(5, 1.0, 1.0) and not state.delete_waypoint(-1)
+    # Hundreds of edits (a drag) keep the path one flat list, quick to sample.
+    for k in range(600):
+        point, heading = state._here()
+        target = point + 2.0 * np.array([np.sin(heading), np.cos(heading)]) + [0.001 * (k % 50), 0.0]
+        assert state.set_waypoints([tuple(target)]), state.error
+        state.advance(1.0 / 60.0)
+    path = state.world.path
+    assert isinstance(path, SplicedPath) and len(path.routes) <= SplicedPath.MAX_ROUTES
+    import time
+
+    t0 = time.perf_counter()
+    path.sample(np.linspace(state.live.travel - 10.0, state.live.travel + 10.0, 2000))
+    assert time.perf_counter() - t0 < 0.5
+
+
+def test_targets_overlay_is_under_the_feet_in_place() -> None:
+    state = ViewerState(load_creature("dog"), world=IN_PLACE)
+    state.options = state.options.__class__(targets=True)
+    walk(state, 2.0)
+    overlays = state.overlays(state.pose())
+    assert overlays is not None and len(overlays.targets)
+    feet = state.pose().joints[:, 3]
+    assert np.abs(overlays.targets[:, 2]).max() < np.abs(feet[:, 2]).max() + state.live.rig.body_length

@@ -109,7 +109,8 @@ class DrivenPath(Path):
         raise NotImplementedError
 
     def curvature_radius(self) -> float:
-        return min(self.min_radius, self.base.curvature_radius())
+        """The tightest turn the driver asks for (the path before driving no longer matters)."""
+        return self.min_radius
 
     def describe(self) -> str:
         return f"driven ({self.arcs} arcs from {self.base.describe()})"
@@ -151,8 +152,13 @@ class Driver:
         self.gait = ""
         self._applied: tuple[float, Rig] | None = None
         self.path = DrivenPath(live.world.path, live.travel, limits.min_radius * rig.body_length)
+        before = live.world
         live.world = replace(live.world, path=self.path)
-        self._apply_speed()
+        try:
+            self._apply_speed()
+        except BaseException:
+            live.world = before  # nothing changes when the creature cannot be driven
+            raise
 
     @property
     def froude(self) -> float:
@@ -222,7 +228,7 @@ class Driver:
         self.live.step(dt)
 
     def _apply_speed(self) -> None:
-        if self._applied == (self.speed, self.base_rig):
+        if self._applied is not None and self._applied[0] == self.speed and self._applied[1] is self.base_rig:
             return
         self._applied = (self.speed, self.base_rig)
         rig = gait_at_speed(self.base_rig, self.speed, self.gait or None)

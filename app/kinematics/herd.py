@@ -108,13 +108,19 @@ class Herd:
         """Each animal's ground speed now (m/s)."""
         return self.cycle_speed * self.size * self.rate
 
-    def step(self, dt: float, leader: NDArray[np.float64], leader_heading: float) -> None:
+    def step(self, dt: float, leader: NDArray[np.float64], leader_heading: float,
+             leader_speed: float | None = None) -> None:
         """Advance ``dt`` seconds, the group following ``leader`` (x, z) heading
-        ``leader_heading`` (radians): each animal steers for its place in the group,
-        away from neighbours nearer than a body length and a half, and sets its speed to
-        keep its place (within +-35% of its own pace)."""
+        ``leader_heading`` (radians) at ``leader_speed`` m/s (default: the cycle's own
+        speed): each animal steers for its place in the group, away from neighbours
+        nearer than about a body length, and sets its speed to keep its place (within
+        +-35% of its own pace at the leader's speed)."""
         if dt <= 0:
             return
+        # The cycle played faster or slower to go at the leader's speed (a driven leader
+        # changes gait too: the owner re-solves the cycle then, see set_rig).
+        follow = 1.0 if leader_speed is None else float(np.clip(leader_speed / max(self.cycle_speed, 1e-9),
+                                                                  0.25, 4.0))
         c, s = math.cos(leader_heading), math.sin(leader_heading)
         target = np.asarray(leader, dtype=np.float64) + np.column_stack(
             [c * self.slot[:, 0] + s * self.slot[:, 1], -s * self.slot[:, 0] + c * self.slot[:, 1]])
@@ -143,8 +149,8 @@ class Herd:
         along = np.sum(to_target * forward, axis=1) / max(self.spacing, 1e-6)
         ahead = np.sum(-delta * forward[:, None, :], axis=-1)  # (N, N): j in front of i
         blocked = np.any((ahead > 0) & (dist < 1.1 * self.rig.body_length * self.size[:, None]), axis=1)
-        rate = self.pace * np.clip(1.0 + 0.5 * along, 0.65, 1.35) * np.where(blocked, 0.75, 1.0)
-        self.rate += np.clip(rate - self.rate, -0.5 * dt, 0.5 * dt)  # speed changes ease in
+        rate = follow * self.pace * np.clip(1.0 + 0.5 * along, 0.65, 1.35) * np.where(blocked, 0.75, 1.0)
+        self.rate += np.clip(rate - self.rate, -0.5 * follow * dt, 0.5 * follow * dt)  # speed changes ease in
         forward = np.column_stack([np.sin(self.heading), np.cos(self.heading)])
         self.position = self.position + forward * (self.speed * dt)[:, None]
         self.phase = (self.phase + self.frequency * self.rate * dt) % 1.0

@@ -262,15 +262,33 @@ def path_distance(path: Path, points: NDArray[np.float64], s_hint: NDArray[np.fl
 class SplicedPath(Path):
     """``base`` up to arc length ``s0``, then ``then`` (whose own arc length 0 is at
     ``s0``): a new route taken from where the body is, the way it came kept behind it.
-    ``then`` should start where ``base`` is at ``s0``, along its tangent there."""
+    ``then`` should start where ``base`` is at ``s0``, along its tangent there.
+
+    Splicing onto a spliced path does not nest: the routes are kept as one flat list of
+    (start, route) after the first path (``root``), a later splice replacing every route
+    that started at or after it, and the oldest dropped beyond MAX_ROUTES (the path that
+    far behind then follows ``root``), so sampling stays one pass whatever the number of
+    edits."""
 
     kind = "spliced"
+    MAX_ROUTES = 200
 
     def __init__(self, base: Path, s0: float, then: Path) -> None:
         super().__init__()
-        self.base = base
-        self.s0 = float(s0)
+        s0 = float(s0)
+        if isinstance(base, SplicedPath):
+            self.root = base.root
+            kept = [(s, route) for s, route in base.routes if s < s0]
+        else:
+            self.root = base
+            kept = []
+        self.routes: list[tuple[float, Path]] = (kept + [(s0, then)])[-self.MAX_ROUTES:]
+        self.s0 = s0
         self.then = then
+
+    @property
+    def base(self) -> Path:
+        return self.root
 
     @property
     def closed(self) -> bool:
@@ -279,17 +297,25 @@ class SplicedPath(Path):
     def sample(self, s: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         s = np.asarray(s, dtype=np.float64)
         flat = s.reshape(-1)
-        points, tangents = self.then.sample(flat - self.s0)
-        old = flat < self.s0
-        if old.any():
-            points[old], tangents[old] = self.base.sample(flat[old])
+        starts = np.array([start for start, _ in self.routes])
+        which = np.searchsorted(starts, flat, side="right") - 1  # -1: before every route, the root
+        points = np.empty((len(flat), 2))
+        tangents = np.empty((len(flat), 2))
+        for k in np.unique(which):
+            pick = which == k
+            if k < 0:
+                points[pick], tangents[pick] = self.root.sample(flat[pick])
+            else:
+                start, route = self.routes[k]
+                points[pick], tangents[pick] = route.sample(flat[pick] - start)
         return points.reshape(s.shape + (2,)), tangents.reshape(s.shape + (2,))
 
     def _local(self, s):  # sample() is overridden
         raise NotImplementedError
 
     def curvature_radius(self) -> float:
-        return min(self.base.curvature_radius(), self.then.curvature_radius())
+        """The route being taken now: past routes no longer limit the body."""
+        return self.then.curvature_radius()
 
     def describe(self) -> str:
         return self.then.describe()

@@ -447,8 +447,11 @@ class ViewerState:
                     self.live.step(dt / steps)
                 self.samples.append(self.live.frame_inputs())
             if self.herd is not None and dt > 0:
+                if self.herd.rig.gait.preset != self.live.rig.gait.preset:  # driving switched gait
+                    self.herd.set_rig(self.live.rig)
                 point, heading = self._here()
-                self.herd.step(dt, point, heading)
+                speed = self.live.travel_per_cycle() * self.live.frequency
+                self.herd.step(dt, point, heading, leader_speed=speed)
         except GaitlabError as exc:  # ground with no foothold ahead: stop there and say why
             self.playing = False
             self.error = f"paused: {exc}"
@@ -485,7 +488,7 @@ class ViewerState:
         """The Terrain panel's ground as ``--terrain`` text."""
         kind = kind or self.terrain_kind
         values = self.terrain_values.get(kind, {})
-        items = [f"{k}={v:g}" if not isinstance(v, str) else f"{k}={v}" for k, v in values.items()
+        items = [f"{k}={v}" if isinstance(v, (str, int)) else f"{k}={v:g}" for k, v in values.items()
                  if not (k == "cell" and not v)]
         return kind + (":" + ",".join(items) if items else "")
 
@@ -553,15 +556,20 @@ class ViewerState:
         """Go on along ``route`` (which starts where the body is, along its heading) from
         now, the path behind kept; on a route the creature cannot take, say why and keep
         the current one."""
-        if self.driver is not None:
-            self.stop_driving()
         try:
             path = SplicedPath(self.world.path, self.live.travel, route)
             world = World(path=path, terrain=self.world.terrain)
-            self.live.set_world(world)
+            self.live.set_world(world)  # checks first; changes nothing when it refuses
         except GaitlabError as exc:
             self.error = str(exc)
             return False
+        if self.driver is not None:  # the route, not the keys, steers from now on
+            self.driver = None
+            self.drive_input = (0.0, 0.0)
+            try:
+                self.live.set_rig(build_rig(self.spec))
+            except GaitlabError:
+                pass
         self.world = world
         self.options = replace(self.options, path=True)
         self.error = None
@@ -578,8 +586,7 @@ class ViewerState:
             self.error = f"unknown path {kind!r}; choose one of {', '.join(self.path_values)}"
             return False
         if kind == "waypoints":
-            self.path_kind = kind
-            return self.set_waypoints(self.waypoints)
+            return self.set_waypoints(self.waypoints)  # (sets the kind when it succeeds)
         merged = {**self.path_values[kind], **values}
         text = kind + (":" + ",".join(f"{k}={v:g}" if not isinstance(v, str) else f"{k}={v}"
                                       for k, v in merged.items()) if merged else "")
@@ -594,6 +601,7 @@ class ViewerState:
             return False
         self.path_kind = kind
         self.path_values[kind] = merged
+        self.waypoints, self._waypoint_s = [], []  # another kind of route: no waypoints ahead
         return True
 
     def leave_in_place(self) -> None:
@@ -604,8 +612,8 @@ class ViewerState:
             self.world = world
 
     def set_waypoints(self, points: list[tuple[float, float]]) -> bool:
-        """Go through ``points`` (x, z, m) from here, in order; none: straight on. Points
-        within half a body length of the body count as reached; a first point behind
+        """Go through ``points`` (x, z, m) from here, in order; none: straight on. A first
+        point within half a body length of the body counts as reached; a first point behind
         the body gets turning points on its side, so the route turns round in a loop
         (over two body lengths across) instead of on the spot."""
         from ..scenes import waypoint_path
@@ -614,9 +622,13 @@ class ViewerState:
         length = self.live.rig.body_length
         forward = np.array([np.sin(heading), np.cos(heading)])
         lead = point + 0.8 * length * forward
-        pts = [tuple(map(float, p)) for p in points
-               if not np.all(np.isfinite(p)) or np.linalg.norm(np.asarray(p, dtype=float) - point) > 0.5 * length]
+        pts = [tuple(map(float, p)) for p in points]
+        while pts and np.all(np.isfinite(pts[0])) and np.linalg.norm(np.asarray(pts[0]) - point) <= 0.5 * length:
+            pts.pop(0)  # the next waypoint is under the creature: reached
         turn: list = []
+        lead_points = [lead]
+        if pts and np.all(np.isfinite(pts[0])) and np.linalg.norm(np.asarray(pts[0]) - point) < 1.6 * 0.8 * length:
+            lead_points = []  # a first waypoint just ahead: go straight for it
         if pts and np.all(np.isfinite(pts[0])):
             to_first = np.asarray(pts[0]) - point
             if to_first @ forward < 0.5 * np.linalg.norm(to_first):  # more than 60 degrees off the heading
@@ -631,7 +643,7 @@ class ViewerState:
             else:
                 if not all(np.all(np.isfinite(p)) and max(abs(p[0]), abs(p[1])) <= 1e4 for p in pts):
                     raise GaitlabError("a waypoint must be within 10 km of the origin")
-                route = waypoint_path(np.array([point, lead, *turn, *pts]), False, "waypoints")
+                route = waypoint_path(np.array([point, *lead_points, *turn, *pts]), False, "waypoints")
         except GaitlabError as exc:
             self.error = str(exc)
             return False
@@ -639,7 +651,8 @@ class ViewerState:
             return False
         self.waypoints = pts
         # Where along the path each waypoint lies (m), to drop those the body has passed.
-        knots = np.arange(2 + len(turn), len(pts) + 2 + len(turn)) * WaypointPath.SAMPLES_PER_SEGMENT
+        first = 1 + len(lead_points) + len(turn)  # the knot of the first waypoint
+        knots = np.arange(first, first + len(pts)) * WaypointPath.SAMPLES_PER_SEGMENT
         self._waypoint_s = (self.live.travel + route._table.s[knots]).tolist() if pts else []
         self.path_kind = "waypoints"
         return True
@@ -655,11 +668,17 @@ class ViewerState:
         return self.set_waypoints([*self.waypoints, (x, z)])
 
     def move_waypoint(self, index: int, x: float, z: float) -> bool:
+        """Move waypoint ``index``; False (nothing changes) when there is no such waypoint
+        any more (reached, or dropped for being under the creature)."""
+        if not 0 <= index < len(self.waypoints):
+            return False
         points = list(self.waypoints)
         points[index] = (x, z)
         return self.set_waypoints(points)
 
     def delete_waypoint(self, index: int) -> bool:
+        if not 0 <= index < len(self.waypoints):
+            return False
         return self.set_waypoints([p for i, p in enumerate(self.waypoints) if i != index])
 
     def nearest_waypoint(self, x: float, z: float, within: float) -> int | None:
@@ -677,12 +696,13 @@ class ViewerState:
         follows the speed. The path from here on is laid down by the steering."""
         if self.driver is not None:
             return True
+        before = self.live.world
         try:
-            if self.world.in_place:  # driving means travelling
-                self.world = replace(self.world, in_place=False)
-                self.live.world = self.world
+            if before.in_place:  # driving means travelling
+                self.live.world = replace(before, in_place=False)
             self.driver = Driver(self.live, build_rig(self.spec))
         except GaitlabError as exc:
+            self.live.world = before
             self.error = f"cannot drive: {exc}"
             return False
         self.world = self.live.world
@@ -858,7 +878,8 @@ class ViewerState:
             points, legs, age = self.footprints.recent(o.footprint_count, pose.ground_offset)
             parts.update(footprints=points, footprint_age=age, footprint_colors=leg_colors(rig)[legs] * 0.55)
         if o.targets:
-            parts["targets"] = touchdown_targets(self.live)[0]
+            targets = touchdown_targets(self.live)[0]
+            parts["targets"] = targets - np.array([0.0, 0.0, pose.ground_offset])  # in place: the ground moved
         if o.support:
             hull = support_polygon(planted_points(pose)[:, [0, 2]])
             centre = trunk_centre(pose)[[0, 2]]

@@ -134,7 +134,7 @@ class Viewer:
                                   file_dialog=FileDialog(), dialogs_available=dialogs_available())
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
-        self._press: tuple[np.ndarray, int | None, tuple[float, float]] | None = None  # waypoint press
+        self._press: tuple[np.ndarray, int | None, tuple[float, float], int] | None = None  # waypoint press
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
         self.extra_panels: tuple = ()
 
@@ -226,7 +226,7 @@ class Viewer:
                 self._press = None
                 state.error = "no ground under the cursor: click on the ground to add a waypoint"
                 return True
-            self._press = (point, state.nearest_waypoint(point[0], point[2], grab), mouse)
+            self._press = (point, state.nearest_waypoint(point[0], point[2], grab), mouse, len(state.waypoints))
             return self._press[1] is not None
         if self._press is None:
             if imgui.is_mouse_clicked(1):
@@ -236,9 +236,12 @@ class Viewer:
                     state.delete_waypoint(index)
                     return True
             return False
-        point, index, start = self._press
+        point, index, start, count = self._press
         moved = (mouse[0] - start[0]) ** 2 + (mouse[1] - start[1]) ** 2 > 16.0  # more than 4 px
         if imgui.is_mouse_down(0):
+            if index is not None and len(state.waypoints) != count:
+                self._press = (point, None, start, count)  # a waypoint was reached meanwhile: the drag ends
+                return True
             if index is not None and moved:
                 here = self._ground_under_mouse()
                 if here is not None:
