@@ -488,9 +488,10 @@ def _creature_and_world(args: argparse.Namespace):
                 overrides["gait.preset"] = entry.gait
             specs.append(_load_with_overrides(args, entry.creature, overrides, origin=args.creature))
         spec = specs[0]
-        if len(specs) > 1 and not getattr(args, "quiet", False):
-            print(f"note: {args.creature} has {len(specs)} creatures; this version uses the first ({spec.name})",
-                  file=sys.stderr)
+        args.scene_members = list(zip(specs[1:], [entry.world for entry in scene.creatures[1:]]))
+        if len(specs) > 1 and not getattr(args, "quiet", False) and args.command != "view":
+            print(f"note: {args.creature} has {len(specs)} creatures; {args.command} films the first ({spec.name}); "
+                  "gaitlab view shows them all", file=sys.stderr)
         if speed is None and first.speed is not None:
             speed = (first.speed, first.speed)
         if getattr(args, "herd", None) == 1 and first.herd > 1:  # the scene's herd, unless --herd says
@@ -540,7 +541,7 @@ def cmd_view(args: argparse.Namespace) -> int:
     options = ViewerOptions(size=args.size, vsync=not args.no_vsync, samples=args.msaa, frames=args.frames,
                             screenshot=args.screenshot, hide_ui=args.hide_ui, report_fps=args.report_fps,
                             dump_state=args.dump_state, presets=preset_creature_names(), overlays=args.overlays,
-                            herd=args.herd)
+                            herd=args.herd, scene_members=tuple(getattr(args, "scene_members", ())))
     return run_viewer(spec, options, world)
 
 

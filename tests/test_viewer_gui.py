@@ -485,3 +485,21 @@ def test_a_herd_scene_opens_and_renders(display: str, tmp_path: Path) -> None:
 
     blobs = ndimage.label(mask)[1]
     assert blobs >= 8
+
+
+def test_a_click_on_a_scene_creature_puts_it_in_the_panels(display: str, tmp_path: Path) -> None:
+    from app.resources import scenes_dir
+
+    with running_viewer(display, tmp_path, str(scenes_dir() / "garden.toml"), "--size", "1024x720") as (
+            proc, dump, window):
+        state = read_state(dump)
+        assert state["scene"] == ["ant", "centipede"] and state["selected"] == 0
+        assert state["creature"]["name"] == "ant"
+        x, y = state["screen"][1]  # the centipede's body on screen
+        assert 380 < x < 1024 and 0 < y < 720, (x, y)
+        xdotool(display, "mousemove", str(int(x)), str(int(y)))
+        time.sleep(0.4)
+        xdotool(display, "click", "1")
+        picked = read_state(dump, until=lambda s: s["selected"] == 1)
+        assert picked["creature"]["name"] == "centipede" and picked["error"] is None
+        quit_viewer(display, proc, window)

@@ -249,11 +249,15 @@ class LiveMotion:
         Planted feet stay where they stand until they lift; every later foothold is found
         on the new ground. Raises :class:`WorldError` (nothing changes) when the body
         cannot follow the path or a foot would find no foothold a step ahead."""
+        self.check_world(world)
+        self.world = world
+
+    def check_world(self, world: World) -> None:
+        """Raise :class:`WorldError` if :meth:`set_world` would refuse ``world``."""
         check_world(self.rig, world)
         legs = np.arange(self.rig.leg_count)
         ahead = self.travel + self.travel_per_cycle() * (1.0 - self.foot_phase()) + 0.5 * self.stride * self.rig.leg_scale
         plan_footholds(self.rig, world, ahead, legs)  # raises when the new ground offers none
-        self.world = world
 
     def step(self, dt: float) -> None:
         """Advance by ``dt`` seconds of animation time (0 or negative does nothing). On a

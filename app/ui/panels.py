@@ -220,6 +220,16 @@ def choice(state: ViewerState, pc: PanelContext, key: str, label: str, options: 
 
 
 def creature_panel(state: ViewerState, pc: PanelContext) -> None:
+    names = state.names
+    if len(names) > 1:  # a scene: which creature the panels show (or click one in the view)
+        labels = [f"{k + 1}. {name}" for k, name in enumerate(names)]
+        imgui.set_next_item_width(-1)
+        changed, index = imgui.combo("##scene-creature", state.selected, labels)
+        _remember(state, "scene.creature")
+        if imgui.is_item_hovered():
+            imgui.set_tooltip("The scene's creatures: the one chosen here (or clicked in the view) is in the panels.")
+        if changed:
+            state.select(index)
     presets = pc.presets
     imgui.set_next_item_width(-1)
     choice_made = _combo("##creature", presets, state.spec.name, state.creature_label)

@@ -93,6 +93,25 @@ class RecordSettings:
 
 
 @dataclass
+class SceneMember:
+    """A creature of the scene other than the one in the panels: what selecting it brings
+    back (its creature as loaded and as edited, its motion and path, its history)."""
+
+    base: CreatureSpec
+    spec: CreatureSpec
+    live: LiveMotion
+    world: World
+    file_path: str = ""
+    undo: list = field(default_factory=list)
+    redo: list = field(default_factory=list)
+    herd: Herd | None = None
+    waypoints: list = field(default_factory=list)
+    waypoint_s: list = field(default_factory=list)
+    path_kind: str = "straight"
+
+
+
+@dataclass
 class ViewerState:
     """Everything the viewer shows and edits."""
 
@@ -142,6 +161,8 @@ class ViewerState:
     _last_pose: Pose | None = field(default=None, init=False, repr=False)
     driver: Driver | None = field(default=None, init=False)  # drive mode: W/S speed, A/D turn
     herd: Herd | None = field(default=None, init=False)  # more animals of the creature's kind following it
+    members: list[SceneMember | None] = field(default_factory=list, init=False)  # a scene's creatures (None: selected)
+    selected: int = field(default=0, init=False)  # which of them the panels show
     drive_input: tuple[float, float] = (0.0, 0.0)  # held keys: throttle (S -1 .. W 1), steer (D -1 .. A 1)
     _undo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
     _redo: list[CreatureSpec] = field(default_factory=list, init=False, repr=False)
@@ -446,6 +467,8 @@ class ViewerState:
                 else:
                     self.live.step(dt / steps)
                 self.samples.append(self.live.frame_inputs())
+            for member in self.others:  # the scene's other creatures walk on (a handful)
+                member.live.step(dt)
             if self.herd is not None and dt > 0:
                 if self.herd.rig.gait.preset != self.live.rig.gait.preset:  # driving switched gait
                     self.herd.set_rig(self.live.rig)
@@ -512,7 +535,13 @@ class ViewerState:
                 raise GaitlabError(f"{kind}: give the file to load")
             terrain = parse_terrain(text)
             world = World(path=self.world.path, terrain=terrain, in_place=self.world.in_place and terrain.flat)
+            others = [(m, replace(m.world, terrain=terrain)) for m in self.others]
+            for member, member_world in others:  # every creature of the scene must find footholds
+                member.live.check_world(member_world)
             self.live.set_world(world)
+            for member, member_world in others:
+                member.live.set_world(member_world)
+                member.world = member_world
         except GaitlabError as exc:
             self.terrain_kind, self.terrain_values = saved
             message = str(exc)
@@ -522,6 +551,81 @@ class ViewerState:
         self.world = world
         self.error = None
         return True
+
+    # -- scene creatures ------------------------------------------------------------
+
+    def add_creature(self, spec: CreatureSpec, world: World) -> bool:
+        """Another creature of the scene, walking its own path on the same ground."""
+        try:
+            live = LiveMotion(build_rig(spec), replace(world, terrain=self.world.terrain))
+        except GaitlabError as exc:
+            self.error = f"{spec.name}: {exc}"
+            return False
+        if not self.members:
+            self.members.append(None)  # the creature in the panels
+        self.members.append(SceneMember(base=spec, spec=spec, live=live, world=live.world,
+                                        file_path=self._save_path_for(spec)))
+        return True
+
+    @property
+    def others(self) -> list[SceneMember]:
+        """The scene's creatures other than the selected one, in file order."""
+        return [m for m in self.members if m is not None]
+
+    @property
+    def names(self) -> list[str]:
+        """Every scene creature's name in file order (just this one outside a scene)."""
+        return [self.spec.name if m is None else m.spec.name for m in self.members] or [self.spec.name]
+
+    def select(self, index: int) -> bool:
+        """Put scene creature ``index`` (file order) in the panels; the one there walks on."""
+        if not 0 <= index < len(self.names):
+            self.error = f"no creature {index + 1} in this scene"
+            return False
+        if index == self.selected:
+            return True
+        if self.driver is not None:
+            self.stop_driving()
+        chosen = self.members[index]
+        assert chosen is not None
+        self.members[self.selected] = SceneMember(
+            base=self.base, spec=self.spec, live=self.live, world=self.world, file_path=self.file_path,
+            undo=self._undo, redo=self._redo, herd=self.herd, waypoints=self.waypoints,
+            waypoint_s=self._waypoint_s, path_kind=self.path_kind)
+        self.members[index] = None
+        self.base, self.spec, self.live, self.world = chosen.base, chosen.spec, chosen.live, chosen.world
+        self.file_path, self._undo, self._redo, self.herd = chosen.file_path, chosen.undo, chosen.redo, chosen.herd
+        self.waypoints, self._waypoint_s, self.path_kind = chosen.waypoints, chosen.waypoint_s, chosen.path_kind
+        self.selected = index
+        self._last_edit = ("", 0.0)  # a new creature's edits never merge with the last one's
+        self.footprints.clear()
+        self._last_pose = None
+        self.status = f"selected {self.spec.name} ({index + 1} of {len(self.members)})"
+        self.frame_view()
+        return True
+
+    def creature_poses(self) -> list[tuple[Pose, SceneMember]]:
+        """Poses of the scene's other creatures (file order, the selected one left out)."""
+        return [(m.live.pose(), m) for m in self.others]
+
+    def pick_creature(self, origin: NDArray[np.float64], direction: NDArray[np.float64]) -> int | None:
+        """The scene creature (file order) whose body a ray from ``origin`` along unit
+        ``direction`` meets first, each body taken as a sphere of half its length plus
+        its hip height around its root; None when it meets none."""
+        bodies = []
+        for index, member in enumerate(self.members or [None]):
+            live = self.live if member is None else member.live
+            pose = live.pose()
+            radius = 0.5 * live.rig.body_length + 0.3 * live.rig.hip_height
+            bodies.append((index, pose.root[:3, 3], radius))
+        best, best_t = None, np.inf
+        for index, centre, radius in bodies:
+            rel = centre - origin
+            t = float(rel @ direction)
+            miss = float(np.linalg.norm(rel - t * direction))
+            if t > 0 and miss <= radius and t < best_t:
+                best, best_t = index, t
+        return best
 
     # -- herd -------------------------------------------------------------------------
 

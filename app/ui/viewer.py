@@ -54,6 +54,7 @@ class ViewerOptions:
     presets: list[str] = field(default_factory=list)
     overlays: tuple[str, ...] = ()  # turned on at start: footprints, targets, support
     herd: int = 1  # animals in all: the creature and herd - 1 following it
+    scene_members: tuple = ()  # (spec, world) of a scene's other creatures
 
 
 def _setup_style(scale: float) -> bool:
@@ -120,6 +121,9 @@ class Viewer:
         self.ui = ImguiRenderer(self.ctx, self.scene.shaders)
         self.state = ViewerState(spec, world=world or World())
         self.state.show_ui = not options.hide_ui
+        for member_spec, member_world in options.scene_members:
+            if not self.state.add_creature(member_spec, member_world):
+                raise GaitlabError(self.state.error or "scene")
         if options.herd > 1 and not self.state.set_herd(options.herd):
             raise GaitlabError(self.state.error or "herd")
         self._herd_instances: HerdInstances | None = None
@@ -134,6 +138,7 @@ class Viewer:
                                   file_dialog=FileDialog(), dialogs_available=dialogs_available())
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
+        self._click_start: tuple[float, float] | None = None  # where the left button went down
         self._press: tuple[np.ndarray, int | None, tuple[float, float], int] | None = None  # waypoint press
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
         self.extra_panels: tuple = ()
@@ -183,8 +188,12 @@ class Viewer:
         if io.want_capture_mouse:
             return
         dx, dy = io.mouse_delta.x, io.mouse_delta.y
+        if imgui.is_mouse_clicked(0):
+            self._click_start = (io.mouse_pos.x, io.mouse_pos.y)
         if state.waypoint_edit and self._edit_waypoints():
             pass  # the mouse edited the route
+        elif len(state.names) > 1 and imgui.is_mouse_released(0) and self._click_selects():
+            pass  # a click on another creature put it in the panels
         elif imgui.is_mouse_double_clicked(0):
             self._pick = (io.mouse_pos.x, io.mouse_pos.y)
         elif imgui.is_mouse_down(0) and (dx or dy):
@@ -193,6 +202,52 @@ class Viewer:
             state.pan(dx, dy, view_height)
         if io.mouse_wheel:
             state.zoom(io.mouse_wheel)
+
+    def _mouse_ray(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The eye ray (origin, unit direction) under the mouse, or None off the 3-D view."""
+        io = imgui.get_io()
+        vx, vy, vw, vh = self._scene_viewport()
+        fb_w, fb_h = self.window.framebuffer_size
+        win_w, win_h = self.window.window_size
+        x = io.mouse_pos.x * fb_w / max(win_w, 1)
+        y = fb_h - io.mouse_pos.y * fb_h / max(win_h, 1)
+        if not (vx <= x < vx + vw and vy <= y < vy + vh) or vw <= 0 or vh <= 0:
+            return None
+        ndc = (2.0 * (x - vx) / vw - 1.0, 2.0 * (y - vy) / vh - 1.0)
+        inverse = np.linalg.inv(np.array(self.state.camera.view_proj(vw / vh), dtype=np.float64))
+        near = inverse @ np.array([ndc[0], ndc[1], -1.0, 1.0])
+        far = inverse @ np.array([ndc[0], ndc[1], 1.0, 1.0])
+        origin = near[:3] / near[3]
+        direction = far[:3] / far[3] - origin
+        return origin, direction / np.linalg.norm(direction)
+
+    def _click_selects(self) -> bool:
+        """A click (no drag) on a scene creature other than the selected one selects it."""
+        io = imgui.get_io()
+        start = self._click_start
+        if start is None or (io.mouse_pos.x - start[0]) ** 2 + (io.mouse_pos.y - start[1]) ** 2 > 16.0:
+            return False  # a drag (orbit), not a click
+        ray = self._mouse_ray()
+        index = None if ray is None else self.state.pick_creature(*ray)
+        if index is None or index == self.state.selected:
+            return False
+        return self.state.select(index)
+
+    def _creature_screen_points(self) -> list[list[float]]:
+        """Each scene creature's root in window pixels (x, y from the top left), file order."""
+        vx, vy, vw, vh = self._scene_viewport()
+        fb_w, fb_h = self.window.framebuffer_size
+        win_w, win_h = self.window.window_size
+        vp = np.array(self.state.camera.view_proj(vw / max(vh, 1)), dtype=np.float64)
+        out = []
+        for index, member in enumerate(self.state.members or [None]):
+            live = self.state.live if member is None else member.live
+            clip = vp @ np.append(live.pose().root[:3, 3], 1.0)
+            ndc = clip[:2] / clip[3] if clip[3] > 1e-9 else np.array([9.0, 9.0])
+            x = (vx + (ndc[0] + 1.0) * 0.5 * vw) * win_w / max(fb_w, 1)
+            y = (fb_h - (vy + (ndc[1] + 1.0) * 0.5 * vh)) * win_h / max(fb_h, 1)
+            out.append([float(x), float(y)])
+        return out
 
     def _ground_under_mouse(self) -> np.ndarray | None:
         """The ground point (x, y, z) under the mouse, or None (the sky, or off the view)."""
@@ -356,6 +411,7 @@ class Viewer:
             "terrain": state.world.terrain.describe(), "planted_jump_max": state.planted_jump_max,
             "waypoints": [list(p) for p in state.waypoints], "path": state.world.path.describe(),
             "herd": 1 if state.herd is None else state.herd.count + 1,
+            "scene": state.names, "selected": state.selected, "screen": self._creature_screen_points(),
             "drive": None if state.driver is None else {
                 "speed": state.driver.ground_speed, "target": state.driver.target_speed,
                 "froude": state.driver.ground_froude, "gait": state.driver.gait,
@@ -412,6 +468,8 @@ class Viewer:
                 if viewport[0] > 0:  # the sidebar's background (the panels draw none)
                     self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
                 instances = pose_instances(pose, state.live.rig, state.options.joints)
+                for other_pose, member in state.creature_poses():  # a scene's other creatures (a handful)
+                    instances = instances + pose_instances(other_pose, member.live.rig, state.options.joints)
                 if state.herd is not None:
                     if self._herd_instances is None or self._herd_instances.show_joints != state.options.joints:
                         self._herd_instances = HerdInstances(state.herd, state.options.joints)
