@@ -129,34 +129,28 @@ def test_render_refuses_bad_herds_in_one_line(tmp_path) -> None:
         RecordRequest(spec=load_creature("dog"), output=tmp_path / "x.png", herd=3, world=World(in_place=True))
 
 
-@pytest.mark.gl
-def test_herd_golden(gl_ctx, snapshot, tmp_path) -> None:
+def first_frame(gl_ctx, tmp_path, **request) -> np.ndarray:
+    """The first frame a PNG recording of the dog would write (small, no antialiasing)."""
     from app.recording import Recording
 
-    request = RecordRequest(spec=load_creature("dog"), output=tmp_path / "herd.png", herd=8, start=2.0,
-                            view=ViewSettings(size=(192, 144), antialias="off"))
-    job = Recording(request, ctx=gl_ctx)
+    job = Recording(RecordRequest(spec=load_creature("dog"), output=tmp_path / "frame.png",
+                                  view=ViewSettings(size=(192, 144), antialias="off"), **request), ctx=gl_ctx)
     try:
-        image = job._render(0)
+        return job._render(0)
     finally:
         job.cancel()
-    snapshot.check("herd_of_eight_dogs", image)
+
+
+@pytest.mark.gl
+def test_herd_golden(gl_ctx, snapshot, tmp_path) -> None:
+    snapshot.check("herd_of_eight_dogs", first_frame(gl_ctx, tmp_path, herd=8, start=2.0))
 
 
 @pytest.mark.gl
 def test_travelling_on_hills_golden(gl_ctx, snapshot, tmp_path) -> None:
-    from app.recording import Recording
-
     rig = build_rig(load_creature("dog"))
     world = make_world("circle:r=2.5", f"hills:amp={0.12 * rig.hip_height:.4f},wavelength={3 * rig.body_length:.3f}")
-    request = RecordRequest(spec=load_creature("dog"), output=tmp_path / "hills.png", start=3.0, world=world,
-                            view=ViewSettings(size=(192, 144), antialias="off"))
-    job = Recording(request, ctx=gl_ctx)
-    try:
-        image = job._render(0)
-    finally:
-        job.cancel()
-    snapshot.check("dog_travelling_on_hills", image)
+    snapshot.check("dog_travelling_on_hills", first_frame(gl_ctx, tmp_path, start=3.0, world=world))
 
 
 def test_scene_files_take_a_herd_and_refuse_bad_ones(tmp_path) -> None:

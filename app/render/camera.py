@@ -159,18 +159,25 @@ def clear_elevations(targets: NDArray[np.float64], azimuths: NDArray[np.float64]
     return candidates[first] if frames else np.zeros(0)
 
 
+def eye_ray(camera: Camera, aspect: float, ndc: tuple[float, float]
+            ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ray through view point ``ndc`` (x, y in -1..1): origin on the near plane (3,)
+    and unit direction (3,)."""
+    inverse = np.linalg.inv(np.array(camera.view_proj(aspect), dtype=np.float64))
+    near = inverse @ np.array([ndc[0], ndc[1], -1.0, 1.0])
+    far = inverse @ np.array([ndc[0], ndc[1], 1.0, 1.0])
+    origin = near[:3] / near[3]
+    direction = far[:3] / far[3] - origin
+    return origin, direction / np.linalg.norm(direction)
+
+
 def ground_point(camera: Camera, aspect: float, ndc: tuple[float, float], height,
                  reach: float = 500.0, samples: int = 512) -> NDArray[np.float64] | None:
     """Where the ray through ``ndc`` (x, y in -1..1 of the view) first meets the ground
     ``height`` (a function of (N, 2) x, z giving (N,) heights): (x, y, z), or None when
     it meets no ground within ``reach`` m (the sky). Marched in ``samples`` steps, then
     refined by bisection within the step that crosses the ground."""
-    inverse = np.linalg.inv(np.array(camera.view_proj(aspect), dtype=np.float64))
-    near = inverse @ np.array([ndc[0], ndc[1], -1.0, 1.0])
-    far = inverse @ np.array([ndc[0], ndc[1], 1.0, 1.0])
-    origin = near[:3] / near[3]
-    direction = far[:3] / far[3] - origin
-    direction /= np.linalg.norm(direction)
+    origin, direction = eye_ray(camera, aspect, ndc)
     t = np.linspace(0.0, reach, samples) ** 2 / reach  # finer near the eye
     points = origin + t[:, None] * direction
     above = points[:, 1] - height(points[:, [0, 2]])

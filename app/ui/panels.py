@@ -798,6 +798,14 @@ def message_bar(state: ViewerState, pc: PanelContext) -> None:
     imgui.end()
 
 
+def _begin_sign(name: str) -> None:
+    """Begin a small window over the 3-D view that takes no input (HUDs, the PAUSED sign);
+    place it and set its background first, end it with ``imgui.end()``."""
+    imgui.begin(name, None, imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
+                | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
+                | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
+
+
 def paused_marker(state: ViewerState, pc: PanelContext) -> None:
     """A PAUSED sign over the 3-D view while the animation is stopped (issue 12, item 5)."""
     io = imgui.get_io()
@@ -805,10 +813,7 @@ def paused_marker(state: ViewerState, pc: PanelContext) -> None:
     imgui.set_next_window_pos(imgui.ImVec2(left + 0.5 * (io.display_size.x - left), 14 * pc.scale), 0,
                               imgui.ImVec2(0.5, 0.0))
     imgui.set_next_window_bg_alpha(0.75)
-    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
-             | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
-             | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
-    imgui.begin("##paused", None, flags)
+    _begin_sign("##paused")
     imgui.text_colored(imgui.ImVec4(1.0, 0.8, 0.35, 1.0), "PAUSED")
     imgui.same_line()
     imgui.text_disabled("Space to play, Right to step")
@@ -821,10 +826,7 @@ def hud(pc: PanelContext) -> None:
     pad = 10 * pc.scale
     imgui.set_next_window_pos(imgui.ImVec2(io.display_size.x - pad, pad), 0, imgui.ImVec2(1.0, 0.0))
     imgui.set_next_window_bg_alpha(0.72)
-    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
-             | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
-             | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
-    imgui.begin("##hud", None, flags)
+    _begin_sign("##hud")
     imgui.text(f"{s.fps:5.1f} fps   {s.frame_ms:5.1f} ms")
     imgui.text(f"simulate {s.simulate_ms:4.1f}  scene {s.scene_ms:4.1f}  ui {s.ui_ms:4.1f} ms")
     imgui.end()
@@ -839,10 +841,7 @@ def drive_hud(state: ViewerState, pc: PanelContext) -> None:
     pad = 10 * pc.scale
     imgui.set_next_window_pos(imgui.ImVec2(left + pad, pad), 0, imgui.ImVec2(0.0, 0.0))
     imgui.set_next_window_bg_alpha(0.72)
-    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
-             | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
-             | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
-    imgui.begin("##drive-hud", None, flags)
+    _begin_sign("##drive-hud")
     imgui.text_colored(imgui.ImVec4(0.55, 0.85, 1.0, 1.0), "DRIVING")
     imgui.same_line()
     imgui.text(f"{driver.ground_speed:5.2f} m/s   Froude {driver.ground_froude:5.2f}   {driver.gait}")

@@ -22,7 +22,7 @@ from imgui_bundle import imgui, implot
 from ..errors import GaitlabError
 from ..output import atomic_write_text, write_png
 from ..recording import Recording
-from ..render.camera import ground_point
+from ..render.camera import eye_ray, ground_point
 from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
 from ..render.scene import pose_instances
@@ -203,8 +203,9 @@ class Viewer:
         if io.mouse_wheel:
             state.zoom(io.mouse_wheel)
 
-    def _mouse_ray(self) -> tuple[np.ndarray, np.ndarray] | None:
-        """The eye ray (origin, unit direction) under the mouse, or None off the 3-D view."""
+    def _mouse_in_view(self) -> tuple[tuple[float, float], float] | None:
+        """The mouse as a point of the 3-D view (x, y in -1..1) and the view's aspect, or
+        None when it is off the view."""
         io = imgui.get_io()
         vx, vy, vw, vh = self._scene_viewport()
         fb_w, fb_h = self.window.framebuffer_size
@@ -213,13 +214,12 @@ class Viewer:
         y = fb_h - io.mouse_pos.y * fb_h / max(win_h, 1)
         if not (vx <= x < vx + vw and vy <= y < vy + vh) or vw <= 0 or vh <= 0:
             return None
-        ndc = (2.0 * (x - vx) / vw - 1.0, 2.0 * (y - vy) / vh - 1.0)
-        inverse = np.linalg.inv(np.array(self.state.camera.view_proj(vw / vh), dtype=np.float64))
-        near = inverse @ np.array([ndc[0], ndc[1], -1.0, 1.0])
-        far = inverse @ np.array([ndc[0], ndc[1], 1.0, 1.0])
-        origin = near[:3] / near[3]
-        direction = far[:3] / far[3] - origin
-        return origin, direction / np.linalg.norm(direction)
+        return (2.0 * (x - vx) / vw - 1.0, 2.0 * (y - vy) / vh - 1.0), vw / vh
+
+    def _mouse_ray(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """The eye ray (origin, unit direction) under the mouse, or None off the 3-D view."""
+        where = self._mouse_in_view()
+        return None if where is None else eye_ray(self.state.camera, where[1], where[0])
 
     def _click_selects(self) -> bool:
         """A click (no drag) on a scene creature other than the selected one selects it."""
@@ -251,16 +251,10 @@ class Viewer:
 
     def _ground_under_mouse(self) -> np.ndarray | None:
         """The ground point (x, y, z) under the mouse, or None (the sky, or off the view)."""
-        io = imgui.get_io()
-        vx, vy, vw, vh = self._scene_viewport()
-        fb_w, fb_h = self.window.framebuffer_size
-        win_w, win_h = self.window.window_size
-        x = io.mouse_pos.x * fb_w / max(win_w, 1)
-        y = fb_h - io.mouse_pos.y * fb_h / max(win_h, 1)
-        if not (vx <= x < vx + vw and vy <= y < vy + vh) or vw <= 0 or vh <= 0:
+        where = self._mouse_in_view()
+        if where is None:
             return None
-        ndc = (2.0 * (x - vx) / vw - 1.0, 2.0 * (y - vy) / vh - 1.0)
-        point = ground_point(self.state.camera, vw / vh, ndc, self.state.world.terrain.height)
+        point = ground_point(self.state.camera, where[1], where[0], self.state.world.terrain.height)
         # Only the ground that is drawn: it fades into the horizon a few body sizes away.
         rig = self.state.live.rig
         root = self.state.pose().root[:3, 3]
