@@ -609,22 +609,24 @@ class ViewerState:
         return [(m.live.pose(), m) for m in self.others]
 
     def pick_creature(self, origin: NDArray[np.float64], direction: NDArray[np.float64]) -> int | None:
-        """The scene creature (file order) whose body a ray from ``origin`` along unit
-        ``direction`` meets first, each body taken as a sphere of half its length plus
-        its hip height around its root; None when it meets none."""
+        """The scene creature (file order) a ray from ``origin`` along unit ``direction``
+        points at: of the bodies it meets (each a sphere of half its length plus a third
+        of its hip height around its root), the one it passes most nearly through the
+        middle of (bodies overlap on screen: the nearest would hide the one clicked);
+        None when it meets none."""
         bodies = []
         for index, member in enumerate(self.members or [None]):
             live = self.live if member is None else member.live
             pose = live.pose()
             radius = 0.5 * live.rig.body_length + 0.3 * live.rig.hip_height
             bodies.append((index, pose.root[:3, 3], radius))
-        best, best_t = None, np.inf
+        best, best_fit = None, np.inf
         for index, centre, radius in bodies:
             rel = centre - origin
             t = float(rel @ direction)
-            miss = float(np.linalg.norm(rel - t * direction))
-            if t > 0 and miss <= radius and t < best_t:
-                best, best_t = index, t
+            fit = float(np.linalg.norm(rel - t * direction)) / radius  # 0: straight through its middle
+            if t > 0 and fit <= 1.0 and fit < best_fit:
+                best, best_fit = index, fit
         return best
 
     # -- herd -------------------------------------------------------------------------
