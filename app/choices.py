@@ -15,6 +15,10 @@ WAVE_SHAPES: tuple[str, ...] = get_args(WaveShape)
 KneeDirection = Literal["forward", "back", "out"]
 KNEE_DIRECTIONS: tuple[str, ...] = get_args(KneeDirection)
 
+# How the trunk stands: from the hind to the fore legs, or rising from the hips (a human).
+Posture = Literal["horizontal", "upright"]
+POSTURES: tuple[str, ...] = get_args(Posture)
+
 LegType = Literal["plantigrade", "digitigrade", "unguligrade"]
 LEG_TYPES: tuple[str, ...] = get_args(LegType)
 

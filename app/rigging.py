@@ -15,8 +15,12 @@ import numpy as np
 from .gaits import gaits_for
 from .kinematics.gait import GaitParams, natural_frequency
 from .kinematics.oscillator import duty_from_bias
-from .kinematics.rig import BodyShape, Look, Rig, SecondaryMotion, SpeedGaits, leg_lengths
+from .kinematics.rig import (ArmShape, BodyShape, KeyPoses, Look, Overlap, Rig, SecondaryMotion, SpeedGaits,
+                             leg_lengths)
 from .spec import CreatureSpec, GaitSpec, resolve_phases
+from .styles import STYLES
+
+DEFAULT_TIMING_FPS = 24.0  # the frame rate frames_per_cycle counts in when none is given (film)
 
 
 OUT_KNEE_POLE = np.array([0.6, 1.0])  # sprawled legs' knees bend up, and a little out (leg frame: forward=out, up)
@@ -31,12 +35,27 @@ def resolve_duty(gait: GaitSpec) -> float:
     return gait.preset_spec.duty_factor
 
 
+def resolve_frequency(gait: GaitSpec, hip_height: float) -> float:
+    """The stride frequency (Hz): given, from frames per cycle at the timing frame rate, or
+    the preset's natural frequency for the hip height (m)."""
+    if gait.frequency is not None:
+        return float(gait.frequency)
+    if gait.frames_per_cycle is not None:
+        return (gait.timing_fps or DEFAULT_TIMING_FPS) / gait.frames_per_cycle
+    return natural_frequency(gait.preset_spec.cadence, hip_height)
+
+
+def frames_per_cycle(frequency: float, fps: float = DEFAULT_TIMING_FPS) -> float:
+    """Frames per cycle at ``fps`` for a stride frequency (Hz)."""
+    return fps / frequency
+
+
 def resolve_gait(gait: GaitSpec, feet: tuple[str, ...], hip_height: float, bob: float | None = None) -> GaitParams:
     """Combine a gait spec with its preset. ``hip_height`` (m) sets the default frequency."""
     preset = gait.preset_spec
     return GaitParams(
         preset=gait.preset,
-        frequency=gait.frequency if gait.frequency is not None else natural_frequency(preset.cadence, hip_height),
+        frequency=resolve_frequency(gait, hip_height),
         duty_factor=resolve_duty(gait),
         offsets=resolve_phases(gait, feet),
         stride=preset.stride if gait.stride is None else gait.stride,
@@ -62,6 +81,30 @@ def _speed_gaits(spec: CreatureSpec, hip_height: float) -> SpeedGaits:
                       hysteresis=spec.speed.hysteresis, order=order, gaits=gaits)
 
 
+def key_poses(spec: CreatureSpec, hip_height: float) -> KeyPoses:
+    """The key poses: the file's values, the rest from its style (heights scaled by the
+    hip height, m); heights only when the poses shape the walk (a style or a height given)."""
+    poses = spec.poses
+    style = STYLES[poses.style or "normal"]
+    heights = None
+    if poses.shaped:
+        given = (poses.contact_height, poses.down_height, poses.pass_height, poses.up_height)
+        heights = np.array([style.heights[i] * hip_height if v is None else float(v) for i, v in enumerate(given)])
+    pick = lambda value, default: math.radians(default if value is None else value)  # noqa: E731
+    return KeyPoses(heights=heights, foot_angle=pick(poses.foot_angle, style.foot_angle),
+                    arm_swing=pick(poses.arm_swing, style.arm_swing), torso_lean=pick(poses.torso_lean, style.torso_lean))
+
+
+def arm_shape(spec: CreatureSpec) -> ArmShape | None:
+    """The arms in SI units, or None."""
+    arms = spec.arms
+    if arms is None:
+        return None
+    width = arms.shoulder_width if arms.shoulder_width is not None else spec.body.width
+    return ArmShape(upper=arms.upper, fore=arms.fore, hand=arms.hand, radius=arms.radius, shoulder_width=width,
+                    position=arms.position, elbow=math.radians(arms.elbow))
+
+
 def build_rig(spec: CreatureSpec) -> Rig:
     """Derive the rig of a (validated) creature spec."""
     girdles = spec.girdles  # front first
@@ -83,7 +126,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
                       head_length=body.head_length, head_radius=body.head_radius,
                       head_angle=math.radians(body.head_angle), ear_length=body.ear_length,
                       tail_length=body.tail_length, tail_angle=math.radians(body.tail_angle),
-                      tail_segments=body.tail_segments)
+                      tail_segments=body.tail_segments, upright=body.posture == "upright")
     hip_height = float(rest_height.mean())
     return Rig(
         name=spec.name,
@@ -111,8 +154,13 @@ def build_rig(spec: CreatureSpec) -> Rig:
         body=shape,
         gait=resolve_gait(spec.gait, spec.foot_names, hip_height, bob=spec.motion.bob),
         motion=SecondaryMotion(yaw=math.radians(spec.motion.yaw), tail_sway=math.radians(spec.motion.tail_sway),
-                               bob_phase=spec.motion.bob_phase),
+                               bob_phase=spec.motion.bob_phase, pelvis_tilt=math.radians(spec.motion.pelvis_tilt)),
         look=Look(spec.look.body_color, spec.look.left_color, spec.look.right_color),
         speed=_speed_gaits(spec, hip_height),
+        arms=arm_shape(spec),
+        poses=key_poses(spec, hip_height),
+        overlap=Overlap(head=spec.overlap.head, neck=spec.overlap.neck, arms=spec.overlap.arms,
+                        tail=spec.overlap.tail),
+        roll=per_leg("roll"),
     )
 

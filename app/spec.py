@@ -22,7 +22,9 @@ from typing import Any, Mapping
 
 import tomli_w
 
-from .choices import KNEE_DIRECTIONS, WAVE_SHAPES, KneeDirection, LegType, WaveShape, leg_type  # noqa: F401 (re-exported)
+from .choices import (KNEE_DIRECTIONS, POSTURES, WAVE_SHAPES, KneeDirection, LegType, Posture,  # noqa: F401
+                      WaveShape, leg_type)
+from .styles import WALK_STYLES
 from .errors import SpecError, did_you_mean
 from .output import atomic_write_text
 from .tomlfile import TomlProblem, parse_toml, read_toml
@@ -96,6 +98,8 @@ BODY_RULES: dict[str, Rule] = {
     "tail_length": _length("tail length (0 for none)", zero_ok=True),
     "tail_angle": _num(-90, 90, unit="deg", doc="tail droop below the body axis"),
     "tail_segments": Rule("integer", 1, 32, doc="number of tail segments"),
+    "posture": Rule("choice", choices=POSTURES, doc="horizontal: the trunk runs from the hind to the fore legs; "
+                    "upright: it rises from the hips (a human; one leg pair)"),
 }
 
 LEG_RULES: dict[str, Rule] = {
@@ -119,6 +123,35 @@ LEG_RULES: dict[str, Rule] = {
                   doc="which way the middle joint points: forward (knee), back (elbow), out (up and away from "
                       "the body: insects, spiders)"),
     "radius": _length("bone radius at the hip; bones taper towards the foot", hi=2.0),
+    "roll": _num(0, 1, doc="foot roll: heel strike, roll to flat, heel rise, toe-off; scales its angles and "
+                 "timing (0 lands and lifts the foot flat)"),
+}
+
+ARMS_RULES: dict[str, Rule] = {
+    "upper": _length("upper arm, shoulder to elbow"),
+    "fore": _length("forearm, elbow to wrist"),
+    "hand": _length("hand, wrist to finger tips"),
+    "radius": _length("bone radius at the shoulder", hi=2.0),
+    "shoulder_width": _length("distance between the shoulders"),
+    "position": _num(0, 1.25, doc="where the shoulders sit along the trunk: 0 the hips' end, 1 the front (top) end"),
+    "elbow": _num(0, 150, unit="deg", doc="elbow bend at rest; it bends more as the arm swings forward"),
+}
+
+POSES_RULES: dict[str, Rule] = {
+    "style": Rule("choice", choices=WALK_STYLES, doc="the walk style the key poses started from"),
+    "contact_height": _num(-1, 1, unit="m", doc="body height at contact (heel strike), above (+) or below "
+                           "standing height"),
+    "down_height": _num(-1, 1, unit="m", doc="body height at the down pose (a quarter step after contact)"),
+    "pass_height": _num(-1, 1, unit="m", doc="body height at the passing pose (half a step after contact)"),
+    "up_height": _num(-1, 1, unit="m", doc="body height at the up pose (three quarters of a step)"),
+    "foot_angle": _num(-30, 60, unit="deg", doc="the foot's angle at contact, toes up (with legs.NAME.roll)"),
+    "arm_swing": _num(0, 80, unit="deg", doc="how far the arms swing forward and back"),
+    "torso_lean": _num(-30, 45, unit="deg", doc="the trunk's lean forward (+) or back (-) (upright bodies)"),
+}
+
+OVERLAP_RULES: dict[str, Rule] = {
+    part: _num(0, 0.5, doc=f"how far (cycle fraction) the {what} follows through behind the body")
+    for part, what in (("head", "head"), ("neck", "neck"), ("arms", "arms' swing"), ("tail", "tail"))
 }
 
 GAIT_RULES: dict[str, Rule] = {
@@ -133,6 +166,10 @@ GAIT_RULES: dict[str, Rule] = {
     "stride": _num(0, 2, unit="leg rest lengths", doc="fore-aft travel of a planted foot relative to its hip"),
     "wave": Rule("choice", choices=WAVE_SHAPES,
                  doc="planted: linear stance, exact duty; skewed-sine: the seed's two skewed waves"),
+    "frames_per_cycle": _num(0, 10000, lo_open=True, unit="frames",
+                             doc="timing as an animator gives it: frames per cycle (two steps) at timing_fps, "
+                                 "instead of frequency"),
+    "timing_fps": _num(1, 240, unit="fps", doc="the frame rate frames_per_cycle counts in (default 24)"),
 }
 
 MOTION_RULES: dict[str, Rule] = {
@@ -140,6 +177,7 @@ MOTION_RULES: dict[str, Rule] = {
     "bob_phase": _num(-1, 1, doc="bob timing relative to the feet, cycle fraction"),
     "yaw": _num(0, 30, unit="deg", doc="how far the hips and shoulders turn with the feet"),
     "tail_sway": _num(0, 60, unit="deg", doc="side-to-side tail swing"),
+    "pelvis_tilt": _num(0, 20, unit="deg", doc="how far the hips drop on the side of the swinging leg"),
 }
 
 SPEED_RULES: dict[str, Rule] = {
@@ -166,6 +204,9 @@ TABLES: dict[str, dict[str, Rule]] = {
     "motion": MOTION_RULES,
     "speed": SPEED_RULES,
     "look": LOOK_RULES,
+    "arms": ARMS_RULES,
+    "poses": POSES_RULES,
+    "overlap": OVERLAP_RULES,
 }
 _COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}$")
 _FOOT_RE = re.compile(r"^[LR]([FH]|[0-9]{1,2})?$")
@@ -193,6 +234,7 @@ class BodySpec:
     tail_length: float = 0.0
     tail_angle: float = 30.0
     tail_segments: int = 6
+    posture: Posture = "horizontal"
 
 
 @dataclass(frozen=True)
@@ -215,6 +257,7 @@ class LegSpec:
     hip_offset: float | None = None
     abduction: float = 0.0
     splay: float = 0.0
+    roll: float = 0.0
 
     @property
     def positions(self) -> tuple[float, ...]:
@@ -239,6 +282,8 @@ class GaitSpec:
     step_height: float | None = None
     stride: float | None = None
     wave: WaveShape = "planted"
+    frames_per_cycle: float | None = None
+    timing_fps: float | None = None
 
     @property
     def preset_spec(self):
@@ -254,6 +299,7 @@ class MotionSpec:
     bob_phase: float = 0.0
     yaw: float = 4.0
     tail_sway: float = 8.0
+    pelvis_tilt: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -277,6 +323,50 @@ class LookSpec:
 
 
 @dataclass(frozen=True)
+class ArmsSpec:
+    """Two arms at the shoulders: bones in metres, the elbow's rest bend in degrees."""
+
+    upper: float
+    fore: float
+    hand: float
+    radius: float = 0.03
+    shoulder_width: float | None = None
+    position: float = 1.0
+    elbow: float = 20.0
+
+
+@dataclass(frozen=True)
+class PosesSpec:
+    """The key poses of a step (``None``: from the style, or for heights: the gait's own
+    body bob when no height and no style is given). Heights in metres, angles in degrees."""
+
+    style: str | None = None
+    contact_height: float | None = None
+    down_height: float | None = None
+    pass_height: float | None = None
+    up_height: float | None = None
+    foot_angle: float | None = None
+    arm_swing: float | None = None
+    torso_lean: float | None = None
+
+    @property
+    def shaped(self) -> bool:
+        """Whether the key poses set the body's height (a style or any height is given)."""
+        return self.style is not None or any(
+            v is not None for v in (self.contact_height, self.down_height, self.pass_height, self.up_height))
+
+
+@dataclass(frozen=True)
+class OverlapSpec:
+    """Follow-through delays (cycle fractions) of body parts behind the body's motion."""
+
+    head: float = 0.0
+    neck: float = 0.0
+    arms: float = 0.0
+    tail: float = 0.0
+
+
+@dataclass(frozen=True)
 class CreatureSpec:
     """A whole creature, as in its TOML file. Frozen: use :meth:`with_overrides`."""
 
@@ -287,6 +377,9 @@ class CreatureSpec:
     motion: MotionSpec = MotionSpec()
     speed: SpeedSpec = SpeedSpec()
     look: LookSpec = LookSpec()
+    arms: ArmsSpec | None = None
+    poses: PosesSpec = PosesSpec()
+    overlap: OverlapSpec = OverlapSpec()
     description: str = ""
     source: str = field(default="", compare=False)
 
@@ -331,6 +424,12 @@ class CreatureSpec:
         doc["motion"] = _table(self.motion)
         doc["speed"] = _table(self.speed)
         doc["look"] = _table(self.look)
+        if self.arms is not None:
+            doc["arms"] = _table(self.arms)
+        for name in ("poses", "overlap"):
+            table = {k: v for k, v in _table(getattr(self, name)).items() if v != 0.0 or name == "poses"}
+            if table:
+                doc[name] = table
         return doc
 
     def with_overrides(self, overrides: Mapping[str, Any], origin: str = "--set") -> "CreatureSpec":
@@ -353,7 +452,7 @@ class CreatureSpec:
         return atomic_write_text(path, text)
 
 
-_LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0}  # left out of saved files
+_LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0, "roll": 0.0}  # left out of saved files
 
 
 def _leg_table(leg: LegSpec) -> dict[str, Any]:
@@ -406,8 +505,8 @@ def load_creature(name_or_path: str | os.PathLike[str]) -> CreatureSpec:
 def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: str | None = None) -> CreatureSpec:
     """Build and validate a creature from a TOML-shaped dict. Raises :class:`SpecError`."""
     where = origin or source
-    _check_keys(data, {**TOP_RULES, "body": None, "legs": None, "gait": None, "motion": None, "speed": None,
-                       "look": None}, "", where, tables=("body", "legs", "gait", "motion", "speed", "look"))
+    tables = ("body", "legs", "gait", "motion", "speed", "look", "arms", "poses", "overlap")
+    _check_keys(data, {**TOP_RULES, **dict.fromkeys(tables)}, "", where, tables=tables)
     name = _value(data, "name", TOP_RULES["name"], where, required=False, default=Path(source).stem)
     description = _value(data, "description", TOP_RULES["description"], where, required=False, default="")
 
@@ -424,9 +523,19 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
         raise SpecError(f"{_at(where)}speed.trot_gallop = {speed.trot_gallop:g} must be above speed.walk_trot = "
                         f"{speed.walk_trot:g}")
     look = LookSpec(**_read_table(_subtable(data, "look", where, required=False), LOOK_RULES, "look", where))
+    arms_t = _subtable(data, "arms", where, required=False)
+    arms = ArmsSpec(**_read_table(arms_t, ARMS_RULES, "arms", where, required=("upper", "fore", "hand"))) \
+        if arms_t else None
+    poses = PosesSpec(**_read_table(_subtable(data, "poses", where, required=False), POSES_RULES, "poses", where))
+    overlap = OverlapSpec(**_read_table(_subtable(data, "overlap", where, required=False), OVERLAP_RULES,
+                                        "overlap", where))
+    if body.posture == "upright" and pairs != 1:
+        raise SpecError(f"{_at(where)}body.posture = 'upright' is for bipeds (one leg pair); this creature has "
+                        f"{pairs} pairs")
 
     spec = CreatureSpec(name=name, description=description, body=body, legs=tuple(legs),
-                        gait=gait, motion=motion, speed=speed, look=look, source=source)
+                        gait=gait, motion=motion, speed=speed, look=look, arms=arms, poses=poses, overlap=overlap,
+                        source=source)
     _check_geometry(spec, where)
     return spec
 
@@ -517,6 +626,9 @@ def _read_gait(table: Mapping[str, Any], feet: tuple[str, ...], where: str) -> G
         if not lo < duty < hi:
             raise SpecError(f"{_at(where)}gait.bias = {gait.bias:g} gives duty factor {duty:.3f}; "
                             f"the duty factor must be in ({lo:g}, {hi:g})")
+    if gait.frames_per_cycle is not None and gait.frequency is not None:
+        raise SpecError(f"{_at(where)}gait: give frequency or frames_per_cycle, not both (frequency = "
+                        f"{gait.frequency:g}, frames_per_cycle = {gait.frames_per_cycle:g})")
     if gait.phases is not None and (gait.front_back is not None or gait.left_right is not None):
         raise SpecError(f"{_at(where)}gait: give phases or front_back/left_right, not both")
     if not gait.preset_spec.symmetric and gait.phases is None and (
@@ -720,6 +832,8 @@ def _apply_override(data: dict[str, Any], key: str, value: Any, spec: CreatureSp
         return
     if key in ("gait.duty_factor", "gait.bias"):
         data.setdefault("gait", {}).pop("bias" if key == "gait.duty_factor" else "duty_factor", None)
+    if key in ("gait.frequency", "gait.frames_per_cycle"):
+        data.setdefault("gait", {}).pop("frames_per_cycle" if key == "gait.frequency" else "frequency", None)
     if key in ("gait.front_back", "gait.left_right"):
         data.setdefault("gait", {}).pop("phases", None)
     node = data

@@ -16,6 +16,7 @@ Steps, each vectorised over frames (T) and girdles (G) or legs (L):
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Mapping
 
 import numpy as np
 from numpy.typing import NDArray
@@ -86,13 +87,16 @@ def standing_height(rig: Rig, stride_m: NDArray[np.float64], bob: NDArray[np.flo
 def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArray[np.float64],
                   ball: NDArray[np.float64], planted: NDArray[np.float64], stride_m: NDArray[np.float64],
                   bob: NDArray[np.float64], bob_lift: NDArray[np.float64],
-                  forward: NDArray[np.float64]) -> Girdles:
+                  forward: NDArray[np.float64], pose_height: NDArray[np.float64] | None = None,
+                  reach: NDArray[np.float64] | None = None) -> Girdles:
     """Girdle frames for body arc lengths s (T,).
 
     support, ball (T, L, 3): each foot's ground support and ball target; planted (T, L) in
     [0, 1]: how much each foot's reach limits the body (1 planted, fading out in mid-swing);
     stride_m (T, L) m; bob (T,) leg rest lengths; bob_lift, forward (T, L): the oscillator's
-    lift for the bob and fore-aft offset for the yaw.
+    lift for the bob and fore-aft offset for the yaw; pose_height (T,) m: the key poses'
+    height, which replaces the bob; reach (T, L) m: each leg's full extension where a
+    rolling foot's angle changes it (default the rig's L_max).
     """
     s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
     point, tangent = world.path.sample(s_g)
@@ -106,12 +110,16 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     rest = rig.girdle_rest_height
     stand = standing_height(rig, stride_m, bob_t)
     girdle_lift = np.maximum(bob_lift[:, 0::2], bob_lift[:, 1::2])
-    height = ground + stand + bob_t * rest * (girdle_lift - 0.5)
+    if pose_height is None:
+        height = ground + stand + bob_t * rest * (girdle_lift - 0.5)
+    else:
+        height = ground + stand + pose_height[:, None]
+    l_max = rig.l_max if reach is None else reach
 
     # Never higher than lets a planted foot reach its ball: the hip sits beside the centre.
     hip_xz = point[:, rig.girdle] + left[:, rig.girdle][..., [0, 2]] * (rig.hip_side * rig.hip_offset)[None, :, None]
     horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
-    allowed = ball[..., 1] + np.sqrt(np.maximum((REACH_LIMIT * rig.l_max) ** 2 - horizontal ** 2, 0.0))
+    allowed = ball[..., 1] + np.sqrt(np.maximum((REACH_LIMIT * l_max) ** 2 - horizontal ** 2, 0.0))
     allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
     # ... nor so low that a planted foot comes nearer than the leg can fold (the uphill foot
     # on a slope), nor crouched below MIN_CROUCH.
@@ -124,6 +132,7 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     # Roll towards the higher foot; yaw with the feet (secondary motion).
     across = np.linalg.norm(support[:, 0::2, [0, 2]] - support[:, 1::2, [0, 2]], axis=-1)
     roll = np.clip(ROLL_FOLLOW * np.arctan2(y_left - y_right, np.maximum(across, 1e-6)), -MAX_ROLL, MAX_ROLL)
+    roll = roll - rig.motion.pelvis_tilt * (bob_lift[:, 0::2] - bob_lift[:, 1::2])  # the swinging side drops
     yaw = -rig.motion.yaw * (forward[:, 0::2] - forward[:, 1::2])
     lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
     centre = np.stack([point[..., 0], height, point[..., 1]], axis=-1)
@@ -134,7 +143,9 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
 class Spine:
     """segments (T, S, 3) centres at equal arc length, tangents (T, S, 3), radius (S,);
     neck (T, 2, 3) base and top; head (T, 2, 3) back of skull and nose; tail (T, K+1, 3);
-    middle (T, 3) the trunk's middle and direction (T, 3) its unit tangent there."""
+    middle (T, 3) the trunk's middle and direction (T, 3) its unit tangent there (for an
+    upright trunk: the heading); shoulder (T, 3) the point between the shoulders and
+    shoulder_lateral (T, 3) the unit axis through them to the left (bodies with arms)."""
 
     segments: NDArray[np.float64]
     tangents: NDArray[np.float64]
@@ -144,6 +155,8 @@ class Spine:
     tail: NDArray[np.float64]
     middle: NDArray[np.float64]
     direction: NDArray[np.float64]
+    shoulder: NDArray[np.float64] | None = None
+    shoulder_lateral: NDArray[np.float64] | None = None
 
 
 def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
@@ -199,9 +212,69 @@ def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
     return pos, points, heading, yaw
 
 
+def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float64], rear: NDArray[np.float64],
+                d_rear: NDArray[np.float64], yaw_rear: NDArray[np.float64], clock: NDArray[np.float64],
+                lag: Mapping[str, NDArray[np.float64]] | None):
+    """Neck (T, 2, 3) and head (T, 2, 3) off the trunk's front end (T, 3) along its tangent
+    there, tail (T, K+1, 3) off the rear end. ``lag`` gives, per part (head, neck, tail),
+    how far (m) the body stood higher (+) a delay ago than now: the part follows through,
+    pitching up by that much over its length (overlap)."""
+    body = rig.body
+    lag = lag or {}
+
+    def follow(part: str, length: float):
+        value = lag.get(part)
+        return 0.0 if value is None else np.arctan2(value, max(length, 1e-3))
+
+    neck_dir = pitch(d_front, body.neck_angle + follow("neck", body.neck_length))
+    neck_top = front + body.neck_length * neck_dir
+    head_dir = pitch(d_front, -body.head_angle + follow("head", body.head_length))
+    neck = np.stack([front, neck_top], axis=1)
+    head = np.stack([neck_top, neck_top + body.head_length * head_dir], axis=1)
+    k = np.arange(body.tail_segments)
+    along = (k + 1) / body.tail_segments
+    droop = np.minimum(body.tail_angle * (1.0 + TAIL_DROOP * k / body.tail_segments), 0.5 * np.pi)
+    droop = droop - np.asarray(follow("tail", body.tail_length))[..., None] * along
+    delay = rig.overlap.tail
+    sway = rig.motion.tail_sway * along * np.sin(2.0 * np.pi * (clock[:, None] - delay - TAIL_WAVE_LAG * along))
+    back = rotate_y(-d_rear[:, None, :], sway + yaw_rear[:, None])  # (T, K, 3)
+    tail_dirs = pitch(back, -droop)
+    tail = np.concatenate([rear[:, None], rear[:, None] + np.cumsum(
+        (body.tail_length / body.tail_segments) * tail_dirs, axis=1)], axis=1)
+    return neck, head, tail
+
+
+def _upright_spine(rig: Rig, girdles: Girdles, clock: NDArray[np.float64],
+                   lag: Mapping[str, NDArray[np.float64]] | None) -> Spine:
+    """An upright trunk (a human's): straight up from its one girdle, leaning forward by
+    the key poses' torso lean; the shoulders turn against the hips (by the girdle's yaw)."""
+    body = rig.body
+    pelvis, heading, yaw = girdles.centre[:, 0], girdles.heading[:, 0], girdles.yaw[:, 0]
+    lean = rig.poses.torso_lean
+    axis = np.cos(lean) * UP + np.sin(lean) * heading  # (T, 3)
+    fractions = (np.arange(body.segments) + 0.5) / body.segments
+    segments = pelvis[:, None] + axis[:, None] * (fractions * body.length)[None, :, None]
+    tangents = np.broadcast_to(axis[:, None], segments.shape).copy()
+    radius = np.interp(fractions, np.linspace(0.0, 1.0, body.radius.size), body.radius)
+    top = pelvis + axis * (body.length + 0.6 * body.radius[-1])
+    neck, head, tail = _appendages(rig, top, heading, pelvis - heading * 0.6 * body.radius[0], heading, yaw,
+                                   clock, lag)
+    shoulder = lateral = None
+    if rig.arms is not None:
+        shoulder = pelvis + axis * body.length * rig.arms.position
+        left = np.stack([heading[:, 2], np.zeros(len(heading)), -heading[:, 0]], axis=-1)
+        lateral = rotate_y(left, -yaw)  # counter-rotating to the hips
+    return Spine(segments=segments, tangents=tangents, radius=radius, neck=neck, head=head, tail=tail,
+                 middle=pelvis + 0.5 * body.length * axis, direction=heading, shoulder=shoulder,
+                 shoulder_lateral=lateral)
+
+
 def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64],
-                  clock: NDArray[np.float64]) -> Spine:
-    """The trunk, neck, head and tail for girdles placed by :func:`place_girdles`."""
+                  clock: NDArray[np.float64], lag: Mapping[str, NDArray[np.float64]] | None = None) -> Spine:
+    """The trunk, neck, head and tail for girdles placed by :func:`place_girdles` (``lag``:
+    see :func:`_appendages`)."""
+    if rig.body.upright:
+        return _upright_spine(rig, girdles, clock, lag)
     body = rig.body
     frames = s.shape[0]
     pos, knots, heading, yaw = _knots(rig, world, girdles, s)
@@ -253,20 +326,7 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     # Neck and head off the front, tail off the rear.
     front = bezier(ctrl[:, -1], np.full((frames, 1), 1.0 + 0.6 * ext_front))[:, 0]
     rear = bezier(ctrl[:, 0], np.full((frames, 1), -0.6 * ext_rear))[:, 0]
-    d_front, d_rear = tangent[:, -1], tangent[:, 0]
-    neck_dir = pitch(d_front, body.neck_angle)
-    neck_top = front + body.neck_length * neck_dir
-    head_dir = pitch(d_front, -body.head_angle)
-    neck = np.stack([front, neck_top], axis=1)
-    head = np.stack([neck_top, neck_top + body.head_length * head_dir], axis=1)
-    k = np.arange(body.tail_segments)
-    along = (k + 1) / body.tail_segments
-    droop = np.minimum(body.tail_angle * (1.0 + TAIL_DROOP * k / body.tail_segments), 0.5 * np.pi)
-    sway = rig.motion.tail_sway * along * np.sin(2.0 * np.pi * (clock[:, None] - TAIL_WAVE_LAG * along))
-    back = rotate_y(-d_rear[:, None, :], sway + yaw[:, :1])  # (T, K, 3)
-    tail_dirs = pitch(back, -droop)
-    tail = np.concatenate([rear[:, None], rear[:, None] + np.cumsum(
-        (body.tail_length / body.tail_segments) * tail_dirs, axis=1)], axis=1)
+    neck, head, tail = _appendages(rig, front, tangent[:, -1], rear, tangent[:, 0], yaw[:, 0], clock, lag)
 
     # The root: the middle of the trunk (position 0.5) and its direction there, on the
     # spine as the path shapes it (the girdles' yaw, a sway of the trunk about the root,
@@ -277,8 +337,16 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     mid_ctrl = np.stack([a, a + along_path[:, mid] * third[mid], b - along_path[:, mid + 1] * third[mid], b], axis=-2)
     middle = bezier(mid_ctrl, t_mid)[:, 0]
     direction = bezier_tangent(mid_ctrl, t_mid)[:, 0]
+    shoulder = lateral = None
+    if rig.arms is not None:  # on the trunk at the arms' position, level across
+        where = np.clip(rig.arms.position * segments.shape[1] - 0.5, 0.0, segments.shape[1] - 1.0)
+        i = min(int(where), segments.shape[1] - 2)
+        w = where - i
+        shoulder = segments[:, i] * (1.0 - w) + segments[:, i + 1] * w
+        d = unit(tangents[:, i] * (1.0 - w) + tangents[:, i + 1] * w)
+        lateral = unit(np.cross(UP, d))
     return Spine(segments=segments, tangents=tangents, radius=spine_radius, neck=neck, head=head, tail=tail,
-                 middle=middle, direction=direction)
+                 middle=middle, direction=direction, shoulder=shoulder, shoulder_lateral=lateral)
 
 
 def root_frames(spine: Spine) -> NDArray[np.float64]:

@@ -39,8 +39,10 @@ class FootPlan:
     """Each foot in each frame (arrays (T, L, ...)): its phase since touchdown and duty
     factor, whether it is planted, its swing progress (0 in stance), the foothold it
     stands on or left (``start``) and the one it swings to (``end``, equal to ``start``
-    in stance), their ground normals, its swing's apex height (m), and the body's arc
-    length along the path when the swing starts and ends (``lift_at``, ``land_at``)."""
+    in stance), their ground normals, its swing's apex height (m), the body's arc
+    length along the path when the swing starts and ends (``lift_at``, ``land_at``), and
+    the horizontal (x, z) unit direction each foothold's foot points (``start_dir``,
+    ``end_dir``, (T, L, 2): the foot's direction at its mid-stance, fixed for its stance)."""
 
     phase: NDArray[np.float64]
     duty: NDArray[np.float64]
@@ -53,6 +55,8 @@ class FootPlan:
     apex: NDArray[np.float64]
     lift_at: NDArray[np.float64]
     land_at: NDArray[np.float64]
+    start_dir: NDArray[np.float64]
+    end_dir: NDArray[np.float64]
 
 
 def swing_ease(swing: NDArray[np.float64], wave: str) -> NDArray[np.float64]:
@@ -90,6 +94,14 @@ def neutral_points(rig: Rig, world: World, s: NDArray[np.float64], legs: NDArray
     point, tangent = world.path.sample(s_girdle)
     rest = rig.neutral_feet[legs]  # (N, 2): lateral, forward
     return point + left_of(tangent) * rest[:, :1] + tangent * rest[:, 1:], tangent
+
+
+def stance_directions(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDArray[np.int64]
+                      ) -> NDArray[np.float64]:
+    """The horizontal (x, z) direction (N, 2) feet ``legs`` (N,) point in a stance centred on
+    body arc length ``s_mid`` (N,): the foot's own heading for that whole stance."""
+    _, tangent = neutral_points(rig, world, s_mid, legs)
+    return foot_directions(rig, tangent, legs)
 
 
 def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDArray[np.int64]) -> Footholds:
@@ -182,6 +194,7 @@ def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], trave
     leg_index = np.broadcast_to(legs, s_mid.shape)
     held = plan_footholds(rig, world, s_mid.reshape(-1), leg_index.reshape(-1))
     count = steps.shape[0]
+    dirs = stance_directions(rig, world, s_mid.reshape(-1), leg_index.reshape(-1)).reshape(count, rig.leg_count, 2)
     points = held.points.reshape(count, rig.leg_count, 3)
     normals = held.normals.reshape(count, rig.leg_count, 3)
     step_m = np.broadcast_to(gait.step_height * rig.l_rest, (count - 1, rig.leg_count))
@@ -198,7 +211,8 @@ def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], trave
     return FootPlan(phase=phase, duty=np.broadcast_to(duty, phase.shape), contact=contact, swing=swing,
                     start=points[index, legs], end=points[nxt, legs], start_normal=normals[index, legs],
                     end_normal=normals[nxt, legs], apex=apex[np.minimum(index, count - 2), legs],
-                    lift_at=lift_at, land_at=lift_at + travel_per_cycle * (1.0 - duty))
+                    lift_at=lift_at, land_at=lift_at + travel_per_cycle * (1.0 - duty), start_dir=dirs[index, legs],
+                    end_dir=dirs[nxt, legs])
 
 
 @dataclass(frozen=True)

@@ -74,6 +74,10 @@ def solve_legs(
     swing_rest: NDArray[np.float64] | float = 0.0,
     ground_height: NDArray[np.float64] | float = 0.0,
     knee_pole: NDArray[np.float64] | None = None,
+    ankle_angle: NDArray[np.float64] | None = None,
+    ankle_weight: NDArray[np.float64] | None = None,
+    toe_drop: NDArray[np.float64] | None = None,
+    toe_weight: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
     """Solve legs for hip and ball positions.
 
@@ -88,6 +92,10 @@ def solve_legs(
                    frame (default (knee_sign, 0): forward or back); sprawled legs bend up
                    and out
     ground_height: height (m) of the ground under each ball, for keeping the toe above it
+    ankle_angle, ankle_weight: (..., L) optional: a metatarsus angle (rad, ball-to-ankle
+                   above the frame's backward horizontal; may be negative) that replaces the
+                   leg's own by the weight in [0, 1] (a rolling foot)
+    toe_drop, toe_weight: (..., L) optional: likewise the toe's angle below horizontal
 
     Returns joints (..., L, 5, 3): hip, knee, ankle, ball, toe tip. Bone lengths are
     preserved exactly; the ball reaches the target when the target is within
@@ -103,8 +111,9 @@ def solve_legs(
     shape = np.broadcast_shapes(hip.shape, target.shape)
     rows = int(np.prod(shape[:-2], dtype=np.int64)) if len(shape) > 2 else 1
     per_row = shape[-2]
+    rolls = (ankle_angle, ankle_weight, toe_drop, toe_weight)
     if len(shape) != 3 or rows * per_row <= 2 * _CHUNK_LEGS:
-        return _solve(hip, target, forward, up, toe_curl, ground_height, **rig)
+        return _solve(hip, target, forward, up, toe_curl, ground_height, rolls, **rig)
     # Long clips: solve blocks of frames. Per-frame inputs are sliced, shared ones passed whole.
     step = max(1, _CHUNK_LEGS // per_row)
     out = np.empty(shape[:-1] + (5, 3))
@@ -117,11 +126,12 @@ def solve_legs(
         hi = min(lo + step, shape[0])
         out[lo:hi] = _solve(np.broadcast_to(hip, shape)[lo:hi], np.broadcast_to(target, shape)[lo:hi],
                             part(forward, lo, hi), part(up, lo, hi), part(toe_curl, lo, hi),
-                            part(ground_height, lo, hi), **rig)
+                            part(ground_height, lo, hi),
+                            tuple(None if a is None else part(a, lo, hi) for a in rolls), **rig)
     return out
 
 
-def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, metatarsus, toe, ankle_lift,
+def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4, *, femur, tibia, metatarsus, toe, ankle_lift,
            l_max, l_rest, l_min, knee_sign, swing_rest=0.0, knee_pole=None) -> NDArray[np.float64]:
     """:func:`solve_legs` on one block (see there)."""
     shape = np.broadcast_shapes(hip.shape, target.shape)
@@ -160,6 +170,9 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, m
     lift = ankle_lift * np.minimum(1.0, np.sqrt(length / l_rest)) \
         + (0.5 * np.pi - swing_rest - ankle_lift) * extension ** 2
     alpha = np.clip(lift - swing, 0.0, MAX_ANKLE_ANGLE)
+    ankle_angle, ankle_weight, toe_angle, toe_weight = rolls
+    if ankle_angle is not None:  # a rolling foot's metatarsus
+        alpha = alpha + ankle_weight * (np.minimum(ankle_angle, MAX_ANKLE_ANGLE) - alpha)
     wf, wu = -np.cos(alpha), np.sin(alpha)  # wanted direction ball -> ankle (no lateral part)
     wl = np.zeros_like(wf)
 
@@ -216,6 +229,8 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, *, femur, tibia, m
     height = hip[..., 1] + hf * fwd[..., 1] + hu * upv[..., 1] + hl * lat[..., 1] - ground_height
     room = np.arcsin(np.clip(0.5 * height / np.maximum(toe, 1e-12), 0.0, 1.0))
     drop = np.minimum(ankle_lift * np.clip(toe_curl, 0.0, 1.0), room)
+    if toe_angle is not None:  # a rolling foot's toe
+        drop = drop + toe_weight * (toe_angle - drop)
     tf, tu = hf + toe * np.cos(drop), hu - toe * np.sin(drop)
 
     # Back to world space: hip + f * forward + u * up + l * lateral, for all four joints.

@@ -31,7 +31,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .easing import smoothstep
-from .footfalls import FootPlan, landing_points, neutral_points, plan_constant_gait, plan_footholds, swing_apex
+from .footfalls import (FootPlan, landing_points, neutral_points, plan_constant_gait, plan_footholds,
+                        stance_directions, swing_apex)
 from .gait import ground_speed
 from .motion import MotionInputs, Pose, check_world, oscillators, solve_motion
 from .oscillator import FootWave
@@ -104,6 +105,7 @@ class LiveMotion:
                                   origin=self.travel - per_cycle * self.clock)
         self.start, self.end = plan.start[0].copy(), plan.end[0].copy()
         self.start_normal, self.end_normal = plan.start_normal[0].copy(), plan.end_normal[0].copy()
+        self.start_dir, self.end_dir = plan.start_dir[0].copy(), plan.end_dir[0].copy()
         self.apex = plan.apex[0].copy()
         self.lift_at, self.land_at = plan.lift_at[0].copy(), plan.land_at[0].copy()
         self._freq_from = self._freq_to = g.frequency
@@ -351,6 +353,7 @@ class LiveMotion:
             self.end[legs] = point
         self.start = np.where(landed[:, None], self.end, self.start)
         self.start_normal = np.where(landed[:, None], self.end_normal, self.start_normal)
+        self.start_dir = np.where(landed[:, None], self.end_dir, self.start_dir)
         self.stride_lift = np.where(lifted, self.stride, self.stride_lift)
         self.stride = np.where(lifted, g.stride, self.stride)
         self.duty = np.where(landed, g.duty_factor, self.duty)
@@ -412,6 +415,7 @@ class LiveMotion:
         held = plan_footholds(self.rig, self.world, s_mid, legs)
         self.end[legs] = held.points
         self.end_normal[legs] = held.normals
+        self.end_dir[legs] = stance_directions(self.rig, self.world, s_mid, legs)
         step_m = self.step_height[legs] * self.rig.l_rest[legs]
         self.apex[legs] = swing_apex(self.rig, self.world, self.start[legs], self.end[legs], legs, step_m,
                                      self.duty[legs], self._wave_now(), self.lift_at[legs], self.land_at[legs])
@@ -433,6 +437,7 @@ class LiveMotion:
         swing = np.where(contact, 0.0, (phase - self.duty) / (1.0 - self.duty))
         end = np.where(contact[:, None], self.start, self.end)
         end_normal = np.where(contact[:, None], self.start_normal, self.end_normal)
+        end_dir = np.where(contact[:, None], self.start_dir, self.end_dir)
         land_at = self.land_at.copy()
         airborne = np.nonzero(~contact)[0]
         # On flat ground the aim changes nothing, unless a swing was planned on other
@@ -453,7 +458,7 @@ class LiveMotion:
         return FootPlan(phase=phase[None], duty=self.duty[None].copy(), contact=contact[None], swing=swing[None],
                         start=self.start[None].copy(), end=end[None], start_normal=self.start_normal[None].copy(),
                         end_normal=end_normal[None], apex=self.apex[None].copy(), lift_at=self.lift_at[None].copy(),
-                        land_at=land_at[None])
+                        land_at=land_at[None], start_dir=self.start_dir[None].copy(), end_dir=end_dir[None])
 
     def frame_inputs(self) -> dict:
         """This frame's inputs for :func:`solve_motion` (stackable over frames)."""

@@ -20,13 +20,16 @@ from dataclasses import dataclass, field, fields, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from .arms import arm_chains, arm_swing
 from .body import place_girdles, root_frames, spine_through
 from .footfalls import FootPlan, foot_directions, foot_targets, plan_constant_gait
 from .gait import ground_speed
 from .leg import solve_legs
 from .oscillator import FootWave, foot_wave
 from .path import Path
+from .poses import pose_height, reference_foot, step_phase
 from .rig import Rig
+from .roll import foot_roll, heel_points
 from .terrain import Terrain
 from .world import World, WorldError
 
@@ -43,7 +46,9 @@ class Pose:
     spine_radius (S,); neck (2, 3) base and top; head (2, 3) back of skull and nose;
     tail (K+1, 3) chain; root (4, 4) body transform; ground_offset: how far (m) the
     ground has moved backwards (-Z) since time 0 (in place; 0 when travelling);
-    travel: the body's arc length along its path (m).
+    travel: the body's arc length along its path (m); heel (L, 3) where each foot's heel
+    touches (the ball for feet that do not roll or stand on their toes); arms (A, 4, 3)
+    shoulder, elbow, wrist and hand tip of each arm (A = 0 or 2, left first).
     """
 
     joints: NDArray[np.float64]
@@ -59,6 +64,8 @@ class Pose:
     ground_offset: float
     travel: float
     leg_names: tuple[str, ...]
+    heel: NDArray[np.float64]
+    arms: NDArray[np.float64]
 
 
 @dataclass(frozen=True)
@@ -87,6 +94,8 @@ class Motion:
     leg_names: tuple[str, ...]
     fps: float
     rig: Rig
+    heel: NDArray[np.float64]  # (T, L, 3)
+    arms: NDArray[np.float64]  # (T, A, 4, 3)
     world: World = field(default_factory=World)
     gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
     reach_error: NDArray[np.float64] | None = None  # (T, L) m between each ball and its target
@@ -110,7 +119,7 @@ class Motion:
     def frames(self, first: int) -> "Motion":
         """The clip from frame ``first`` on."""
         per_frame = {"times", "clock", "joints", "contact", "phase", "spine", "spine_tangent", "neck", "head", "tail",
-                     "root", "ground_offset", "travel"}
+                     "root", "ground_offset", "travel", "heel", "arms"}
         values = {name: getattr(self, name)[first:] for name in per_frame}
         if self.reach_error is not None:
             values["reach_error"] = self.reach_error[first:]
@@ -173,22 +182,52 @@ def _leg_frames(rig: Rig, heading: NDArray[np.float64], normal: NDArray[np.float
     return forward, normal
 
 
+def _body_height(rig: Rig, plan: FootPlan, wave: str, bob: NDArray[np.float64],
+                 delay: float = 0.0) -> NDArray[np.float64]:
+    """How far (m) each girdle (T, G) stands above or below its standing height from the
+    gait's rhythm ``delay`` cycles ago: the key poses' height, or the bob."""
+    if rig.poses.heights is not None:
+        height = pose_height(rig.poses.heights, step_phase(rig, plan.phase - delay))
+        return np.broadcast_to(height[:, None], (height.shape[0], rig.girdle_rest_height.size))
+    lift = foot_wave(plan.phase - rig.motion.bob_phase - delay, plan.duty, wave).lift  # type: ignore[arg-type]
+    girdle_lift = np.maximum(lift[:, 0::2], lift[:, 1::2])
+    return bob[:, None] * rig.girdle_rest_height * (girdle_lift - 0.5)
+
+
+def _overlap(rig: Rig, plan: FootPlan, wave: str, bob: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+    """Each delayed part's lag (T,): how much higher (m) its end of the body stood its delay
+    ago than now (the head and neck at the front girdle, the tail at the rear one)."""
+    lag = {}
+    now = None
+    for part, girdle in (("head", 0), ("neck", 0), ("tail", -1)):
+        delay = getattr(rig.overlap, part)
+        if delay > 0:
+            now = _body_height(rig, plan, wave, bob) if now is None else now
+            lag[part] = _body_height(rig, plan, wave, bob, delay)[:, girdle] - now[:, girdle]
+    return lag
+
+
 def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0) -> Motion:
     """Poses for every frame of ``inputs`` (see the module docstring for the steps)."""
     plan = inputs.plan
     frames = inputs.clock.shape[0]
     wave, bob_wave = inputs.waves if inputs.waves is not None else oscillators(rig, plan, inputs.wave)
 
-    # 1. Feet: targets from the plan, lifted by the oscillator.
+    # 1. Feet: targets from the plan, lifted by the oscillator, rolled heel to toe.
     feet = foot_targets(plan, wave.lift, inputs.wave, rig, world, inputs.travel)
+    roll = foot_roll(rig, plan, feet.ball, rig.poses.foot_angle)
+    ball = feet.ball if roll is None else roll.ball
 
-    # 2. Girdles: on the path, at the height of their feet's ground.
+    # 2. Girdles: on the path, at the height of their feet's ground (and of the key poses).
     planted = np.where(plan.contact, 1.0, np.clip(np.maximum(1.0 - 4.0 * plan.swing, 4.0 * plan.swing - 3.0), 0, 1))
-    girdles = place_girdles(rig, world, inputs.travel, feet.support, feet.ball, planted, inputs.stride,
-                            inputs.bob, bob_wave.lift, wave.forward)
+    posed = rig.poses.heights is not None
+    bob = np.zeros_like(inputs.bob) if posed else inputs.bob
+    height = _body_height(rig, plan, inputs.wave, bob)[:, 0] if posed else None
+    girdles = place_girdles(rig, world, inputs.travel, feet.support, ball, planted, inputs.stride,
+                            bob, bob_wave.lift, wave.forward, pose_height=height)
 
-    # 3. Spine, neck, head, tail.
-    spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock)
+    # 3. Spine, neck, head, tail (following through by their overlap).
+    spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, _overlap(rig, plan, inputs.wave, bob))
 
     # 4. Hips beside the girdle centres, then the legs in their own frames.
     hips = girdles.centre[:, rig.girdle] + (rig.hip_side * rig.hip_offset)[None, :, None] * \
@@ -196,16 +235,33 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     forward, up = _leg_frames(rig, girdles.heading[:, rig.girdle], feet.normal)
     ground = 0.0
     if not world.terrain.flat:  # the ground under the ball and under the toe tip, whichever is higher
-        toe_tip = feet.ball[..., [0, 2]] + np.broadcast_to(forward, feet.ball.shape)[..., [0, 2]] * rig.toe[:, None]
-        ground = np.maximum(world.terrain.height(feet.ball[..., [0, 2]]), world.terrain.height(toe_tip))
+        toe_tip = ball[..., [0, 2]] + np.broadcast_to(forward, ball.shape)[..., [0, 2]] * rig.toe[:, None]
+        ground = np.maximum(world.terrain.height(ball[..., [0, 2]]), world.terrain.height(toe_tip))
+    rolls = {}
+    if roll is not None:  # a rolling foot's leg works in the plane the foot points in
+        w = roll.forward_weight[..., None]
+        forward = np.broadcast_to(forward, ball.shape) * (1.0 - w) + roll.forward * w
+        forward = forward - np.sum(forward * up, axis=-1, keepdims=True) * up
+        forward = forward / np.linalg.norm(forward, axis=-1, keepdims=True)
+        rolls = dict(ankle_angle=roll.ankle_angle, ankle_weight=roll.ankle_weight, toe_drop=roll.toe_drop,
+                     toe_weight=roll.toe_weight)
     joints = solve_legs(
-        hips, feet.ball, forward, up, np.sin(np.pi * wave.swing),
+        hips, ball, forward, up, np.sin(np.pi * wave.swing),
         femur=rig.femur, tibia=rig.tibia, metatarsus=rig.metatarsus, toe=rig.toe,
         ankle_lift=rig.ankle_lift, l_max=rig.l_max, l_rest=rig.l_rest, l_min=rig.l_min,
-        knee_sign=rig.knee_sign, swing_rest=rig.swing_rest, ground_height=ground, knee_pole=rig.knee_pole,
+        knee_sign=rig.knee_sign, swing_rest=rig.swing_rest, ground_height=ground, knee_pole=rig.knee_pole, **rolls,
     )
+    heel = heel_points(rig, joints, forward, up)
     root = root_frames(spine)
-    reach_error = np.linalg.norm(joints[:, :, 3] - feet.ball, axis=-1)
+    reach_error = np.linalg.norm(joints[:, :, 3] - ball, axis=-1)
+
+    # 5. Arms, swinging against the legs of the rearmost pair.
+    if rig.arms is not None:
+        ref = reference_foot(rig)
+        angle = arm_swing(rig.poses.arm_swing, rig.overlap.arms, plan.phase[:, [ref + 1, ref]])
+        arms = arm_chains(rig.arms, spine.shoulder, spine.shoulder_lateral, angle)
+    else:
+        arms = np.zeros((frames, 0, 4, 3))
 
     spine_pts, spine_tan, neck, head, tail = spine.segments, spine.tangents, spine.neck, spine.head, spine.tail
     ground_offset = np.zeros(frames)
@@ -215,13 +271,16 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
         shift = np.zeros((frames, 3))
         shift[:, 2] = -inputs.travel
         joints = joints + shift[:, None, None, :]
+        heel = heel + shift[:, None, :]
+        arms = arms + shift[:, None, None, :]
         spine_pts, neck, head, tail = (a + shift[:, None, :] for a in (spine_pts, neck, head, tail))
         root = root.copy()
         root[:, 2, 3] -= inputs.travel
     return Motion(times=inputs.times, clock=inputs.clock, joints=joints, contact=plan.contact, phase=plan.phase,
                   spine=spine_pts, spine_tangent=spine_tan, spine_radius=spine.radius, neck=neck, head=head,
                   tail=tail, root=root, ground_offset=ground_offset, travel=inputs.travel,
-                  leg_names=rig.leg_names, fps=fps, rig=rig, world=world, reach_error=reach_error)
+                  leg_names=rig.leg_names, fps=fps, rig=rig, heel=heel, arms=arms, world=world,
+                  reach_error=reach_error)
 
 
 def frame_count(seconds: float, fps: float) -> int:

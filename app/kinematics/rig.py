@@ -67,16 +67,58 @@ class BodyShape:
     tail_length: float
     tail_angle: float
     tail_segments: int
+    upright: bool = False  # the trunk rises from its one girdle (a human) instead of running between girdles
 
 
 @dataclass(frozen=True)
 class SecondaryMotion:
-    """yaw: how far (rad) the girdles turn with their feet; tail_sway (rad); bob_phase
-    (cycle fraction) shifts the body bob relative to the feet."""
+    """yaw: how far (rad) the girdles turn with their feet (the shoulders of an upright
+    body turn the other way); tail_sway (rad); bob_phase (cycle fraction) shifts the body
+    bob relative to the feet; pelvis_tilt (rad): how far a girdle drops on the side of its
+    swinging leg."""
 
     yaw: float = 0.0
     tail_sway: float = 0.0
     bob_phase: float = 0.0
+    pelvis_tilt: float = 0.0
+
+
+@dataclass(frozen=True)
+class ArmShape:
+    """Two arms: bone lengths (m), bone radius at the shoulder (m), the distance between
+    the shoulders (m), where they sit along the trunk (0 rear/bottom, 1 front/top) and the
+    elbow's rest bend (rad)."""
+
+    upper: float
+    fore: float
+    hand: float
+    radius: float
+    shoulder_width: float
+    position: float
+    elbow: float
+
+
+@dataclass(frozen=True)
+class KeyPoses:
+    """The key poses of a step. heights (4,): the body's height (m) at contact, down,
+    pass and up relative to its standing height, or None (the gait's own bob);
+    foot_angle (rad, toes up at contact, with the legs' roll); arm_swing (rad either
+    way); torso_lean (rad forward, upright bodies)."""
+
+    heights: NDArray[np.float64] | None = None
+    foot_angle: float = 0.35
+    arm_swing: float = 0.4
+    torso_lean: float = 0.0
+
+
+@dataclass(frozen=True)
+class Overlap:
+    """Follow-through delays (cycle fractions) of the head, neck, arms and tail."""
+
+    head: float = 0.0
+    neck: float = 0.0
+    arms: float = 0.0
+    tail: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -139,10 +181,25 @@ class Rig:
     motion: SecondaryMotion = SecondaryMotion()
     look: Look = Look()
     speed: SpeedGaits | None = None
+    arms: ArmShape | None = None
+    poses: KeyPoses = KeyPoses()
+    overlap: Overlap = Overlap()
+    roll: NDArray[np.float64] | None = None  # (L,) foot roll amount 0..1 (None: all 0)
 
     @property
     def leg_count(self) -> int:
         return len(self.leg_names)
+
+    @functools.cached_property
+    def roll_amount(self) -> NDArray[np.float64]:
+        """Each foot's roll amount (L,), 0 (lands flat) to 1."""
+        return np.zeros(self.leg_count) if self.roll is None else np.asarray(self.roll, dtype=np.float64)
+
+    @functools.cached_property
+    def heel_length(self) -> NDArray[np.float64]:
+        """How far (m) behind the ball a foot's heel touches the ground (L,): the flat
+        metatarsus of a plantigrade foot, 0 for feet that stand on their toes."""
+        return np.where(self.ankle_lift < np.radians(25.0), self.metatarsus * np.cos(self.ankle_lift), 0.0)
 
     @property
     def hip_height(self) -> float:

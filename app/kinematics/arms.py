@@ -1,0 +1,54 @@
+"""Arms: shoulder, elbow, wrist and hand tip, swinging opposite to the legs.
+
+Each arm hangs from its shoulder and swings in the body's sagittal plane like a pendulum
+driven by the legs: the left arm is farthest forward when the right foot touches down
+(and so the right arm with the left foot), a cosine of the opposite foot's phase, delayed
+by the arms' overlap. The elbow keeps its rest bend and bends further as the arm swings
+forward; the hand carries on from the forearm, a little flexed. Vectorised over frames.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .rig import ArmShape
+
+UP = np.array([0.0, 1.0, 0.0])
+FORWARD_BEND = 0.6  # extra elbow bend per radian of forward swing
+WRIST_FLEX = 0.15  # rad the hand turns further than the forearm
+ARM_SPREAD = 0.06  # rad the arms hang out from the body
+
+
+def arm_swing(swing: float, delay: float, opposite_phase: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each arm's swing angle (T, 2), rad forward, left then right: ``swing`` times the
+    cosine of the opposite foot's phase (T, 2: the right foot's for the left arm, the left
+    foot's for the right), ``delay`` cycles later."""
+    return swing * np.cos(2.0 * np.pi * (opposite_phase - delay))
+
+
+def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.float64],
+               angle: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Arm joints (T, 2, 4, 3): shoulder, elbow, wrist and hand tip of the left and right
+    arm. centre (T, 3) the point between the shoulders; lateral (T, 3) the unit axis to
+    the body's left through them; angle (T, 2) each arm's swing (rad, forward)."""
+    lateral = lateral - np.sum(lateral * UP, axis=-1, keepdims=True) * UP
+    lateral = lateral / np.maximum(np.linalg.norm(lateral, axis=-1, keepdims=True), 1e-12)
+    forward = np.cross(lateral, UP)  # (T, 3): left x up = forward
+    side = np.array([1.0, -1.0])[None, :, None]
+    shoulder = centre[:, None, :] + side * 0.5 * arms.shoulder_width * lateral[:, None, :]
+    out = side * np.sin(ARM_SPREAD) * lateral[:, None, :]
+    f, u = forward[:, None, :], UP[None, None, :]
+
+    def direction(theta):
+        return np.sin(theta)[..., None] * f - np.cos(theta)[..., None] * u + out
+
+    bend = arms.elbow + FORWARD_BEND * np.maximum(angle, 0.0)
+    elbow = shoulder + arms.upper * _unit(direction(angle))
+    wrist = elbow + arms.fore * _unit(direction(angle + bend))
+    hand = wrist + arms.hand * _unit(direction(angle + bend + WRIST_FLEX))
+    return np.stack([shoulder, elbow, wrist, hand], axis=2)
+
+
+def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    return v / np.linalg.norm(v, axis=-1, keepdims=True)

@@ -1,0 +1,150 @@
+"""Foot roll: heel strike, roll to flat, heel rise, roll over the ball, toe-off.
+
+A rolling foot is a rigid heel-ball-toe that turns about whichever point touches the
+ground, so that point never slips (it is fixed in the world for as long as it touches).
+Over a stance (``u`` = phase / duty, 0 at touchdown, 1 at lift-off), for roll amount r:
+
+- ``0 <= u < a``: the heel has struck with the toes up by the contact foot angle
+  ``r * foot_angle``; the foot rolls down about the heel to flat (angle ``(1 - u/a)^2``);
+- ``a <= u < b``: flat; heel and ball on the ground;
+- ``b <= u < c``: the heel rises about the ball (by up to ``r * HEEL_RISE``);
+- ``c <= u <= 1``: the foot rolls over the toe tip, the ball rising (by up to
+  ``r * TOE_OFF`` of toe angle), until the toe leaves the ground.
+
+with ``a = r * HEEL_PART``, ``b = 1 - r * RISE_PART``, ``c = 1 - r * TOE_PART``. A plantigrade
+foot's heel is its flat metatarsus behind the ball (:attr:`Rig.heel_length`); a foot that
+stands on its toes strikes with its ball (the toes up) and lifts over its toe tip.
+
+The leg's IK is then told the ball target (moved about the pivot), the metatarsus angle
+(plantigrade feet: the rigid foot's) and the toe angle; in swing these blend from the
+lift-off pose and into the strike pose, so nothing jumps. Roll 0 changes nothing.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .easing import smoothstep
+from .footfalls import FootPlan
+from .rig import Rig
+
+HEEL_PART = 0.2  # of the stance, at roll 1: heel strike to foot flat
+RISE_PART = 0.45  # of the stance before lift-off, at roll 1: where the heel starts to rise
+TOE_PART = 0.2  # of the stance before lift-off, at roll 1: the roll over the toes
+HEEL_RISE = np.radians(22.0)  # how far the heel rises about the ball before the toe roll, at roll 1
+TOE_OFF = np.radians(35.0)  # the toe's angle at lift-off, at roll 1
+BLEND = 0.4  # of the swing: how long the lift-off pose fades and the strike pose builds
+
+
+@dataclass(frozen=True)
+class FootRoll:
+    """What the roll asks of each leg (T, L, ...): the ball target; the metatarsus angle
+    (rad, the ball-to-ankle direction above the foot's backward horizontal) and the toe's
+    drop (rad below horizontal), each with a weight in [0, 1] against the leg's own; the
+    foot's forward direction (unit, 3) with its weight against the body's heading."""
+
+    ball: NDArray[np.float64]
+    ankle_angle: NDArray[np.float64]
+    ankle_weight: NDArray[np.float64]
+    toe_drop: NDArray[np.float64]
+    toe_weight: NDArray[np.float64]
+    forward: NDArray[np.float64]
+    forward_weight: NDArray[np.float64]
+
+
+def _foot_frame(direction: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The foot's forward (..., 3): its horizontal direction (..., 2) made perpendicular to
+    the ground normal (..., 3)."""
+    f = np.stack([direction[..., 0], np.zeros(direction.shape[:-1]), direction[..., 1]], axis=-1)
+    f = f - np.sum(f * normal, axis=-1, keepdims=True) * normal
+    return f / np.maximum(np.linalg.norm(f, axis=-1, keepdims=True), 1e-12)
+
+
+def _stance(rig: Rig, foot_angle: float, u: NDArray[np.float64], foothold: NDArray[np.float64],
+            forward: NDArray[np.float64], normal: NDArray[np.float64]):
+    """The rolled foot at stance fraction u (T, L) on a foothold (T, L, 3) (the flat ball's
+    place): ball (T, L, 3), metatarsus angle and toe drop (T, L)."""
+    r = rig.roll_amount
+    a, b, c = r * HEEL_PART, 1.0 - r * RISE_PART, 1.0 - r * TOE_PART
+    x_heel = np.clip(u / np.where(a > 0, a, 1.0), 0.0, 1.0)
+    heel_pitch = np.where(a > 0, r * foot_angle * (1.0 - x_heel) ** 2, 0.0)  # toes up, about the heel
+    rise = r * HEEL_RISE * smoothstep((u - b) / np.maximum(c - b, 1e-9))
+    x_toe = np.clip((u - c) / np.where(c < 1.0, 1.0 - c, 1.0), 0.0, 1.0)
+    toe_pitch = np.where(c < 1.0, r * TOE_OFF * x_toe ** 2, 0.0)  # ball up, about the toe tip
+    heel = rig.heel_length
+    toe = rig.toe
+    along = heel * (np.cos(heel_pitch) - 1.0) + toe * (1.0 - np.cos(toe_pitch))
+    up = heel * np.sin(heel_pitch) + toe * np.sin(toe_pitch)
+    ball = foothold + along[..., None] * forward + up[..., None] * normal
+    ankle = rig.ankle_lift - heel_pitch + rise + toe_pitch
+    drop = toe_pitch - heel_pitch
+    return ball, ankle, drop
+
+
+def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: float) -> FootRoll | None:
+    """The roll of every foot over a plan (None when no leg rolls). ball (T, L, 3) the
+    flat foot's ball targets (:func:`~app.kinematics.footfalls.foot_targets`);
+    foot_angle (rad) the toes-up angle at contact for roll 1."""
+    r = rig.roll_amount
+    if not np.any(r > 0):
+        return None
+    rolling = (r > 0)[None, :]
+    plantigrade = (rig.heel_length > 0)[None, :]
+    f_start = _foot_frame(plan.start_dir, plan.start_normal)
+    f_end = _foot_frame(plan.end_dir, plan.end_normal)
+    u = np.clip(plan.phase / plan.duty, 0.0, 1.0)
+    stance_ball, stance_ankle, stance_drop = _stance(rig, foot_angle, u, plan.start, f_start, plan.start_normal)
+    one, zero = np.ones_like(u), np.zeros_like(u)
+    lift_ball, lift_ankle, lift_drop = _stance(rig, foot_angle, one, plan.start, f_start, plan.start_normal)
+    land_ball, land_ankle, land_drop = _stance(rig, foot_angle, zero, plan.end, f_end, plan.end_normal)
+
+    s = plan.swing
+    w_lift = 1.0 - smoothstep(s / BLEND)
+    w_land = smoothstep((s - (1.0 - BLEND)) / BLEND)
+    weight = np.clip(w_lift + w_land, 1e-12, None)
+    contact = plan.contact
+    swing_ball = ball + w_lift[..., None] * (lift_ball - plan.start) + w_land[..., None] * (land_ball - plan.end)
+    out_ball = np.where((contact & rolling)[..., None], stance_ball, np.where(rolling[..., None], swing_ball, ball))
+    ankle = np.where(contact, stance_ankle, (w_lift * lift_ankle + w_land * land_ankle) / weight)
+    drop = np.where(contact, stance_drop, (w_lift * lift_drop + w_land * land_drop) / weight)
+    w = np.where(contact, 1.0, w_lift + w_land) * rolling
+    forward = np.where(contact[..., None], f_start, (w_lift[..., None] * f_start + w_land[..., None] * f_end))
+    forward = forward / np.maximum(np.linalg.norm(forward, axis=-1, keepdims=True), 1e-12)
+    return FootRoll(ball=out_ball, ankle_angle=ankle, ankle_weight=w * plantigrade, toe_drop=drop, toe_weight=w,
+                    forward=forward, forward_weight=w)
+
+
+def heel_points(rig: Rig, joints: NDArray[np.float64], forward: NDArray[np.float64],
+                up: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each foot's heel (T, L, 3): where a rigid plantigrade foot touches behind the ball,
+    from the solved ankle and ball (the metatarsus turned back by the ankle lift to lie
+    along the sole); the ball itself for feet that do not roll or stand on their toes.
+    forward, up: each leg's frame (broadcastable to (T, L, 3))."""
+    ball, ankle = joints[..., 3, :], joints[..., 2, :]
+    heel_length = np.where(rig.roll_amount > 0, rig.heel_length, 0.0)
+    if not np.any(heel_length > 0):
+        return ball.copy()
+    fwd = np.broadcast_to(forward, ball.shape)
+    upv = np.broadcast_to(up, ball.shape)
+    m = (ball - ankle) / rig.metatarsus[:, None]
+    uf, uu = np.sum(m * fwd, axis=-1), np.sum(m * upv, axis=-1)
+    c, s = np.cos(rig.ankle_lift), np.sin(rig.ankle_lift)
+    sole = (uf * c - uu * s)[..., None] * fwd + (uf * s + uu * c)[..., None] * upv
+    return ball - heel_length[:, None] * sole
+
+
+def contact_points(rig: Rig, phase: NDArray[np.float64], duty: NDArray[np.float64], contact: NDArray[np.bool_],
+                   heel: NDArray[np.float64], joints: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The point of each planted foot that touches the ground and must not slip (T, L, 3):
+    the heel while it rolls down, the ball while flat and through the heel rise, the toe
+    tip in the toe roll (NaN for feet in the air)."""
+    r = rig.roll_amount
+    u = phase / duty
+    on_heel = (u < r * HEEL_PART) & (rig.heel_length > 0)
+    on_toe = u >= 1.0 - r * TOE_PART
+    point = np.where(on_heel[..., None], heel, np.where(on_toe[..., None] & (r > 0)[:, None], joints[..., 4, :],
+                                                         joints[..., 3, :]))
+    return np.where(contact[..., None], point, np.nan)

@@ -1,0 +1,58 @@
+"""Walk styles: sets of key-pose values an animator starts a walk from.
+
+A walk step has four key poses (the animator's contact, down, pass and up; the next
+contact begins the other foot's step). A style gives the body's height at each, as a
+fraction of the creature's hip height above or below its standing height, and the rest
+of the pose: stride (leg rest lengths), the foot's angle at contact (degrees, heel
+down), the arms' swing (degrees either way) and the torso's lean (degrees forward).
+Choosing a style writes its values into the creature's ``[poses]`` table (in metres) and
+``gait.stride``, where each can then be edited.
+
+The styles follow the animation literature (Williams, *The Animator's Survival Kit*):
+
+- **normal**: down low just after contact, up high just before the next one;
+- **double-bounce**: two ups and two downs a step (a jaunty, bouncing walk);
+- **sneak**: low, long reach, landing on the toes, leaning in, arms tucked;
+- **proud**: chest out (leaning back), high, long confident steps, big arm swing;
+- **tired**: low, short dragging steps, leaning forward, arms hanging.
+
+A leaf module: it imports nothing from Gaitlab.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal, get_args
+
+WalkStyleName = Literal["normal", "double-bounce", "sneak", "proud", "tired"]
+WALK_STYLES: tuple[str, ...] = get_args(WalkStyleName)
+KEY_POSES: tuple[str, ...] = ("contact", "down", "pass", "up")
+KEY_POSE_TIMES: tuple[float, ...] = (0.0, 0.25, 0.5, 0.75)  # fraction of a step at which each key pose falls
+
+
+@dataclass(frozen=True)
+class WalkStyle:
+    """Key-pose values. heights: body height at contact, down, pass, up (fractions of the
+    hip height, + up); stride in leg rest lengths; angles in degrees."""
+
+    name: str
+    description: str
+    heights: tuple[float, float, float, float]
+    stride: float
+    foot_angle: float
+    arm_swing: float
+    torso_lean: float
+
+
+STYLES: dict[str, WalkStyle] = {s.name: s for s in (
+    WalkStyle("normal", "down just after contact, up before the next: the everyday walk",
+              (0.0, -0.035, 0.0, 0.015), stride=0.75, foot_angle=20.0, arm_swing=22.0, torso_lean=3.0),
+    WalkStyle("double-bounce", "two ups and two downs each step: a jaunty, bouncing walk",
+              (0.01, -0.04, 0.025, -0.03), stride=0.7, foot_angle=18.0, arm_swing=26.0, torso_lean=2.0),
+    WalkStyle("sneak", "low and long, landing on the toes, leaning in, arms tucked",
+              (-0.16, -0.19, -0.14, -0.15), stride=0.85, foot_angle=0.0, arm_swing=8.0, torso_lean=22.0),
+    WalkStyle("proud", "chest out and high, long confident steps, big arm swing",
+              (0.01, -0.015, 0.02, 0.025), stride=0.8, foot_angle=24.0, arm_swing=30.0, torso_lean=-6.0),
+    WalkStyle("tired", "low, short dragging steps, leaning forward, arms hanging",
+              (-0.04, -0.07, -0.045, -0.04), stride=0.5, foot_angle=8.0, arm_swing=6.0, torso_lean=14.0),
+)}
