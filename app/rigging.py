@@ -71,6 +71,8 @@ def _speed_gaits(spec: CreatureSpec, hip_height: float) -> SpeedGaits:
     feet = spec.foot_names
     if "trot" in gaits_for(spec.pair_count) and spec.pair_count == 2:
         order: tuple[str, ...] = ("walk", "trot", spec.speed.gallop)
+    elif spec.pair_count == 1 and spec.gait.preset in ("walk", "run"):
+        order = ("walk", "run")
     else:
         order = (spec.gait.preset,)
     gaits = {}
@@ -119,7 +121,12 @@ def build_rig(spec: CreatureSpec) -> Rig:
     knee = np.array([{"forward": 1.0, "back": -1.0, "out": 1.0}[leg.knee] for leg in legs])
     half_width = 0.5 * spec.body.width
     hip_offset = np.array([half_width if leg.hip_offset is None else float(leg.hip_offset) for leg in legs])
-    rest_height = (l_rest * np.cos(abduction))[0::2]
+    rest_height = l_rest * np.cos(abduction)
+    # A rolling plantigrade foot stands with its ankle under the hip: the hip's rest height
+    # is the leg's span over the ankle (a nearly straight human leg).
+    rolls_flat = (per_leg("roll") > 0) & (lift < math.radians(25.0))
+    bend = np.clip(per_leg("natural_bend"), 0.0, 0.8)
+    rest_height = np.where(rolls_flat, (femur + tibia) * (1.0 - bend) + meta * np.sin(lift), rest_height)[0::2]
     body = spec.body
     shape = BodyShape(length=body.length, width=body.width, radius=np.asarray(body.radius, dtype=np.float64),
                       segments=body.segments, neck_length=body.neck_length, neck_angle=math.radians(body.neck_angle),
@@ -149,7 +156,8 @@ def build_rig(spec: CreatureSpec) -> Rig:
         hip_offset=hip_offset,
         abduction=abduction,
         splay=np.radians(per_leg("splay")),
-        girdle_position=np.array([p for _, p in girdles]),
+        # An upright trunk stands on its one girdle: the body's centre on the path is there.
+        girdle_position=np.array([0.5 if body.posture == "upright" else p for _, p in girdles]),
         girdle_rest_height=rest_height,
         body=shape,
         gait=resolve_gait(spec.gait, spec.foot_names, hip_height, bob=spec.motion.bob),

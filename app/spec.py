@@ -140,7 +140,7 @@ ARMS_RULES: dict[str, Rule] = {
 POSES_RULES: dict[str, Rule] = {
     "style": Rule("choice", choices=WALK_STYLES, doc="the walk style the key poses started from"),
     "contact_height": _num(-1, 1, unit="m", doc="body height at contact (heel strike), above (+) or below "
-                           "standing height"),
+                           "rest height (reach caps it)"),
     "down_height": _num(-1, 1, unit="m", doc="body height at the down pose (a quarter step after contact)"),
     "pass_height": _num(-1, 1, unit="m", doc="body height at the passing pose (half a step after contact)"),
     "up_height": _num(-1, 1, unit="m", doc="body height at the up pose (three quarters of a step)"),

@@ -88,15 +88,16 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
                   ball: NDArray[np.float64], planted: NDArray[np.float64], stride_m: NDArray[np.float64],
                   bob: NDArray[np.float64], bob_lift: NDArray[np.float64],
                   forward: NDArray[np.float64], pose_height: NDArray[np.float64] | None = None,
-                  reach: NDArray[np.float64] | None = None) -> Girdles:
+                  reach: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None) -> Girdles:
     """Girdle frames for body arc lengths s (T,).
 
     support, ball (T, L, 3): each foot's ground support and ball target; planted (T, L) in
     [0, 1]: how much each foot's reach limits the body (1 planted, fading out in mid-swing);
     stride_m (T, L) m; bob (T,) leg rest lengths; bob_lift, forward (T, L): the oscillator's
     lift for the bob and fore-aft offset for the yaw; pose_height (T,) m: the key poses'
-    height, which replaces the bob; reach (T, L) m: each leg's full extension where a
-    rolling foot's angle changes it (default the rig's L_max).
+    height, which replaces the bob; reach: (point (T, L, 3), length (L,)): how far each
+    hip may be from which point of its foot (default: the ball, L_max; a rolling foot's
+    ankle, femur + tibia).
     """
     s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
     point, tangent = world.path.sample(s_g)
@@ -112,14 +113,15 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     girdle_lift = np.maximum(bob_lift[:, 0::2], bob_lift[:, 1::2])
     if pose_height is None:
         height = ground + stand + bob_t * rest * (girdle_lift - 0.5)
-    else:
-        height = ground + stand + pose_height[:, None]
-    l_max = rig.l_max if reach is None else reach
+    else:  # the key poses' heights are from the rest height; reach keeps them possible
+        height = ground + rest + pose_height[:, None]
+    reach_point, l_max = (ball, rig.l_max) if reach is None else reach
 
     # Never higher than lets a planted foot reach its ball: the hip sits beside the centre.
     hip_xz = point[:, rig.girdle] + left[:, rig.girdle][..., [0, 2]] * (rig.hip_side * rig.hip_offset)[None, :, None]
+    far = np.linalg.norm(reach_point[..., [0, 2]] - hip_xz, axis=-1)
+    allowed = reach_point[..., 1] + np.sqrt(np.maximum((REACH_LIMIT * l_max) ** 2 - far ** 2, 0.0))
     horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
-    allowed = ball[..., 1] + np.sqrt(np.maximum((REACH_LIMIT * l_max) ** 2 - horizontal ** 2, 0.0))
     allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
     # ... nor so low that a planted foot comes nearer than the leg can fold (the uphill foot
     # on a slope), nor crouched below MIN_CROUCH.

@@ -224,7 +224,8 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     bob = np.zeros_like(inputs.bob) if posed else inputs.bob
     height = _body_height(rig, plan, inputs.wave, bob)[:, 0] if posed else None
     girdles = place_girdles(rig, world, inputs.travel, feet.support, ball, planted, inputs.stride,
-                            bob, bob_wave.lift, wave.forward, pose_height=height)
+                            bob, bob_wave.lift, wave.forward, pose_height=height,
+                            reach=None if roll is None else (roll.ankle, roll.reach))
 
     # 3. Spine, neck, head, tail (following through by their overlap).
     spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, _overlap(rig, plan, inputs.wave, bob))
@@ -240,15 +241,21 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     rolls = {}
     if roll is not None:  # a rolling foot's leg works in the plane the foot points in
         w = roll.forward_weight[..., None]
+        up = np.broadcast_to(up, ball.shape)
         forward = np.broadcast_to(forward, ball.shape) * (1.0 - w) + roll.forward * w
         forward = forward - np.sum(forward * up, axis=-1, keepdims=True) * up
         forward = forward / np.linalg.norm(forward, axis=-1, keepdims=True)
         rolls = dict(ankle_angle=roll.ankle_angle, ankle_weight=roll.ankle_weight, toe_drop=roll.toe_drop,
                      toe_weight=roll.toe_weight)
+        # A rolled foot's ankle angle is its own, not the one L_max assumes: let the leg
+        # reach as far as its bones do (place_girdles keeps the ankle within reach).
+        l_max = np.where(roll.sets_ankle, 0.999 * (rig.femur + rig.tibia + rig.metatarsus), rig.l_max)
+    else:
+        l_max = rig.l_max
     joints = solve_legs(
         hips, ball, forward, up, np.sin(np.pi * wave.swing),
         femur=rig.femur, tibia=rig.tibia, metatarsus=rig.metatarsus, toe=rig.toe,
-        ankle_lift=rig.ankle_lift, l_max=rig.l_max, l_rest=rig.l_rest, l_min=rig.l_min,
+        ankle_lift=rig.ankle_lift, l_max=l_max, l_rest=rig.l_rest, l_min=rig.l_min,
         knee_sign=rig.knee_sign, swing_rest=rig.swing_rest, ground_height=ground, knee_pole=rig.knee_pole, **rolls,
     )
     heel = heel_points(rig, joints, forward, up)

@@ -101,7 +101,7 @@ class ArmShape:
 @dataclass(frozen=True)
 class KeyPoses:
     """The key poses of a step. heights (4,): the body's height (m) at contact, down,
-    pass and up relative to its standing height, or None (the gait's own bob);
+    pass and up relative to its rest height, or None (the gait's own bob);
     foot_angle (rad, toes up at contact, with the legs' roll); arm_swing (rad either
     way); torso_lean (rad forward, upright bodies)."""
 
@@ -258,10 +258,13 @@ class Rig:
     def neutral_feet(self) -> NDArray[np.float64]:
         """Each foot's rest position relative to its girdle's centre on the ground, in the
         body frame (x left, z forward), shape (L, 2): the hip's lateral offset plus the
-        leg's abducted reach, turned forward or back by its splay."""
+        leg's abducted reach, turned forward or back by its splay (and a rolling
+        plantigrade foot's heel length ahead)."""
         reach = self.sideways_reach
         lateral = self.hip_side * (self.hip_offset + reach * np.cos(self.splay))
-        return np.stack([lateral, reach * np.sin(self.splay)], axis=-1)
+        # A rolling plantigrade foot stands with its ankle under the hip, the ball ahead.
+        ahead = np.where(self.roll_amount > 0, self.heel_length, 0.0)
+        return np.stack([lateral, reach * np.sin(self.splay) + ahead], axis=-1)
 
     def with_gait(self, gait: GaitParams) -> "Rig":
         return replace(self, gait=gait)

@@ -6,6 +6,7 @@ Over a stance (``u`` = phase / duty, 0 at touchdown, 1 at lift-off), for roll am
 
 - ``0 <= u < a``: the heel has struck with the toes up by the contact foot angle
   ``r * foot_angle``; the foot rolls down about the heel to flat (angle ``(1 - u/a)^2``);
+  a negative foot angle lands toes first, on the ball, and lowers the heel;
 - ``a <= u < b``: flat; heel and ball on the ground;
 - ``b <= u < c``: the heel rises about the ball (by up to ``r * HEEL_RISE``);
 - ``c <= u <= 1``: the foot rolls over the toe tip, the ball rising (by up to
@@ -44,7 +45,10 @@ class FootRoll:
     """What the roll asks of each leg (T, L, ...): the ball target; the metatarsus angle
     (rad, the ball-to-ankle direction above the foot's backward horizontal) and the toe's
     drop (rad below horizontal), each with a weight in [0, 1] against the leg's own; the
-    foot's forward direction (unit, 3) with its weight against the body's heading."""
+    foot's forward direction (unit, 3) with its weight against the body's heading; the
+    ankle (T, L, 3) of the rolled foot (the ball for feet that keep their own ankle angle)
+    and ``reach`` (L,) how far a hip may be from that point (m); ``sets_ankle`` (L,) which
+    legs' ankle angle the roll sets (rolling plantigrade feet)."""
 
     ball: NDArray[np.float64]
     ankle_angle: NDArray[np.float64]
@@ -53,6 +57,9 @@ class FootRoll:
     toe_weight: NDArray[np.float64]
     forward: NDArray[np.float64]
     forward_weight: NDArray[np.float64]
+    ankle: NDArray[np.float64]
+    reach: NDArray[np.float64]
+    sets_ankle: NDArray[np.bool_]
 
 
 def _foot_frame(direction: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -76,11 +83,12 @@ def _stance(rig: Rig, foot_angle: float, u: NDArray[np.float64], foothold: NDArr
     toe_pitch = np.where(c < 1.0, r * TOE_OFF * x_toe ** 2, 0.0)  # ball up, about the toe tip
     heel = rig.heel_length
     toe = rig.toe
-    along = heel * (np.cos(heel_pitch) - 1.0) + toe * (1.0 - np.cos(toe_pitch))
-    up = heel * np.sin(heel_pitch) + toe * np.sin(toe_pitch)
+    on_heel = np.maximum(heel_pitch, 0.0)  # toes up: the foot turns about its heel; toes down: about its ball
+    along = heel * (np.cos(on_heel) - 1.0) + toe * (1.0 - np.cos(toe_pitch))
+    up = heel * np.sin(on_heel) + toe * np.sin(toe_pitch)
     ball = foothold + along[..., None] * forward + up[..., None] * normal
     ankle = rig.ankle_lift - heel_pitch + rise + toe_pitch
-    drop = toe_pitch - heel_pitch
+    drop = toe_pitch - on_heel
     return ball, ankle, drop
 
 
@@ -113,8 +121,15 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     w = np.where(contact, 1.0, w_lift + w_land) * rolling
     forward = np.where(contact[..., None], f_start, (w_lift[..., None] * f_start + w_land[..., None] * f_end))
     forward = forward / np.maximum(np.linalg.norm(forward, axis=-1, keepdims=True), 1e-12)
+    # The rolled ankle, where the leg's reach is measured from (femur and tibia span it).
+    normal = np.where(contact[..., None], plan.start_normal, plan.end_normal)
+    sets_ankle = (rolling & plantigrade)[..., None]
+    ankle_point = out_ball + rig.metatarsus[:, None] * (-np.cos(ankle)[..., None] * forward
+                                                       + np.sin(ankle)[..., None] * normal)
+    ankle_point = np.where(sets_ankle, ankle_point, out_ball)
+    reach = np.where(sets_ankle[0, :, 0], rig.femur + rig.tibia, rig.l_max)
     return FootRoll(ball=out_ball, ankle_angle=ankle, ankle_weight=w * plantigrade, toe_drop=drop, toe_weight=w,
-                    forward=forward, forward_weight=w)
+                    forward=forward, forward_weight=w, ankle=ankle_point, reach=reach, sets_ankle=sets_ankle[0, :, 0])
 
 
 def heel_points(rig: Rig, joints: NDArray[np.float64], forward: NDArray[np.float64],
@@ -136,14 +151,15 @@ def heel_points(rig: Rig, joints: NDArray[np.float64], forward: NDArray[np.float
     return ball - heel_length[:, None] * sole
 
 
-def contact_points(rig: Rig, phase: NDArray[np.float64], duty: NDArray[np.float64], contact: NDArray[np.bool_],
-                   heel: NDArray[np.float64], joints: NDArray[np.float64]) -> NDArray[np.float64]:
+def contact_points(rig: Rig, foot_angle: float, phase: NDArray[np.float64], duty: NDArray[np.float64],
+                   contact: NDArray[np.bool_], heel: NDArray[np.float64], joints: NDArray[np.float64]
+                   ) -> NDArray[np.float64]:
     """The point of each planted foot that touches the ground and must not slip (T, L, 3):
     the heel while it rolls down, the ball while flat and through the heel rise, the toe
     tip in the toe roll (NaN for feet in the air)."""
     r = rig.roll_amount
     u = phase / duty
-    on_heel = (u < r * HEEL_PART) & (rig.heel_length > 0)
+    on_heel = (u < r * HEEL_PART) & (rig.heel_length > 0) & (foot_angle > 0)
     on_toe = u >= 1.0 - r * TOE_PART
     point = np.where(on_heel[..., None], heel, np.where(on_toe[..., None] & (r > 0)[:, None], joints[..., 4, :],
                                                          joints[..., 3, :]))

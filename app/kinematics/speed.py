@@ -27,7 +27,7 @@ from .rig import Rig, SpeedGaits
 from .world import World
 
 # Duty factor against sqrt(Froude) within each gait: (intercept, slope, low, high).
-_DUTY = {"walk": (0.75, 0.28, 0.52, 0.80), "trot": (0.50, 0.11, 0.30, 0.48), "gallop": (0.38, 0.065, 0.18, 0.33)}
+_DUTY = {"walk": (0.75, 0.28, 0.52, 0.80), "run": (0.45, 0.08, 0.22, 0.42), "trot": (0.50, 0.11, 0.30, 0.48), "gallop": (0.38, 0.065, 0.18, 0.33)}
 
 
 def froude(speed: float, hip_height: float) -> float:
@@ -49,6 +49,9 @@ def choose_gait(fr: float, current: str | None, table: SpeedGaits) -> str:
     up, down = 1.0 + table.hysteresis, 1.0 - table.hysteresis
     wt, tg = table.walk_trot, table.trot_gallop
     level = order.index(current) if current in order else None
+    if len(order) == 2:  # a biped's walk and run, at the walk/trot threshold
+        limit = wt if level is None else wt * (up if level == 0 else down)
+        return order[1] if fr >= limit else order[0]
     if level is None:
         return order[0] if fr < wt else order[1] if fr < tg else order[2]
     if level == 0:

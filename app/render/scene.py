@@ -160,8 +160,29 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
     return capsules, ellipsoids
 
 
+_ARM_TAPER = np.array([1.0, 0.72, 0.5, 0.42])  # shoulder, elbow, wrist, hand tip (of the arm's radius)
+
+
+def _arm_shapes(arms: NDArray[np.float64], rig: Rig, colors: NDArray[np.float64]) -> tuple[list, list]:
+    """Arms (T, A, 4, 3) as tapered capsules with a shoulder muscle and a hand, in each
+    side's colour (A, 3)."""
+    if arms.shape[1] == 0 or rig.arms is None:
+        return [], []
+    radius = rig.arms.radius * _ARM_TAPER
+    color = colors[:, None, :]
+    bones = _capsules(arms[:, :, :-1], arms[:, :, 1:], radius[:-1], radius[1:], color)
+    bones = bones.reshape(arms.shape[0], -1, CAPSULE_FLOATS)
+    shoulder, elbow, wrist, tip = (arms[:, :, k] for k in range(4))
+    muscle = _capsules(shoulder, shoulder + 0.45 * (elbow - shoulder), 1.35 * radius[0], 1.05 * radius[0], colors)
+    hand_len = np.linalg.norm(tip - wrist, axis=-1, keepdims=True)
+    hand_r = np.concatenate([np.broadcast_to(0.55 * radius[2:3] * 2.0, hand_len.shape),
+                             np.broadcast_to(0.45 * radius[2:3] * 2.0, hand_len.shape), 0.45 * hand_len], axis=-1)
+    hand = _ellipsoids(0.45 * wrist + 0.55 * tip, tip - wrist, hand_r, colors)
+    return [bones, muscle], [hand]
+
+
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
-               show_joints: bool) -> SceneInstances:
+               show_joints: bool, arms: NDArray[np.float64] | None = None) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
     array has a leading frame axis T."""
     look = rig.look
@@ -199,7 +220,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], body_color)
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
-    capsule_parts = [legs, *leg_parts, trunk, neck_c, muzzle, tail_c]
+    arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, leg_color[:2])
+    capsule_parts = [legs, *leg_parts, *arm_caps, trunk, neck_c, muzzle, tail_c]
     if ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
             + sides * hx[:, None] * 0.55 * head_radius
@@ -210,7 +232,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     eye_centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
         + sides * hx[:, None] * 0.5 * head_radius
     eyes = _ellipsoids(eye_centres, head_dir[:, None], np.full(3, 0.17 * head_radius), _EYE_COLOR)
-    ellipsoid_parts = [skull_e, eyes, *foot_parts]
+    ellipsoid_parts = [skull_e, eyes, *foot_parts, *arm_ells]
     if show_joints:
         inner = joints[:, :, 1:4].reshape(frames, -1, 3)  # knee, ankle, ball
         joint_r = (radii[:, 1:4] * 1.08).reshape(-1, 1)
@@ -225,13 +247,13 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
 def motion_instances(motion: Motion, show_joints: bool = True) -> SceneInstances:
     """Instances of every frame of a clip: capsules (T, N, 11), ellipsoids (T, M, 18)."""
     return _instances(motion.joints, motion.spine, motion.spine_tangent, motion.spine_radius, motion.neck,
-                      motion.head, motion.tail, motion.rig, show_joints)
+                      motion.head, motion.tail, motion.rig, show_joints, motion.arms)
 
 
 def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True) -> SceneInstances:
     """Instances of one pose: capsules (N, 11), ellipsoids (M, 18)."""
     batch = _instances(pose.joints[None], pose.spine[None], pose.spine_tangent[None], pose.spine_radius,
-                       pose.neck[None], pose.head[None], pose.tail[None], rig, show_joints)
+                       pose.neck[None], pose.head[None], pose.tail[None], rig, show_joints, pose.arms[None])
     return batch.frame(0)
 
 
@@ -239,7 +261,8 @@ def creature_points(motion: Motion) -> NDArray[np.float64]:
     """Every joint, head, neck and tail point and the trunk's extent, (T, N, 3)."""
     pad = float(np.max(motion.spine_radius))
     return np.concatenate([motion.joints.reshape(motion.frame_count, -1, 3), motion.head, motion.neck, motion.tail,
-                           motion.spine - pad, motion.spine + pad], axis=1)
+                           motion.arms.reshape(motion.frame_count, -1, 3), motion.spine - pad, motion.spine + pad],
+                          axis=1)
 
 
 def box_corners(lo: NDArray[np.float64], hi: NDArray[np.float64]) -> NDArray[np.float64]:
