@@ -282,6 +282,10 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
         return savgol_filter(np.hypot(velocity[..., 0], velocity[..., 2]), smooth, 2, axis=0, mode="interp")
 
     speeds = {"heel": horizontal_speed(tracks.heel), "toe": horizontal_speed(tracks.toe)}
+    # In exact motion rising counts as moving too (a heel turning up about the ball barely
+    # moves forward); in recorded motion vertical jitter would hide the ground.
+    rising = {part: np.abs(savgol_filter(np.gradient(p[..., 1], tracks.times, axis=0), smooth, 2, axis=0,
+                                         mode="interp")) for part, p in (("heel", tracks.heel), ("toe", tracks.toe))}
     body_velocity = np.gradient(tracks.body, tracks.times, axis=0)
     static_speed = max(STATIC_SPEED * float(np.median(np.hypot(body_velocity[:, 0], body_velocity[:, 2]))), 0.02)
     # Every foot's smoothed height above its rolling ground and its derivatives, (T, L) each.
@@ -298,7 +302,7 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
             # The ground band: the heights this point takes while it stands still (a rolling
             # paw's toe rises a little before the foot lifts).
             lifted = above[part][:, f]
-            static = speeds[part][:, f] < static_speed
+            static = np.hypot(speeds[part][:, f], rising[part][:, f] if tracks.exact else 0.0) < static_speed
             band = float(np.percentile(lifted[static], 75)) if static.sum() > 3 else 0.0
             a = lifted - max(band, 0.0)
             d1, d2 = slope[part][:, f], bend[part][:, f]

@@ -99,6 +99,7 @@ class GaitReport:
     path_error: PathError | None = None
     wave_lag: float | None = None  # many-legged creatures: a foot's lag behind the foot behind it
     notes: tuple[str, ...] = ()  # what the numbers rest on, when it is not the usual (e.g. a single stride)
+    arm_phase: dict[str, float] | None = None  # bipeds: when (cycle phase) each hand is farthest forward
 
     def foot(self, name: str) -> FootReport:
         for f in self.feet:
@@ -119,6 +120,7 @@ class GaitReport:
             "wave_lag": num(self.wave_lag),
             "gait_match": self.gait_match,
             "notes": list(self.notes),
+            "arm_phase": None if self.arm_phase is None else {k: num(v) for k, v in self.arm_phase.items()},
             "feet": [{"name": f.name, "duty_factor": num(f.duty_factor), "phase": num(f.phase),
                       "stride_length": num(f.stride_length), "max_stance_slip": num(f.max_stance_slip, 5),
                       "skating_ratio": num(f.skating_ratio), "events": [{"kind": k, "time": num(t)} for k, t in f.events]}
@@ -310,9 +312,29 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
         limb_phase = circular_mean([(phases["LF"] - phases["LH"]) % 1.0, (phases["RF"] - phases["RH"]) % 1.0])
     gait_match = match_gait(phases, duty)
     spans = gait_spans(times, events, strikes, ref)
+    arms = arm_phases(tracks, strikes.get(ref, np.array([])), cycle)
     return GaitReport(source=tracks.source, gait=requested_gait, cycle_seconds=cycle, speed=tracks.speed(),
                       limb_phase=limb_phase, gait_match=gait_match, feet=feet, spans=spans, foot_events=events,
-                      tracks=tracks, wave_lag=wave_lag(phases), notes=tuple(notes))
+                      tracks=tracks, wave_lag=wave_lag(phases), notes=tuple(notes), arm_phase=arms)
+
+
+def arm_phases(tracks: FootTracks, strikes: np.ndarray, cycle: float) -> dict[str, float] | None:
+    """When each hand is farthest forward of the body along the travel, as a cycle phase
+    after the reference foot's touchdowns (the left foot of a biped): about 0.5 for the
+    left hand (forward with the right foot) in a walk whose arms swing against the legs.
+    None without hands or touchdowns."""
+    if tracks.hands is None or len(strikes) == 0 or not math.isfinite(cycle) or cycle <= 0:
+        return None
+    direction = tracks.travel_direction()[:, [0, 2]]  # (T, 2)
+    ahead = np.sum((tracks.hands[..., [0, 2]] - tracks.body[:, None, [0, 2]]) * direction[:, None, :], axis=-1)
+    out = {}
+    for i, name in enumerate(("L", "R")):
+        # The fundamental of the hand's fore-aft swing over the cycle: its phase of maximum.
+        angle = 2.0 * np.pi * (tracks.times - strikes[0]) / cycle
+        centred = ahead[:, i] - ahead[:, i].mean()
+        out[name] = float(np.mod(np.arctan2(np.sum(centred * np.sin(angle)), np.sum(centred * np.cos(angle)))
+                                 / (2.0 * np.pi), 1.0))
+    return out
 
 
 def _touchdowns(fe: FootEvents, times: np.ndarray) -> np.ndarray:

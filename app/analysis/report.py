@@ -33,6 +33,10 @@ def format_table(report: GaitReport, requested: dict[str, tuple[float, float]] |
     lines.append(f"cycle        {_fmt(report.cycle_seconds, 3, ' s')}   speed {_fmt(report.speed, 2, ' m/s')}"
                  + (f"   limb phase {_fmt(report.limb_phase, 3)}" if report.limb_phase is not None else "")
                  + (f"   wave lag {_fmt(report.wave_lag, 3)} per pair" if report.wave_lag is not None else ""))
+    if report.arm_phase is not None:
+        a = report.arm_phase
+        lines.append(f"arms         hands farthest forward at phase L {_fmt(a['L'], 3)}, R {_fmt(a['R'], 3)} "
+                     "(0 = left foot down; an arm swinging against the legs peaks with the other foot)")
     if report.path_error is not None:
         e = report.path_error
         lines.append(f"path         off by {_fmt(e.rms * 1000, 1)} mm RMS, {_fmt(e.max * 1000, 1)} mm at most "

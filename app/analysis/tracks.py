@@ -19,7 +19,8 @@ from ..kinematics.motion import Motion
 @dataclass(frozen=True)
 class FootTracks:
     """times (T,) s; names (F,) feet (e.g. LF RF LH RH, or L R); heel, toe (T, F, 3) m;
-    body (T, 3) m; hip_height (m) when known (scales the skating thresholds); source text."""
+    body (T, 3) m; hip_height (m) when known (scales the skating thresholds); source text;
+    ``exact``: noise-free motion (Gaitlab's own), whose feet's vertical speed can be trusted."""
 
     times: NDArray[np.float64]
     names: tuple[str, ...]
@@ -28,6 +29,8 @@ class FootTracks:
     body: NDArray[np.float64]
     source: str
     hip_height: float | None = None
+    exact: bool = False
+    hands: NDArray[np.float64] | None = None  # (T, 2, 3) m, left and right hand tips (bipeds with arms)
 
     @property
     def frame_count(self) -> int:
@@ -71,16 +74,19 @@ class FootTracks:
 def tracks_from_motion(motion: Motion) -> FootTracks:
     """Gaitlab's motion in world space: a travelling creature as it is; an in-place one put
     on the ground it walks over (the ground moved back by ``ground_offset``, so in the
-    ground's frame everything moves forward by it). The heel point is the ball (what a
+    ground's frame everything moves forward by it). The heel point is the foot's heel
+    (``Motion.heel``: a rolling plantigrade foot's heel, otherwise the ball, what a
     digitigrade or unguligrade foot stands on) and the toe point the toe tip. On terrain
     the feet's heights are measured above the ground under them."""
     shift = np.zeros((motion.frame_count, 3))
     shift[:, 2] = motion.ground_offset
-    heel = motion.joints[:, :, 3] + shift[:, None, :]
+    heel = motion.heel + shift[:, None, :]
     toe = motion.joints[:, :, 4] + shift[:, None, :]
     body = motion.root[:, :3, 3] + shift
+    hands = motion.arms[:, :, 3] + shift[:, None, :] if motion.arms.shape[1] == 2 else None
     if not motion.terrain.flat:  # heights above the ground under each point, as on a flat floor
         for points in (heel, toe):
             points[..., 1] -= motion.terrain.height(points[..., [0, 2]])
     return FootTracks(times=motion.times - motion.times[0], names=tuple(motion.leg_names), heel=heel, toe=toe,
-                      body=body, source=f"gaitlab:{motion.rig.name}", hip_height=motion.rig.hip_height)
+                      body=body, source=f"gaitlab:{motion.rig.name}", hip_height=motion.rig.hip_height, exact=True,
+                      hands=hands)

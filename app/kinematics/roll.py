@@ -38,6 +38,7 @@ TOE_PART = 0.2  # of the stance before lift-off, at roll 1: the roll over the to
 HEEL_RISE = np.radians(22.0)  # how far the heel rises about the ball before the toe roll, at roll 1
 TOE_OFF = np.radians(35.0)  # the toe's angle at lift-off, at roll 1
 BLEND = 0.4  # of the swing: how long the lift-off pose fades and the strike pose builds
+STRIKE_DROP = 0.25  # of the foot's length: how fast (per swing) a rolling foot meets the ground, so it strikes
 
 
 @dataclass(frozen=True)
@@ -105,17 +106,28 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     f_end = _foot_frame(plan.end_dir, plan.end_normal)
     u = np.clip(plan.phase / plan.duty, 0.0, 1.0)
     stance_ball, stance_ankle, stance_drop = _stance(rig, foot_angle, u, plan.start, f_start, plan.start_normal)
-    one, zero = np.ones_like(u), np.zeros_like(u)
+    one = np.ones_like(u)
     lift_ball, lift_ankle, lift_drop = _stance(rig, foot_angle, one, plan.start, f_start, plan.start_normal)
-    land_ball, land_ankle, land_drop = _stance(rig, foot_angle, zero, plan.end, f_end, plan.end_normal)
 
     s = plan.swing
-    w_lift = 1.0 - smoothstep(s / BLEND)
-    w_land = smoothstep((s - (1.0 - BLEND)) / BLEND)
-    weight = np.clip(w_lift + w_land, 1e-12, None)
     contact = plan.contact
-    swing_ball = ball + w_lift[..., None] * (lift_ball - plan.start) + w_land[..., None] * (land_ball - plan.end)
+    # Lift-off: the toe-off pose fades over the first part of the swing.
+    w_lift = 1.0 - smoothstep(s / BLEND)
+    # Landing: the foot turns rigidly about its heel to the strike angle over the last part
+    # (its heel follows the swing down), held to the landing pose from mid-swing on.
+    pitch = r * foot_angle * smoothstep((s - (1.0 - BLEND)) / BLEND)
+    on_heel = np.maximum(pitch, 0.0)
+    land_offset = (rig.heel_length * (np.cos(on_heel) - 1.0))[..., None] * f_end \
+        + (rig.heel_length * np.sin(on_heel))[..., None] * plan.end_normal
+    w_land = smoothstep((s - BLEND) / (1.0 - 2.0 * BLEND))
+    land_ankle, land_drop = rig.ankle_lift - pitch, -on_heel
+    # The swing eases onto the ground; a rolling foot comes down with some speed instead,
+    # so it strikes (a kink in its height, as a real heel strike).
+    strike = STRIKE_DROP * (rig.heel_length + rig.toe) * r * (1.0 - s) * w_land
+    swing_ball = ball + w_lift[..., None] * (lift_ball - plan.start) + land_offset \
+        + strike[..., None] * plan.end_normal
     out_ball = np.where((contact & rolling)[..., None], stance_ball, np.where(rolling[..., None], swing_ball, ball))
+    weight = np.clip(w_lift + w_land, 1e-12, None)
     ankle = np.where(contact, stance_ankle, (w_lift * lift_ankle + w_land * land_ankle) / weight)
     drop = np.where(contact, stance_drop, (w_lift * lift_drop + w_land * land_drop) / weight)
     w = np.where(contact, 1.0, w_lift + w_land) * rolling

@@ -71,7 +71,7 @@ class GaitMonitor:
         if not samples:
             return None
         motion = solve_motion(rig, world, stack_inputs(samples))
-        heel, toe = motion.joints[:, :, 3].copy(), motion.joints[:, :, 4].copy()
+        heel, toe = motion.heel.copy(), motion.joints[:, :, 4].copy()
         heel[..., 2] += motion.ground_offset[:, None]
         toe[..., 2] += motion.ground_offset[:, None]
         if not world.terrain.flat:  # heights above the ground under each foot, as on a flat floor
@@ -88,7 +88,7 @@ class GaitMonitor:
         """Add a frame (animation time ``time`` in seconds); repeated times are ignored.
         ``frequency`` (Hz) sizes the window to about three strides (1.5 to 6 s)."""
         shift = np.array([0.0, 0.0, pose.ground_offset])
-        self._append(time, pose.joints[:, 3] + shift, pose.joints[:, 4] + shift, pose.root[:3, 3] + shift,
+        self._append(time, pose.heel + shift, pose.joints[:, 4] + shift, pose.root[:3, 3] + shift,
                      pose.contact.copy(), pose.leg_names, hip_height, frequency)
 
     def _append(self, time: float, heel: NDArray, toe: NDArray, body: NDArray, contact: NDArray,
@@ -142,7 +142,7 @@ class GaitMonitor:
 
         return FootTracks(times=uniform - uniform[0], names=self.names, heel=resample(self._heel),
                           toe=resample(self._toe), body=resample(self._body), source="live",
-                          hip_height=self.hip_height)
+                          hip_height=self.hip_height, exact=True)
 
     def update(self, now: float) -> GaitReport | None:
         """The non-blocking :meth:`measure`: collect a finished measurement if there is
