@@ -36,3 +36,7 @@ DEFAULT_ANTIALIAS: Antialias = "fxaa"
 # What the viewer can draw on the ground besides the creature (View panel, --overlays).
 Overlay = Literal["footprints", "targets", "support"]
 OVERLAYS: tuple[str, ...] = get_args(Overlay)
+
+# Joints whose paths over a cycle can be drawn as arcs (render --arcs, the viewer's View panel).
+ArcJoint = Literal["toe", "heel", "knee", "hip", "hand", "head", "tail"]
+ARC_JOINTS: tuple[str, ...] = get_args(ArcJoint)

@@ -13,9 +13,10 @@ from pathlib import Path
 from typing import Sequence
 
 from . import __version__
-from .choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS, OVERLAYS
+from .choices import ANTIALIAS_MODES, ARC_JOINTS, DEFAULT_ANTIALIAS, OVERLAYS
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
+from .styles import WALK_STYLES
 from .export.formats import EXPORT_FORMATS
 from .output import DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_QUALITIES, MAX_CRF, MAX_SIZE
 from .render.camera import CAMERA_CHOICES, DEFAULT_CAMERA
@@ -201,6 +202,20 @@ def _world_arguments(parser: argparse.ArgumentParser) -> None:
                        help="walk on the spot while the ground moves under the feet (flat, straight only)")
 
 
+POSES_EPILOG = """examples:
+  gaitlab poses human -o poses.png                       the five key poses of a normal walk
+  gaitlab poses human --style double-bounce -o db.png    a style's key poses
+  gaitlab poses human --set poses.down_height=-0.1       a deeper down pose
+  gaitlab poses human --second-step                      the mirrored step
+
+Key poses (a step, half a cycle): contact at 0, down at 1/4, pass at 1/2, up at 3/4 of
+the step; the next contact starts the other foot's step. Their heights (poses.*_height,
+metres from the rest height), foot_angle, arm_swing and torso_lean live in the creature
+file's [poses] table; the in-betweens follow a smooth curve through them.
+Styles: """ + ", ".join(WALK_STYLES) + """.
+"""
+
+
 def _clip_arguments(parser: argparse.ArgumentParser, output_help: str, cycles_help: str, fps: float) -> None:
     """What a clip is of and how long (shared by render and export)."""
     parser.add_argument("creature", nargs="?", default="dog", metavar="CREATURE",
@@ -214,11 +229,22 @@ def _clip_arguments(parser: argparse.ArgumentParser, output_help: str, cycles_he
                         help=f"frames per second (default: {fps:g})")
 
 
+def _animator_arguments(parser) -> None:
+    """Walk style and timing as an animator gives them (render, export, analyze, view, poses)."""
+    parser.add_argument("--style", metavar="STYLE",
+                        help=f"walk style to start the key poses from: {', '.join(WALK_STYLES)} (writes the "
+                             "style's heights, foot angle, arm swing, torso lean and stride; --set adjusts them)")
+    parser.add_argument("--frames-per-cycle", metavar="N", type=_positive("frames per cycle", 10000),
+                        help="timing in frames per cycle (two steps) at 24 fps instead of a frequency: a normal "
+                             "walk is 24 (a step on twelves); the same as --set gait.frames_per_cycle=N")
+
+
 def _creature_arguments(parser: argparse.ArgumentParser, time_help: str) -> None:
     """When the clip starts, creature overrides and speed (shared by render and export)."""
     parser.add_argument("--time", metavar="T", type=_non_negative, default=0.0, help=time_help)
     parser.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                         help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable)")
+    _animator_arguments(parser)
     parser.add_argument("--speed", metavar="V[:V1]", type=_speed,
                         help="speed in m/s, or a ramp V0:V1 over the clip: the gait follows the speed "
                              "(walk, trot, gallop by Froude number); default length 4 s")
@@ -270,6 +296,9 @@ def build_parser() -> argparse.ArgumentParser:
     render.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
     render.add_argument("--no-path", action="store_true",
                         help="do not draw a turning path on the ground (a straight one never is)")
+    render.add_argument("--arcs", metavar="JOINTS",
+                        help=f"draw the paths of joints over the last cycle, beaded at the key poses: any of "
+                             f"{', '.join(ARC_JOINTS)}, separated by commas (e.g. toe,hand)")
     render.add_argument("-q", "--quiet", action="store_true", help="no progress bar or summary")
 
     analyze = sub.add_parser("analyze", help="measure a gait: foot events, duty factor, phase, slip, gait name",
@@ -294,6 +323,7 @@ def build_parser() -> argparse.ArgumentParser:
                           help="speed-driven gait: m/s, or a ramp V0:V1 (the report lists the gait per time span)")
     creature.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                           help="override a creature key (repeatable)")
+    _animator_arguments(creature)
     creature.add_argument("--path", metavar="KIND[:K=V,...]", help="the body's path (as for render)")
     creature.add_argument("--terrain", metavar="KIND[:K=V,...]", help="the ground (as for render)")
     creature.add_argument("--in-place", action="store_true", help="walk on the spot (the ground moves)")
@@ -325,6 +355,25 @@ def build_parser() -> argparse.ArgumentParser:
     _world_arguments(export)
     export.add_argument("-q", "--quiet", action="store_true", help="no summary")
 
+    poses = sub.add_parser("poses", help="render the key poses of a walk side by side (PNG)",
+                           description="Render a creature's key poses - contact, down, pass, up and the next "
+                                       "contact (the other foot's, the mirror of the first) - side by side from the "
+                                       "side, each labelled with its cycle phase and frame. Edit them with "
+                                       "--set poses.down_height=-0.08 etc., or start from a --style.",
+                           epilog=POSES_EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
+    poses.add_argument("creature", nargs="?", default="human", metavar="CREATURE",
+                       help="preset name or creature .toml (default: human)")
+    poses.add_argument("-o", "--output", metavar="OUT", type=Path, help="output .png (default: CREATURE-poses.png)")
+    poses.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
+    poses.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
+                       help="override a creature key, e.g. poses.down_height=-0.08 (repeatable)")
+    _animator_arguments(poses)
+    poses.add_argument("--size", metavar="WxH", type=_size, default=(320, 360),
+                       help="size of each pose's picture (default: 320x360; the sheet is five wide)")
+    poses.add_argument("--second-step", action="store_true",
+                       help="the second step (right foot's contact to the left's): the first mirrored")
+    poses.add_argument("-q", "--quiet", action="store_true", help="no summary")
+
     view = sub.add_parser("view", help="open the interactive viewer (needs a display; try xvfb-run)",
                           description="Open a window in which the creature walks and every parameter is a live "
                                       "control. F1 in the window lists the keyboard and mouse controls.",
@@ -334,6 +383,7 @@ def build_parser() -> argparse.ArgumentParser:
     view.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
     view.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                       help="override a creature key (repeatable)")
+    _animator_arguments(view)
     _world_arguments(view)
     view.add_argument("--size", metavar="WxH", type=_size, default=(1280, 720), help="window size (default: 1280x720)")
     view.add_argument("--no-vsync", action="store_true", help="do not wait for the display (for measuring)")
@@ -417,9 +467,17 @@ def cmd_render(args: argparse.Namespace) -> int:
                         samples=4 if args.msaa is None else args.msaa,
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
                                               joints=not args.no_joints, path=turns and not args.no_path))
+    arcs: tuple[str, ...] = ()
+    if args.arcs is not None:
+        from .kinematics.arcs import parse_arc_joints
+
+        try:
+            arcs = parse_arc_joints(args.arcs)
+        except ValueError as exc:
+            raise GaitlabError(str(exc)) from None
     request = RecordRequest(spec=spec, output=output, fps=args.fps, seconds=args.seconds, cycles=args.cycles,
                             start=args.time, view=view, speed=speed, world=world, gif_quality=args.gif_quality,
-                            crf=args.crf, herd=args.herd)
+                            crf=args.crf, herd=args.herd, arcs=arcs)
     if fmt == "gif" and (warning := gif_fps_warning(args.fps)) and not args.quiet:
         print(warning, file=sys.stderr)
 
@@ -516,6 +574,16 @@ def _load_with_overrides(args: argparse.Namespace, creature: str | None = None,
             raise GaitlabError(f"--gait {args.gait!r}: unknown gait{did_you_mean(args.gait, GAIT_PRESETS)}; "
                                f"gaits are: {', '.join(GAIT_PRESETS)}")
         overrides["gait.preset"] = args.gait
+    style = getattr(args, "style", None)
+    if style is not None:
+        from .rigging import apply_style
+
+        if style not in WALK_STYLES:
+            raise GaitlabError(f"--style {style!r}: unknown style{did_you_mean(style, WALK_STYLES)}; styles are: "
+                               f"{', '.join(WALK_STYLES)}")
+        spec = apply_style(spec, style)
+    if getattr(args, "frames_per_cycle", None) is not None:
+        overrides["gait.frames_per_cycle"] = args.frames_per_cycle
     for text in args.overrides:
         key, value = parse_override(text)
         overrides[key] = value
@@ -572,7 +640,9 @@ def cmd_analyze(args: argparse.Namespace) -> int:
     if is_file:
         given = [name for name, value in (("--gait", args.gait), ("--cycles", args.cycles), ("--seconds", args.seconds),
                                           ("--speed", args.speed), ("--set", args.overrides), ("--path", args.path),
-                                          ("--terrain", args.terrain), ("--in-place", args.in_place)) if value]
+                                          ("--terrain", args.terrain), ("--in-place", args.in_place),
+                                          ("--style", args.style), ("--frames-per-cycle", args.frames_per_cycle))
+                 if value]
         if given:
             raise GaitlabError(f"{', '.join(given)}: for creatures; a motion file has its own gait")
         tracks, notes = load_tracks(args.creature, feet=args.feet, units=args.units, up=args.up)
@@ -635,8 +705,26 @@ def cmd_export(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_poses(args: argparse.Namespace) -> int:
+    from .output import output_format
+    from .sheet import write_pose_sheet
+
+    output = args.output or Path(f"{Path(args.creature).stem}-poses.png")
+    if output_format(output) != "png":
+        raise GaitlabError(f"{output}: the poses sheet is a PNG; use a .png name")
+    if Path(args.creature).suffix.lower() == ".toml" and _is_scene(args.creature):
+        raise GaitlabError(f"{args.creature}: a scene file; give one creature (a preset name or creature .toml)")
+    spec = _load_with_overrides(args)
+    sheet = write_pose_sheet(spec, output, args.size, args.second_step)
+    if not args.quiet:
+        h, w = sheet.image.shape[:2]
+        print(f"wrote {output} ({w}x{h}: {', '.join(sheet.names)} of the {spec.name}'s "
+              f"{'second' if args.second_step else 'first'} step, {output.stat().st_size / 1024:.0f} KiB)")
+    return 0
+
+
 COMMANDS = {"creatures": cmd_creatures, "render": cmd_render, "export": cmd_export, "analyze": cmd_analyze,
-            "view": cmd_view}
+            "view": cmd_view, "poses": cmd_poses}
 
 
 class Terminated(KeyboardInterrupt):

@@ -47,6 +47,7 @@ class RecordRequest:
     gif_quality: GifQuality = DEFAULT_GIF_QUALITY  # GIF size against fidelity: best, good, small
     crf: int = DEFAULT_CRF  # MP4 (H.264) constant rate factor: 0 lossless .. 51 smallest
     herd: int = 1  # animals in all: the creature and herd - 1 more of its kind following it
+    arcs: tuple[str, ...] = ()  # joints whose paths over the last cycle are drawn (see kinematics.arcs)
 
     def __post_init__(self) -> None:
         if self.gif_quality not in GIF_QUALITIES:
@@ -112,6 +113,7 @@ class Recording:
             self.cameras = clip_cameras(self.motion, view, self._herd_points(rig, self.motion, request))
             self.options = _with_grid(view.options, loop_grid_spacing(self.motion, self.cycles))
         self.total = self.motion.frame_count
+        self._arcs = self._arc_source(rig, request)
         self.done = 0
         self._png: np.ndarray | None = None
         self._renderer: ClipRenderer | None = ClipRenderer(view.size, view.antialias, view.samples, ctx=ctx)
@@ -148,12 +150,44 @@ class Recording:
         corners = [np.array([dx, dy, dz]) for dx in (-reach, reach) for dy in (0.0, top) for dz in (-reach, reach)]
         return np.concatenate([xyz + c for c in corners], axis=1)
 
+    def _arc_source(self, rig, request: RecordRequest):
+        """The motion the arcs are drawn from, how many frames a cycle has, and whether the
+        whole cycle is drawn in every frame (a constant gait in place: a closed loop)."""
+        if not request.arcs:
+            return None
+        from .kinematics.arcs import arc_points
+
+        per_cycle = max(2, int(round(request.fps / rig.gait.frequency)))
+        whole = self.format == "png" or (self.motion.in_place and request.speed is None)
+        source = self.motion
+        if whole:
+            source, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=request.world)
+        try:
+            points = {joint: arc_points(source, joint) for joint in request.arcs}
+        except ValueError as exc:
+            raise GaitlabError(str(exc)) from None
+        return source, points, per_cycle, whole
+
+    def _arc_shapes(self, index: int):
+        from .kinematics.arcs import key_pose_frames, trail
+        from .render.arcs import arc_instances
+
+        source, points, per_cycle, whole = self._arcs
+        end = source.frame_count - 1 if whole else index
+        keys = key_pose_frames(source, end, per_cycle)
+        trails = {joint: trail(p, end, per_cycle) for joint, p in points.items()}
+        markers = {joint: p[keys] for joint, p in points.items()}
+        return arc_instances(trails, markers, 0.012 * source.rig.hip_height)
+
     def _render(self, index: int) -> np.ndarray:
         assert self._renderer is not None
         extra = None
         if self._herd is not None:
             herd, track, instances = self._herd
             extra = instances.frame(track.apply(herd, min(index, len(track.phase) - 1)), self.motion.terrain.height)
+        if self._arcs is not None:
+            shapes = self._arc_shapes(index)
+            extra = shapes if extra is None else extra + shapes
         return self._renderer.frame(self.motion, index, self.cameras[index], self.options, extra)
 
     @property

@@ -172,3 +172,20 @@ def build_rig(spec: CreatureSpec) -> Rig:
         roll=per_leg("roll"),
     )
 
+
+
+def apply_style(spec: CreatureSpec, name: str) -> CreatureSpec:
+    """The creature with a walk style's key-pose values written into its ``[poses]`` table
+    (heights in metres for its hip height) and ``gait.stride``: a start to edit from.
+    Raises SpecError for an unknown style."""
+    from .errors import SpecError, did_you_mean
+
+    if name not in STYLES:
+        raise SpecError(f"style {name!r}: unknown{did_you_mean(name, STYLES)}; styles are: {', '.join(STYLES)}")
+    style = STYLES[name]
+    hip = build_rig(spec).hip_height
+    keys = ("contact_height", "down_height", "pass_height", "up_height")
+    overrides: dict[str, object] = {f"poses.{k}": round(h * hip, 4) for k, h in zip(keys, style.heights)}
+    overrides.update({"poses.style": name, "poses.foot_angle": style.foot_angle, "poses.arm_swing": style.arm_swing,
+                      "poses.torso_lean": style.torso_lean, "gait.stride": style.stride})
+    return spec.with_overrides(overrides, origin=f"style {name}")

@@ -1,0 +1,83 @@
+"""The key-poses sheet: contact, down, pass, up and the next (mirrored) contact side by
+side, as an animator lays out a walk (``gaitlab poses``).
+
+Each pose is rendered headless from the side, all with one camera framing the whole
+cycle so heights compare across the sheet, and labelled with its name, its cycle phase
+and its frame at the creature's timing frame rate (24 fps unless the file gives one).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .kinematics.clip import clip_motion, frame_at
+from .kinematics.poses import key_pose_phases
+from .kinematics.world import World
+from .output import check_output_dir, write_png
+from .render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
+from .render.renderer import RenderOptions
+from .rigging import DEFAULT_TIMING_FPS, build_rig
+from .spec import CreatureSpec
+
+POSE_NAMES: tuple[str, ...] = ("contact", "down", "pass", "up", "contact")
+LABEL_HEIGHT = 44  # pixels under each pose for its label
+
+
+@dataclass(frozen=True)
+class PoseSheet:
+    """The sheet's image (H, W, 3) uint8, and each pose's name, cycle phase and time (s)."""
+
+    image: NDArray[np.uint8]
+    names: tuple[str, ...]
+    phases: tuple[float, ...]
+    times: tuple[float, ...]
+
+
+def pose_sheet(spec: CreatureSpec, size: tuple[int, int] = (320, 360), second_step: bool = False) -> PoseSheet:
+    """Render the five key poses of the first step (or the second, mirrored one), each
+    ``size`` pixels (width, height) above its label."""
+    from PIL import Image, ImageDraw, ImageFont
+
+    rig = build_rig(spec)
+    world = World(in_place=True)
+    frequency = rig.gait.frequency
+    timing = spec.gait.timing_fps or DEFAULT_TIMING_FPS
+    phases = key_pose_phases(first_step=not second_step)
+    times = phases / frequency
+    cycle, _ = clip_motion(rig, 60.0, cycles=1.0, world=world)
+    view = ViewSettings(size=size, camera="side", options=RenderOptions())
+    camera = clip_camera(cycle, view)
+    options = RenderOptions(grid_spacing=loop_grid_spacing(cycle, None))
+    w, h = size
+    sheet = Image.new("RGB", (5 * w, h + LABEL_HEIGHT), (250, 248, 244))
+    draw = ImageDraw.Draw(sheet)
+    font = ImageFont.load_default(size=max(12, min(22, w // 14)))
+    small = ImageFont.load_default(size=max(10, min(16, w // 20)))
+    with ClipRenderer(size, view.antialias) as renderer:
+        for i, (name, phase, t) in enumerate(zip(POSE_NAMES, phases, times)):
+            motion = frame_at(rig, float(t), 60.0, world)
+            pixels = renderer.frame(motion, 0, camera, options)
+            sheet.paste(Image.fromarray(pixels), (i * w, 0))
+            side = "left" if (phase % 1.0) < 0.5 else "right"
+            title = f"{i + 1} {name}" + (f" ({side})" if name == "contact" else "")
+            draw.text((i * w + 10, h + 4), title, fill=(30, 30, 34), font=font)
+            frame = t * timing
+            draw.text((i * w + 10, h + 26), f"phase {phase % 1.0:.3f}   frame {frame:.1f} @ {timing:g} fps",
+                      fill=(90, 90, 96), font=small)
+            if i:
+                draw.line([(i * w, 0), (i * w, h + LABEL_HEIGHT)], fill=(200, 196, 188), width=1)
+    return PoseSheet(image=np.asarray(sheet), names=POSE_NAMES, phases=tuple(float(p) for p in phases),
+                     times=tuple(float(t) for t in times))
+
+
+def write_pose_sheet(spec: CreatureSpec, output: Path, size: tuple[int, int] = (320, 360),
+                     second_step: bool = False) -> PoseSheet:
+    """Render the sheet and write it as PNG (atomically; the folder is checked first)."""
+    check_output_dir(output)
+    sheet = pose_sheet(spec, size, second_step)
+    write_png(output, sheet.image)
+    return sheet
