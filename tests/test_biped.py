@@ -1,0 +1,323 @@
+"""The animator's walk: bipeds with arms, foot roll, key poses, styles, timing and arcs
+(issue 9). Real values throughout: measured duty factors and phases, event times, slip,
+mirror symmetry, heights, and the CLI's files and exit codes."""
+
+from __future__ import annotations
+
+import math
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from app import build_rig, load_creature
+from app.analysis import analyze_tracks, tracks_from_motion
+from app.analysis.metrics import cyclic_distance
+from app.kinematics.arcs import arc_points, key_pose_frames, parse_arc_joints, trail
+from app.kinematics.clip import clip_motion
+from app.kinematics.motion import simulate
+from app.kinematics.path import CirclePath
+from app.kinematics.poses import key_pose_phases, pose_height
+from app.kinematics.roll import HEEL_PART, RISE_PART, contact_points
+from app.kinematics.world import World
+from app.rigging import apply_style
+from app.spec import SpecError
+
+ROOT = Path(__file__).parents[1]
+MIRROR = np.array([-1.0, 1.0, 1.0])
+
+
+def gaitlab(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True, cwd=cwd,
+                          env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300)
+
+
+@pytest.fixture(scope="module")
+def human():
+    return load_creature("human")
+
+
+@pytest.fixture(scope="module")
+def walk_report(human):
+    rig = build_rig(human)
+    motion, _ = clip_motion(rig, 200.0, cycles=4.0)
+    return rig, motion, analyze_tracks(tracks_from_motion(motion), requested_gait="walk")
+
+
+# -- the human walk, measured ------------------------------------------------------------
+
+
+def test_human_walk_duty_factor_and_phases(walk_report) -> None:
+    _, _, report = walk_report
+    for foot in report.feet:
+        assert 0.58 <= foot.duty_factor <= 0.65, (foot.name, foot.duty_factor)
+    assert cyclic_distance(report.foot("R").phase - report.foot("L").phase, 0.5) < 0.01
+
+
+def test_strike_before_landing_and_lift_before_liftoff_at_the_roll_timing(walk_report) -> None:
+    """The analysis of Gaitlab's own rolling feet finds the heel strike at touchdown, the
+    toes down when the roll sets them, the heel rising when the roll starts it, the toes
+    leaving at lift-off: each within one frame at the animator's 24 fps."""
+    rig, motion, report = walk_report
+    cycle = 1.0 / rig.gait.frequency
+    duty = rig.gait.duty_factor
+    r = float(rig.roll_amount[0])
+    frame = 1.0 / 24.0
+    for foot in report.feet:
+        events = dict()
+        for kind, t in foot.events:
+            events.setdefault(kind, []).append(t)
+        strikes = np.array(events["strike"])
+        for strike in strikes[(strikes > 0.1) & (strikes < motion.times[-1] - cycle)]:
+            landing = min(t for t in events["landing"] if t >= strike)
+            lift = min(t for t in events["lift"] if t > landing)
+            liftoff = min(t for t in events["liftoff"] if t > lift)
+            assert strike < landing < lift < liftoff
+            assert landing - strike == pytest.approx(r * HEEL_PART * duty * cycle, abs=frame)
+            assert liftoff - lift == pytest.approx(r * RISE_PART * duty * cycle, abs=frame)
+            assert liftoff - strike == pytest.approx(duty * cycle, abs=frame)
+
+
+def _slip(motion, rig) -> float:
+    """The most any planted point moves between frames of one roll part, in the ground's frame."""
+    heel = motion.heel.copy()
+    joints = motion.joints.copy()
+    heel[..., 2] += motion.ground_offset[:, None]
+    joints[..., 2] += motion.ground_offset[:, None, None]
+    duty = np.broadcast_to(rig.gait.duty_factor, motion.phase.shape)
+    points = contact_points(rig, rig.poses.foot_angle, motion.phase, duty, motion.contact, heel, joints)
+    u = motion.phase / duty
+    r = rig.roll_amount
+    part = np.digitize(u, [0.0, r[0] * HEEL_PART, 1.0 - r[0] * 0.2]) + 10 * (u < 1e-12)
+    same = motion.contact[1:] & motion.contact[:-1] & (part[1:] == part[:-1]) & (np.diff(motion.phase, axis=0) > 0)
+    moved = np.linalg.norm(np.diff(points, axis=0), axis=-1)
+    return float(np.max(np.where(same, moved, 0.0)))
+
+
+@pytest.mark.parametrize("world", [World(in_place=True), World(path=CirclePath(2.5, "left"))],
+                         ids=["in-place", "circle"])
+def test_no_planted_point_slips(human, world) -> None:
+    rig = build_rig(human)
+    motion = simulate(rig, 3.0, 60.0, world=world)
+    assert motion.reach_error[motion.contact].max() < 1e-9
+    assert _slip(motion, rig) < 1e-6
+    # ... and the contact point does move heel -> ball -> toe over a stance.
+    first = np.nonzero(motion.contact[:, 0] & (np.diff(motion.phase[:, 0], prepend=1.0) < 0))[0][0]
+    assert motion.heel[first, 0, 2] < motion.joints[first, 0, 3, 2] - 0.1  # the heel is behind the ball
+
+
+def test_arms_swing_opposite_to_the_legs(walk_report) -> None:
+    rig, motion, report = walk_report
+    # Left hand farthest forward with the right foot's touchdown (half a cycle after the left's).
+    assert cyclic_distance(report.arm_phase["L"], 0.5) < 0.06
+    assert cyclic_distance(report.arm_phase["R"], 0.0) < 0.06
+    # At the right foot's touchdown the left hand is ahead of the right one.
+    right_down = np.nonzero(np.diff(motion.contact[:, 1].astype(int)) == 1)[0] + 1
+    ahead = motion.arms[right_down, 0, 3, 2] - motion.arms[right_down, 1, 3, 2]
+    assert np.all(ahead > 0.2)
+
+
+def test_human_run_has_a_flight_phase(human) -> None:
+    rig = build_rig(human.with_overrides({"gait.preset": "run"}))
+    motion, _ = clip_motion(rig, 200.0, cycles=4.0)
+    report = analyze_tracks(tracks_from_motion(motion))
+    assert all(f.duty_factor < 0.5 for f in report.feet)
+    airborne = ~motion.contact.any(axis=1)
+    assert airborne.mean() > 0.1  # both feet off the ground a tenth of the time or more
+
+
+def test_speed_switches_a_biped_from_walk_to_run(human) -> None:
+    from app.kinematics.speed import gait_at_speed
+
+    rig = build_rig(human)
+    assert gait_at_speed(rig, 1.2).gait.preset == "walk"
+    assert gait_at_speed(rig, 3.5).gait.preset == "run"
+
+
+def test_bird_and_theropod_walk_on_two_legs() -> None:
+    for name in ("bird", "theropod"):
+        rig = build_rig(load_creature(name))
+        assert rig.leg_names == ("L", "R")
+        motion = simulate(rig, 2.0, 60.0)
+        assert np.isfinite(motion.joints).all()
+        assert motion.reach_error[motion.contact].max() < 1e-6
+        report = analyze_tracks(tracks_from_motion(clip_motion(rig, 200.0, cycles=4.0)[0]))
+        assert cyclic_distance(report.foot("R").phase, 0.5) < 0.02
+
+
+# -- key poses -------------------------------------------------------------------------
+
+
+def _cycle(spec, fps: float = 96.0):
+    rig = build_rig(spec)
+    motion = simulate(rig, 1.0 / rig.gait.frequency, fps, world=World(in_place=True))
+    return rig, motion
+
+
+def test_down_pose_moves_the_lowest_point_by_its_edit_and_nothing_else(human) -> None:
+    rig, motion = _cycle(human)
+    lowest = motion.spine[:, 0, 1].min()
+    deeper = human.with_overrides({"poses.down_height": float(rig.poses.heights[1]) - 0.03})
+    rig2, motion2 = _cycle(deeper)
+    assert motion2.spine[:, 0, 1].min() == pytest.approx(lowest - 0.03, abs=1e-3)
+    # The other key poses stay where they were: contact, pass and up frames, both steps.
+    frames = np.rint(key_pose_phases(True)[[0, 2, 3]] * motion.frame_count).astype(int)
+    frames = np.concatenate([frames, frames + motion.frame_count // 2])
+    assert np.allclose(motion2.spine[frames, 0, 1], motion.spine[frames, 0, 1], atol=1e-9)
+
+
+def test_pose_curve_passes_through_the_keys_smoothly() -> None:
+    heights = np.array([-0.06, -0.08, -0.01, 0.0])
+    u = np.array([0.0, 0.25, 0.5, 0.75, 1.0])
+    assert np.allclose(pose_height(heights, u), [-0.06, -0.08, -0.01, 0.0, -0.06])
+    fine = np.linspace(0.0, 1.0, 4001)
+    curve = pose_height(heights, fine)
+    assert curve.min() == pytest.approx(-0.08) and curve.max() == pytest.approx(0.0)  # no overshoot
+    slope = np.diff(curve) / np.diff(fine)
+    assert np.abs(np.diff(slope)).max() < 0.01  # C1: no kinks, also across the step's ends
+
+
+def test_second_step_is_the_first_mirrored(human) -> None:
+    rig, motion = _cycle(human, fps=48.0)
+    half = motion.frame_count // 2
+    a, b = slice(half, motion.frame_count), slice(0, half)
+    assert np.abs(motion.joints[a, 0] - motion.joints[b, 1] * MIRROR).max() < 1e-9
+    assert np.abs(motion.joints[a, 1] - motion.joints[b, 0] * MIRROR).max() < 1e-9
+    assert np.abs(motion.arms[a, 0] - motion.arms[b, 1] * MIRROR).max() < 1e-9
+    for part in ("spine", "neck", "head", "heel"):
+        values = getattr(motion, part)
+        if part == "heel":
+            values = values[:, ::-1]
+        assert np.abs(getattr(motion, part)[a] - values[b] * MIRROR).max() < 1e-9, part
+
+
+def test_key_poses_round_trip_through_the_creature_file(human, tmp_path) -> None:
+    edited = human.with_overrides({"poses.down_height": -0.091, "poses.arm_swing": 31.0, "poses.torso_lean": 7.5,
+                                   "gait.frames_per_cycle": 30})
+    path = edited.save(tmp_path / "edited.toml")
+    again = load_creature(str(path))
+    assert again.poses == edited.poses
+    assert again.gait.frames_per_cycle == 30
+    assert build_rig(again).gait.frequency == pytest.approx(24.0 / 30.0)
+    assert np.allclose(build_rig(again).poses.heights, build_rig(edited).poses.heights)
+
+
+# -- styles ------------------------------------------------------------------------------
+
+
+def _minima(y: np.ndarray) -> int:
+    """Local minima of a periodic curve."""
+    return int(np.sum((y < np.roll(y, 1)) & (y <= np.roll(y, -1))))
+
+
+def test_double_bounce_has_two_downs_a_step(human) -> None:
+    _, normal = _cycle(apply_style(human, "normal"))
+    _, bounce = _cycle(apply_style(human, "double-bounce"))
+    assert _minima(normal.spine[:, 0, 1]) == 2  # one a step
+    assert _minima(bounce.spine[:, 0, 1]) == 4  # two a step
+
+
+def test_sneak_is_at_least_ten_percent_lower(human) -> None:
+    _, normal = _cycle(apply_style(human, "normal"))
+    _, sneak = _cycle(apply_style(human, "sneak"))
+    assert sneak.spine[:, :, 1].mean() <= 0.9 * normal.spine[:, :, 1].mean()
+    for style in ("proud", "tired"):
+        _, motion = _cycle(apply_style(human, style))
+        assert np.isfinite(motion.joints).all()
+
+
+def test_a_style_writes_its_values_for_editing(human) -> None:
+    spec = apply_style(human, "tired")
+    assert spec.poses.style == "tired" and spec.gait.stride == 0.5
+    assert spec.poses.down_height == pytest.approx(-0.13 * build_rig(human).hip_height, abs=1e-4)
+    with pytest.raises(SpecError, match="unknown"):
+        apply_style(human, "moonwalk")
+
+
+# -- arcs --------------------------------------------------------------------------------
+
+
+def test_arc_is_the_joints_world_path_each_frame(human) -> None:
+    rig = build_rig(human)
+    motion = simulate(rig, 2.0, 24.0, world=World(path=CirclePath(3.0)))
+    toe = arc_points(motion, "toe")
+    assert np.array_equal(toe, motion.joints[:, :, 4])
+    per_cycle = int(round(24.0 / rig.gait.frequency))
+    path = trail(toe, 40, per_cycle)
+    assert path.shape == (per_cycle + 1, 2, 3)
+    assert np.array_equal(path, motion.joints[40 - per_cycle:41, :, 4])
+    assert np.array_equal(arc_points(motion, "hand"), motion.arms[:, :, 3])
+    keys = key_pose_frames(motion, 40, per_cycle)
+    assert len(keys) == 8  # four key poses a step, two steps
+    assert parse_arc_joints("toe, hand,toe") == ("toe", "hand")
+    with pytest.raises(ValueError, match="elbow"):
+        parse_arc_joints("toe,elbow")
+    with pytest.raises(ValueError, match="no arms"):
+        arc_points(simulate(build_rig(load_creature("dog")), 0.2, 24.0), "hand")
+
+
+# -- the command line ----------------------------------------------------------------------
+
+
+def test_poses_sheet_shows_five_labelled_poses(tmp_path) -> None:
+    out = tmp_path / "poses.png"
+    result = gaitlab("poses", "human", "-o", str(out), "--size", "160x200")
+    assert result.returncode == 0, result.stderr
+    image = np.asarray(Image.open(out).convert("RGB")).astype(int)
+    assert image.shape == (200 + 44, 5 * 160, 3)
+    background = np.array([250, 248, 244])
+    for i in range(5):
+        pose = image[:200, i * 160:(i + 1) * 160]
+        label = image[200:, i * 160 + 2:(i + 1) * 160 - 2]
+        assert (np.abs(pose - pose.mean(axis=(0, 1))).sum(axis=-1) > 60).mean() > 0.02  # a creature is drawn
+        assert (np.abs(label - background).sum(axis=-1) > 150).sum() > 40  # its label is written
+    assert "contact, down, pass, up, contact" in result.stdout
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--set", "poses.down_height=3"], "poses.down_height"),
+    (["--set", "poses.arm_swing=-5"], "poses.arm_swing"),
+    (["--style", "moonwalk"], "moonwalk"),
+    (["--frames-per-cycle", "0"], "frames per cycle"),
+    (["--frames-per-cycle", "-12"], "frames per cycle"),
+    (["--set", "gait.frames_per_cycle=0"], "gait.frames_per_cycle"),
+])
+def test_bad_animator_input_is_one_line_and_writes_nothing(tmp_path, args, needle) -> None:
+    for command in (["poses", "human", "-o", str(tmp_path / "p.png")],
+                    ["render", "human", "-o", str(tmp_path / "r.png"), "--size", "64x48"]):
+        result = gaitlab(*command, *args)
+        assert result.returncode == 2, (command, args, result.stderr)
+        assert needle in result.stderr and result.stderr.count("\n") == 1, result.stderr
+        assert "Traceback" not in result.stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_bad_arc_joint_is_one_line(tmp_path) -> None:
+    for arcs, needle in (("toe,elbow", "elbow"), ("hand", "no arms")):
+        result = gaitlab("render", "dog", "-o", str(tmp_path / "a.png"), "--size", "64x48", "--arcs", arcs)
+        assert result.returncode == 2 and needle in result.stderr and result.stderr.count("\n") == 1, result.stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_render_with_arcs_draws_them(tmp_path) -> None:
+    plain, arcs = tmp_path / "plain.png", tmp_path / "arcs.png"
+    for out, extra in ((plain, []), (arcs, ["--arcs", "toe,hand"])):
+        result = gaitlab("render", "human", "--in-place", "--camera", "side", "--size", "160x120", "-o", str(out),
+                         *extra)
+        assert result.returncode == 0, result.stderr
+    a = np.asarray(Image.open(plain).convert("RGB")).astype(int)
+    b = np.asarray(Image.open(arcs).convert("RGB")).astype(int)
+    yellow = (b[..., 0] > 200) & (b[..., 1] > 150) & (b[..., 2] < 90)  # the toe's arc
+    assert yellow.sum() > 30 and ((a[..., 0] > 200) & (a[..., 1] > 150) & (a[..., 2] < 90)).sum() < 5
+
+
+def test_frames_per_cycle_sets_the_frequency(human) -> None:
+    spec = human.with_overrides({"gait.frames_per_cycle": 32})
+    assert build_rig(spec).gait.frequency == pytest.approx(0.75)
+    spec = spec.with_overrides({"gait.frequency": 1.5})  # the other way round: frequency wins, cleanly
+    assert spec.gait.frames_per_cycle is None and build_rig(spec).gait.frequency == 1.5
+    assert math.isclose(build_rig(human).gait.frequency, 1.0)  # the human's 24 frames at 24 fps
