@@ -743,8 +743,12 @@ def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
             raise bad()
         return tuple(_number(v, rule, bad) for v in value)
     if rule.kind == "integer":
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) \
-                or float(value) != int(value):
+        try:
+            whole = not isinstance(value, bool) and isinstance(value, (int, float)) and math.isfinite(value) \
+                and float(value) == int(value)
+        except OverflowError:  # an integer too large for a float
+            whole = False
+        if not whole:
             raise bad()
         value = int(value)
     return _number(value, rule, bad)
@@ -753,7 +757,10 @@ def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
 def _number(value: Any, rule: Rule, bad) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise bad()
-    number = float(value) if rule.kind != "integer" else int(value)
+    try:
+        number = float(value) if rule.kind != "integer" else int(value)
+    except OverflowError:
+        raise bad() from None
     if not math.isfinite(number):
         raise bad("not a finite number; expected " + rule.allowed())
     if rule.lo is not None and (number < rule.lo or (rule.lo_open and number == rule.lo)):

@@ -119,7 +119,7 @@ def write_dog(tmp_path: Path, old: str, new: str) -> str:
 
 
 BAD_INPUTS = {
-    "unknown creature": (["render", "dgo", "-o", "x.gif"], "presets are: ant, bear, cat, centipede, deer, dog, horse, spider"),
+    "unknown creature": (["render", "dgo", "-o", "x.gif"], "presets are: ant, bear, bird, cat, centipede, deer, dog, horse, human, spider, theropod"),
     "unknown gait": (["render", "dog", "--gait", "trto", "-o", "x.gif"], "did you mean 'trot'"),
     "set unknown key": (["render", "dog", "--set", "legs.hind.femr=0.3", "-o", "x.gif"],
                         "did you mean 'legs.hind.femur'"),

@@ -14,7 +14,7 @@ from app.gaits import GAIT_PRESETS
 from app.resources import preset_creature_names
 from app.spec import parse_override, resolve_phases
 
-PRESETS = ["ant", "bear", "cat", "centipede", "deer", "dog", "horse", "spider"]
+PRESETS = ["ant", "bear", "bird", "cat", "centipede", "deer", "dog", "horse", "human", "spider", "theropod"]
 
 
 def test_presets_are_all_there() -> None:

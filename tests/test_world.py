@@ -17,6 +17,7 @@ from app import build_rig, load_creature, simulate
 from app.analysis import analyze_tracks, tracks_from_motion
 from app.analysis.metrics import cyclic_distance, path_error, wave_lag
 from app.kinematics.clip import clip_motion
+from app.kinematics.roll import planted_points
 from app.kinematics.live import LiveMotion
 from app.kinematics.motion import simulate as simulate_rig
 from app.kinematics.terrain import StairsTerrain
@@ -27,8 +28,11 @@ PRESETS = preset_creature_names()
 
 
 def terrains(rig) -> dict[str, str]:
-    """The issue's terrains, sized to the creature (hills and steps it can walk)."""
+    """The issue's terrains, sized to the creature (hills and steps it can walk; a biped's
+    short trunk says little of its size: its legs do)."""
     h, length = rig.hip_height, rig.body_length
+    if rig.leg_count == 2:
+        length = max(length, 2.0 * h)
     return {"flat": "flat", "slope": "slope:angle=15,dir=30",
             "hills": f"hills:amp={0.12 * h:.4f},wavelength={3 * length:.3f}",
             "stairs": f"stairs:rise={0.2 * h:.4f},run={max(0.6 * rig.leg_scale, 0.12):.3f},steps=6,"
@@ -57,11 +61,17 @@ def test_feet_plant_without_slip_on_every_path(creature: str, terrain: str) -> N
         where = f"{creature} on {terrain} along {path_name}"
         joints = motion.joints
         assert np.all(np.isfinite(joints)), where
-        ball = joints[:, :, 3]
-        slip = np.linalg.norm(ball[1:] - ball[:-1], axis=-1)[planted_steps(motion)]
-        assert slip.max() < 1e-6, where  # a planted foot is a constant in the world
-        ground = motion.terrain.height(ball[..., [0, 2]])
-        assert np.abs(ball[..., 1] - ground)[motion.contact].max() <= 1e-3, where
+        # What bears a planted foot (its ball; a rolling foot's heel, ball or toe tip in turn)
+        # is a constant in the world, on the ground.
+        bearing, same = planted_points(motion)
+        slip = np.linalg.norm(bearing[1:] - bearing[:-1], axis=-1)[same]
+        assert slip.max() < 1e-6, where
+        ground = motion.terrain.height(bearing[..., [0, 2]])
+        ball_down = motion.contact & np.all(bearing == joints[:, :, 3], axis=-1)
+        assert np.abs(bearing[..., 1] - ground)[ball_down].max() <= 1e-3, where
+        # A rolling foot's heel or toe tip turns about the ground's plane under its ball: on
+        # curved hills a rigid sole's end stands off the surface by a few millimetres.
+        assert np.abs(bearing[..., 1] - ground)[motion.contact].max() <= 5e-3, where
         swinging = ~motion.contact
         for k in (2, 3, 4):  # ankle, ball, toe tip of a swinging foot stay above the ground
             under = motion.terrain.height(joints[:, :, k][..., [0, 2]]) - joints[:, :, k, 1]
@@ -200,7 +210,8 @@ def test_tight_turns_keep_feet_planted(creature: str) -> None:
     rig = build_rig(load_creature(creature))
     motion = simulate_rig(rig, 3.0, 60.0, world=make_world(f"circle:r={0.5 * rig.body_length:.4f}"))
     assert np.all(np.isfinite(motion.joints))
-    slip = np.linalg.norm(np.diff(motion.joints[:, :, 3], axis=0), axis=-1)[planted_steps(motion)]
+    bearing, same = planted_points(motion)
+    slip = np.linalg.norm(np.diff(bearing, axis=0), axis=-1)[same]
     assert slip.max() < 1e-6
 
 

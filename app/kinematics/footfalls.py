@@ -73,6 +73,7 @@ def footprint(rig: Rig) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArr
     would touch) and to the side, shape (L,) each."""
     ball_radius = 0.5 * rig.bone_radius
     heel = rig.metatarsus * np.cos(rig.ankle_lift) * np.clip(1.0 - 2.0 * np.sin(rig.ankle_lift), 0.0, 1.0)
+    heel = np.where(rig.roll_amount > 0, np.maximum(heel, rig.heel_length), heel)  # a rolling heel bears weight
     return rig.toe + ball_radius, np.maximum(heel, ball_radius), ball_radius
 
 

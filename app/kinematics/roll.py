@@ -163,16 +163,35 @@ def heel_points(rig: Rig, joints: NDArray[np.float64], forward: NDArray[np.float
     return ball - heel_length[:, None] * sole
 
 
+def roll_part(rig: Rig, foot_angle: float, phase: NDArray[np.float64], duty: NDArray[np.float64]
+              ) -> NDArray[np.int64]:
+    """Which point of each foot bears it at each frame (T, L): 0 the heel (rolling down
+    after a heel strike), 1 the ball (flat, and through the heel rise), 2 the toe tip (the
+    toe roll). Meaningful while planted."""
+    r = rig.roll_amount
+    u = phase / duty
+    on_heel = (u < r * HEEL_PART) & (rig.heel_length > 0) & (foot_angle > 0)
+    on_toe = (u >= 1.0 - r * TOE_PART) & (r > 0)
+    return np.where(on_heel, 0, np.where(on_toe, 2, 1))
+
+
 def contact_points(rig: Rig, foot_angle: float, phase: NDArray[np.float64], duty: NDArray[np.float64],
                    contact: NDArray[np.bool_], heel: NDArray[np.float64], joints: NDArray[np.float64]
                    ) -> NDArray[np.float64]:
     """The point of each planted foot that touches the ground and must not slip (T, L, 3):
     the heel while it rolls down, the ball while flat and through the heel rise, the toe
-    tip in the toe roll (NaN for feet in the air)."""
-    r = rig.roll_amount
-    u = phase / duty
-    on_heel = (u < r * HEEL_PART) & (rig.heel_length > 0) & (foot_angle > 0)
-    on_toe = u >= 1.0 - r * TOE_PART
-    point = np.where(on_heel[..., None], heel, np.where(on_toe[..., None] & (r > 0)[:, None], joints[..., 4, :],
-                                                         joints[..., 3, :]))
+    tip in the toe roll (NaN for feet in the air). See :func:`roll_part`."""
+    part = roll_part(rig, foot_angle, phase, duty)[..., None]
+    point = np.where(part == 0, heel, np.where(part == 2, joints[..., 4, :], joints[..., 3, :]))
     return np.where(contact[..., None], point, np.nan)
+
+
+def planted_points(motion) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """A motion's bearing points (T, L, 3) (see :func:`contact_points`) and where a foot
+    bears on the same point in two frames running (T-1, L): those points must not move."""
+    rig = motion.rig
+    duty = np.broadcast_to(rig.gait.duty_factor, motion.phase.shape)
+    points = contact_points(rig, rig.poses.foot_angle, motion.phase, duty, motion.contact, motion.heel, motion.joints)
+    part = roll_part(rig, rig.poses.foot_angle, motion.phase, duty)
+    same = motion.contact[1:] & motion.contact[:-1] & (motion.phase[1:] > motion.phase[:-1]) & (part[1:] == part[:-1])
+    return points, same
