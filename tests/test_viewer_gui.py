@@ -515,3 +515,40 @@ def test_a_click_on_a_scene_creature_puts_it_in_the_panels(display: str, tmp_pat
         picked = read_state(dump, until=lambda s: s["selected"] == 1)
         assert picked["creature"]["name"] == "centipede" and picked["error"] is None
         quit_viewer(display, proc, window)
+
+
+def test_key_poses_panel_styles_timing_and_arcs(display: str, tmp_path: Path) -> None:
+    """The Key poses panel: a style button re-keys the walk; the frames-per-cycle row
+    shows the timing; the View panel's arc boxes draw the last cycle's paths, beaded."""
+    with running_viewer(display, tmp_path, "human", "--size", "1024x720") as (proc, dump, window):
+        for header in ("panel.Creature", "panel.Gait", "panel.Key poses"):
+            click_widget(display, dump, header)
+        state = read_state(dump, until=lambda s: "style.double-bounce" in s["widgets"])
+        assert "gait.frames_per_cycle" in state["widgets"] and "poses.down_height" in state["widgets"]
+        assert state["creature"]["poses"]["style"] == "normal"
+        click_widget(display, dump, "style.double-bounce")
+        bounced = read_state(dump, until=lambda s: s["creature"]["poses"].get("style") == "double-bounce")
+        poses = bounced["creature"]["poses"]
+        assert poses["down_height"] < poses["contact_height"] and poses["up_height"] < poses["pass_height"]
+        assert bounced["error"] is None
+        click_widget(display, dump, "panel.Key poses")
+        click_widget(display, dump, "panel.View")
+        click_widget(display, dump, "arc.toe")
+        click_widget(display, dump, "arc.hand")
+        drawn = read_state(dump, until=lambda s: min(s["arcs"].get("toe", 0), s["arcs"].get("hand", 0)) > 20
+                           and s["arc_beads"] >= 16)
+        assert set(drawn["arcs"]) == {"toe", "hand"} and drawn["error"] is None
+        shot = tmp_path / "arcs.png"
+        xdotool(display, "mousemove", "--window", window, "700", "300")
+        image = np.asarray(Image.open(_grab(display, shot)).convert("RGB")).astype(int)
+        yellow = (image[..., 0] > 200) & (image[..., 1] > 150) & (image[..., 2] < 90)  # the toe's arc
+        assert yellow.sum() > 100
+        quit_viewer(display, proc, window)
+
+
+def _grab(display: str, path: Path) -> Path:
+    """A screenshot of the whole X display."""
+    from PIL import ImageGrab
+
+    ImageGrab.grab(xdisplay=display).save(path)
+    return path

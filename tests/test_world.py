@@ -17,7 +17,7 @@ from app import build_rig, load_creature, simulate
 from app.analysis import analyze_tracks, tracks_from_motion
 from app.analysis.metrics import cyclic_distance, path_error, wave_lag
 from app.kinematics.clip import clip_motion
-from app.kinematics.roll import planted_points
+from app.kinematics.roll import bearing_points
 from app.kinematics.live import LiveMotion
 from app.kinematics.motion import simulate as simulate_rig
 from app.kinematics.terrain import StairsTerrain
@@ -63,7 +63,7 @@ def test_feet_plant_without_slip_on_every_path(creature: str, terrain: str) -> N
         assert np.all(np.isfinite(joints)), where
         # What bears a planted foot (its ball; a rolling foot's heel, ball or toe tip in turn)
         # is a constant in the world, on the ground.
-        bearing, same = planted_points(motion)
+        bearing, same = bearing_points(motion)
         slip = np.linalg.norm(bearing[1:] - bearing[:-1], axis=-1)[same]
         assert slip.max() < 1e-6, where
         ground = motion.terrain.height(bearing[..., [0, 2]])
@@ -210,7 +210,7 @@ def test_tight_turns_keep_feet_planted(creature: str) -> None:
     rig = build_rig(load_creature(creature))
     motion = simulate_rig(rig, 3.0, 60.0, world=make_world(f"circle:r={0.5 * rig.body_length:.4f}"))
     assert np.all(np.isfinite(motion.joints))
-    bearing, same = planted_points(motion)
+    bearing, same = bearing_points(motion)
     slip = np.linalg.norm(np.diff(bearing, axis=0), axis=-1)[same]
     assert slip.max() < 1e-6
 

@@ -14,25 +14,73 @@ from .motion import Motion
 from .poses import key_pose_phases
 
 
-def arc_points(motion: Motion, joint: str) -> NDArray[np.float64]:
-    """Where ``joint`` is on each side or leg in every frame, (T, K, 3): toe tips, heels,
-    knees and hips of every leg; hand tips of both arms; the nose; the tail tip. Raises
-    ValueError for an unknown joint, or one the creature does not have (hands, tail)."""
+def arc_points(motion, joint: str) -> NDArray[np.float64]:
+    """Where ``joint`` is on each side or leg, (T, K, 3) for a :class:`Motion` ((K, 3) for
+    a single Pose): toe tips, heels, knees and hips of every leg; hand tips of both arms;
+    the nose; the tail tip. Raises ValueError for an unknown joint, or one the creature
+    does not have (hands, tail)."""
     if joint not in ARC_JOINTS:
         raise ValueError(f"arc joint {joint!r}: choose from {', '.join(ARC_JOINTS)}")
     if joint in ("toe", "knee", "hip"):
-        return motion.joints[:, :, {"toe": 4, "knee": 1, "hip": 0}[joint]]
+        return motion.joints[..., {"toe": 4, "knee": 1, "hip": 0}[joint], :]
     if joint == "heel":
         return motion.heel
     if joint == "hand":
-        if motion.arms.shape[1] == 0:
-            raise ValueError(f"arc joint 'hand': the {motion.rig.name} has no arms")
-        return motion.arms[:, :, 3]
+        if motion.arms.shape[-3] == 0:
+            raise ValueError("arc joint 'hand': this creature has no arms")
+        return motion.arms[..., 3, :]
     if joint == "head":
-        return motion.head[:, 1:2]
-    if motion.rig.body.tail_length <= 0:
-        raise ValueError(f"arc joint 'tail': the {motion.rig.name} has no tail")
-    return motion.tail[:, -1:]
+        return motion.head[..., 1:2, :]
+    if np.linalg.norm(motion.tail[..., -1, :] - motion.tail[..., 0, :], axis=-1).max() <= 1e-9:
+        raise ValueError("arc joint 'tail': this creature has no tail")
+    return motion.tail[..., -1:, :]
+
+
+class ArcTrail:
+    """The last cycle of arc points of a live creature, frame by frame (the viewer's
+    arcs): :meth:`record` each drawn pose, :meth:`shapes` for what to draw."""
+
+    def __init__(self) -> None:
+        self.times: list[float] = []
+        self.phases: list[float] = []
+        self.points: list[dict[str, NDArray[np.float64]]] = []
+
+    def clear(self) -> None:
+        self.times, self.phases, self.points = [], [], []
+
+    def record(self, pose, joints: tuple[str, ...], time: float, period: float, reference: int) -> None:
+        """Add a pose's points for ``joints`` at animation ``time`` (s), keeping ``period``
+        seconds; ``reference`` is the foot whose phase places the key poses. Joints the
+        creature lacks are left out."""
+        if self.times and time <= self.times[-1]:
+            self.clear()  # time went back (a scrub or a reset): start over
+        row = {}
+        for joint in joints:
+            try:
+                row[joint] = arc_points(pose, joint)
+            except ValueError:
+                continue
+        self.times.append(time)
+        self.phases.append(float(pose.phase[reference]))
+        self.points.append(row)
+        while self.times and self.times[0] < time - period:
+            self.times.pop(0)
+            self.phases.pop(0)
+            self.points.pop(0)
+
+    def trails(self) -> tuple[dict[str, NDArray[np.float64]], dict[str, NDArray[np.float64]]]:
+        """Each joint's trail (N, K, 3) and its key-pose beads (M, K, 3)."""
+        if not self.points:
+            return {}, {}
+        joints = [j for j in self.points[-1] if all(j in row for row in self.points)]
+        trails = {j: np.stack([row[j] for row in self.points]) for j in joints}
+        phase = np.asarray(self.phases)
+        keys = np.unique(np.mod(np.concatenate([key_pose_phases(True), key_pose_phases(False)]), 1.0))
+        # A key pose falls between two recorded frames where the phase passes it.
+        before, after = phase[:-1, None], phase[1:, None]
+        passed = ((before <= keys) & (after > keys)) | ((before > after) & ((keys >= before) | (keys < after)))
+        frames = np.unique(np.nonzero(passed)[0] + 1)
+        return trails, {j: t[frames] for j, t in trails.items()}
 
 
 def parse_arc_joints(text: str) -> tuple[str, ...]:

@@ -186,7 +186,7 @@ def contact_points(rig: Rig, foot_angle: float, phase: NDArray[np.float64], duty
     return np.where(contact[..., None], point, np.nan)
 
 
-def planted_points(motion) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+def bearing_points(motion) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """A motion's bearing points (T, L, 3) (see :func:`contact_points`) and where a foot
     bears on the same point in two frames running (T-1, L): those points must not move."""
     rig = motion.rig

@@ -50,6 +50,7 @@ class RenderOptions:
     footprint_count: int = 24
     targets: bool = False  # where the swinging feet will land
     support: bool = False  # the planted feet's support polygon and the trunk's centre in it
+    arcs: tuple[str, ...] = ()  # joints whose paths over the last cycle are drawn (viewer; see kinematics.arcs)
 
 
 @dataclass(frozen=True)

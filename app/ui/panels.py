@@ -16,7 +16,8 @@ from ..gaits import GAIT_PRESETS, gaits_for
 from ..export.formats import EXPORT_FORMATS
 from ..output import GIF_QUALITIES, MAX_CRF
 from ..render.camera import CAMERA_CHOICES, CAMERA_PRESETS
-from ..choices import ANTIALIAS_MODES, KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
+from ..choices import ANTIALIAS_MODES, ARC_JOINTS, KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
+from ..styles import STYLES, WALK_STYLES
 from ..spec import rule_for
 from .state import ViewerState
 
@@ -384,6 +385,16 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     if changed_f or changed_t or changed_u or count != options.footprint_count:
         state.options = replace(options, footprints=footprints, targets=targets, support=support,
                                 footprint_count=int(count))
+    imgui.separator_text("arcs (the last cycle)")
+    chosen = list(state.options.arcs)
+    for i, joint in enumerate(ARC_JOINTS):
+        if i % 4:
+            imgui.same_line()
+        changed, on = imgui.checkbox(joint, joint in chosen)
+        _remember(state, f"arc.{joint}")
+        if changed:
+            chosen = [j for j in ARC_JOINTS if (j in chosen or (on and j == joint)) and not (not on and j == joint)]
+            state.options = replace(state.options, arcs=tuple(chosen))
 
 
 def playback_panel(state: ViewerState, pc: PanelContext) -> None:
@@ -736,9 +747,44 @@ def path_panel(state: ViewerState, pc: PanelContext) -> None:
         _remember(state, "path.clear")
 
 
+def poses_panel(state: ViewerState, pc: PanelContext) -> None:
+    """Key poses, walk style and timing, as an animator shapes a walk."""
+    imgui.text("style")
+    for i, name in enumerate(WALK_STYLES):
+        if i % 3:
+            imgui.same_line()
+        current = state.spec.poses.style == name
+        if current:
+            imgui.push_style_color(imgui.Col_.button, imgui.get_style_color_vec4(imgui.Col_.button_active))
+        if imgui.button(name):
+            state.set_style(name)
+        if current:
+            imgui.pop_style_color()
+        _remember(state, f"style.{name}")
+        if imgui.is_item_hovered():
+            imgui.set_tooltip(STYLES[name].description)
+    hip = state.live.rig.hip_height
+    if _begin_rows("poses", pc):
+        for pose in ("contact", "down", "pass", "up"):
+            slider(state, pc, f"poses.{pose}_height", f"{pose} height", -0.35 * hip, 0.1 * hip, "%.3f m")
+        slider(state, pc, "poses.foot_angle", "foot angle", -30.0, 60.0, "%.1f deg")
+        slider(state, pc, "poses.arm_swing", "arm swing", 0.0, 80.0, "%.1f deg")
+        slider(state, pc, "poses.torso_lean", "torso lean", -30.0, 45.0, "%.1f deg")
+        slider(state, pc, "gait.stride", "stride", 0.0, 1.5, f"%.3f {LEG_LENGTHS}")
+        slider(state, pc, "gait.frames_per_cycle", "frames / cycle", 6.0, 96.0, "%.1f frames")
+        imgui.end_table()
+    fps = state.spec.gait.timing_fps or 24.0
+    frames = float(state.get("gait.frames_per_cycle"))
+    imgui.text_disabled(f"{frames:.1f} frames a cycle at {fps:g} fps: a step on {frames / 2:.1f}s, "
+                        f"{state.live.rig.gait.frequency:.2f} Hz")
+    if state.live.rig.poses.heights is None:
+        _wrapped_note("the body bobs with the gait; set a height or a style to key it")
+
+
 PANELS = (
     ("Creature", creature_panel, True),
     ("Gait", gait_panel, True),
+    ("Key poses", poses_panel, False),
     ("Body", body_panel, False),
     ("View", view_panel, False),
     ("Terrain", terrain_panel, False),

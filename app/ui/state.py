@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from ..choices import DEFAULT_ANTIALIAS, Antialias
 from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
+from ..kinematics.arcs import ArcTrail
 from ..kinematics.drive import Driver
 from ..kinematics.herd import Herd
 from ..kinematics.live import LiveMotion
@@ -27,6 +28,7 @@ from ..kinematics.overlays import (FootprintTrail, inside_polygon, planted_point
 from ..kinematics.motion import Pose
 from ..kinematics.path import Path as GroundPath
 from ..kinematics.path import SplicedPath, StraightPath, WaypointPath
+from ..kinematics.roll import contact_points, roll_part
 from ..kinematics.world import World
 from ..export import export_clip
 from ..export.formats import ExportFormat
@@ -39,7 +41,8 @@ from ..render.overlays import Overlays
 from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
 from ..render.scene import leg_colors
 from ..resources import creatures_dir
-from ..rigging import build_rig
+from ..rigging import DEFAULT_TIMING_FPS, apply_style, build_rig
+from ..styles import STYLES
 from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, load_creature, spec_value,
                     without_adjustment)
 
@@ -149,6 +152,7 @@ class ViewerState:
     terrain_kind: str = field(default="flat", init=False)  # the Terrain panel's kind and values
     terrain_values: dict[str, dict[str, Any]] = field(default_factory=dict, init=False)
     footprints: FootprintTrail = field(default_factory=FootprintTrail, init=False, repr=False)
+    arcs: ArcTrail = field(default_factory=ArcTrail, init=False, repr=False)
     waypoints: list[tuple[float, float]] = field(default_factory=list, init=False)  # (x, z) the route goes through
     waypoint_edit: bool = False  # mouse on the ground: click adds, drag moves, right-click deletes
     path_values: dict[str, dict[str, Any]] = field(default_factory=lambda: {
@@ -194,6 +198,9 @@ class ViewerState:
         """The value a control shows: the file's value, or the number the gait preset
         gives when the file leaves it open (e.g. the duty factor of a preset gait)."""
         gait = self.live.rig.gait
+        if key.startswith("poses.") or key == "gait.frames_per_cycle":
+            value = spec_value(self.spec, key)
+            return value if value is not None else self._resolved_pose(key)
         if key in _RESOLVED or key.startswith("gait.phases."):
             if key.startswith("gait.phases."):
                 return float(gait.offsets[self.live.rig.leg_names.index(key.rsplit(".", 1)[1])])
@@ -206,6 +213,32 @@ class ViewerState:
             return {"gait.frequency": gait.frequency, "gait.duty_factor": gait.duty_factor, "gait.bias": gait.bias,
                     "gait.step_height": gait.step_height, "gait.stride": gait.stride, "motion.bob": gait.bob}[key]
         return spec_value(self.spec, key)
+
+    def _resolved_pose(self, key: str) -> Any:
+        """A key pose value the file leaves open, as the creature walks it."""
+        rig = self.live.rig
+        poses = rig.poses
+        if key == "gait.frames_per_cycle":
+            return (self.spec.gait.timing_fps or DEFAULT_TIMING_FPS) / rig.gait.frequency
+        if key == "poses.style":
+            return "normal"
+        names = ("contact_height", "down_height", "pass_height", "up_height")
+        name = key.split(".", 1)[1]
+        if name in names:
+            heights = poses.heights if poses.heights is not None else \
+                np.asarray(STYLES["normal"].heights) * rig.hip_height
+            return float(heights[names.index(name)])
+        return float(np.degrees({"foot_angle": poses.foot_angle, "arm_swing": poses.arm_swing,
+                                 "torso_lean": poses.torso_lean}[name]))
+
+    def set_style(self, name: str) -> bool:
+        """Start the key poses from a walk style (its heights, angles and stride)."""
+        try:
+            spec = apply_style(self.spec, name)
+        except GaitlabError as exc:
+            self.error = str(exc)
+            return False
+        return self._apply(spec, edit="style")
 
     def base_value(self, key: str) -> Any:
         return spec_value(self.base, key)
@@ -599,6 +632,7 @@ class ViewerState:
         self.selected = index
         self._last_edit = ("", 0.0)  # a new creature's edits never merge with the last one's
         self.footprints.clear()
+        self.arcs.clear()
         self._last_pose = None
         self.status = f"selected {self.spec.name} ({index + 1} of {len(self.members)})"
         self.frame_view()
@@ -957,15 +991,26 @@ class ViewerState:
         planted in both this frame and the last moved between them (:attr:`planted_jump`,
         m; the largest since the viewer started in :attr:`planted_jump_max`)."""
         self.footprints.record(pose, self.live.time)
+        rig = self.live.rig
+        if self.options.arcs:
+            self.arcs.record(pose, self.options.arcs, self.live.time, 1.0 / self.live.frequency, rig.leg_count - 2)
+        else:
+            self.arcs.clear()
         self._drop_passed_waypoints()
         last = self._last_pose
         self._last_pose = pose
         if last is None or len(last.contact) != len(pose.contact):
             return
-        still = last.contact & pose.contact & (pose.phase > last.phase)
+        # What bears each planted foot (a rolling foot's heel, ball or toe tip in turn).
+        duty = self.live.duty
+        part = roll_part(rig, rig.poses.foot_angle, pose.phase, duty)
+        last_part = roll_part(rig, rig.poses.foot_angle, last.phase, duty)
+        still = last.contact & pose.contact & (pose.phase > last.phase) & (part == last_part)
         offset = np.array([0.0, 0.0, pose.ground_offset - last.ground_offset])  # in place: the ground moves
         if still.any():
-            moved = np.linalg.norm(pose.joints[still, 3] + offset - last.joints[still, 3], axis=-1)
+            now = contact_points(rig, rig.poses.foot_angle, pose.phase, duty, pose.contact, pose.heel, pose.joints)
+            before = contact_points(rig, rig.poses.foot_angle, last.phase, duty, last.contact, last.heel, last.joints)
+            moved = np.linalg.norm(now[still] + offset - before[still], axis=-1)
             self.planted_jump = float(moved.max())
             self.planted_jump_max = max(self.planted_jump_max, self.planted_jump)
 

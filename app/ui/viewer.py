@@ -22,6 +22,7 @@ from imgui_bundle import imgui, implot
 from ..errors import GaitlabError
 from ..output import atomic_write_text, write_png
 from ..recording import Recording
+from ..render.arcs import arc_instances
 from ..render.camera import eye_ray, ground_point
 from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
@@ -406,6 +407,8 @@ class Viewer:
             "waypoints": [list(p) for p in state.waypoints], "path": state.world.path.describe(),
             "herd": 1 if state.herd is None else state.herd.count + 1,
             "scene": state.names, "selected": state.selected, "screen": self._creature_screen_points(),
+            "arcs": {joint: int(points.shape[0]) for joint, points in state.arcs.trails()[0].items()},
+            "arc_beads": int(sum(len(b) for b in state.arcs.trails()[1].values())),
             "drive": None if state.driver is None else {
                 "speed": state.driver.ground_speed, "target": state.driver.target_speed,
                 "froude": state.driver.ground_froude, "gait": state.driver.gait,
@@ -468,6 +471,9 @@ class Viewer:
                     if self._herd_instances is None or self._herd_instances.show_joints != state.options.joints:
                         self._herd_instances = HerdInstances(state.herd, state.options.joints)
                     instances = instances + self._herd_instances.frame(state.herd, state.world.terrain.height)
+                if state.options.arcs:
+                    trails, beads = state.arcs.trails()
+                    instances = instances + arc_instances(trails, beads, 0.012 * state.live.rig.hip_height)
                 self.scene.draw_instances(instances,
                                           state.ground(pose), state.camera, self.ctx.screen, state.options, viewport,
                                           multisampled=self.options.samples > 0, overlays=state.overlays(pose))
