@@ -3,7 +3,8 @@ side, as an animator lays out a walk (``gaitlab poses``).
 
 Each pose is rendered headless from the side, all with one camera framing the whole
 cycle so heights compare across the sheet, and labelled with its name, its cycle phase
-and its frame at the creature's timing frame rate (24 fps unless the file gives one).
+and its frame at the creature's timing frame rate (24 fps unless the file gives one:
+``gait.timing_fps``).
 """
 
 from __future__ import annotations
@@ -54,7 +55,6 @@ def pose_sheet(spec: CreatureSpec, size: tuple[int, int] = (320, 360), second_st
     options = RenderOptions(grid_spacing=loop_grid_spacing(cycle, None))
     w, h = size
     sheet = Image.new("RGB", (5 * w, h + LABEL_HEIGHT), (250, 248, 244))
-    draw = ImageDraw.Draw(sheet)
     font = ImageFont.load_default(size=max(12, min(22, w // 14)))
     small = ImageFont.load_default(size=max(10, min(16, w // 20)))
     with ClipRenderer(size, view.antialias) as renderer:
@@ -62,14 +62,18 @@ def pose_sheet(spec: CreatureSpec, size: tuple[int, int] = (320, 360), second_st
             motion = frame_at(rig, float(t), 60.0, world)
             pixels = renderer.frame(motion, 0, camera, options)
             sheet.paste(Image.fromarray(pixels), (i * w, 0))
+            # The label on its own cell, so a long one is cut at the cell's edge.
+            cell = Image.new("RGB", (w - 2, LABEL_HEIGHT), (250, 248, 244))
+            draw = ImageDraw.Draw(cell)
             side = "left" if (phase % 1.0) < 0.5 else "right"
             title = f"{i + 1} {name}" + (f" ({side})" if name == "contact" else "")
-            draw.text((i * w + 10, h + 4), title, fill=(30, 30, 34), font=font)
+            draw.text((8, 4), title, fill=(30, 30, 34), font=font)
             frame = t * timing
-            draw.text((i * w + 10, h + 26), f"phase {phase % 1.0:.3f}   frame {frame:.1f} @ {timing:g} fps",
-                      fill=(90, 90, 96), font=small)
+            frame_text = f"{frame:.0f}" if abs(frame - round(frame)) < 0.05 else f"{frame:.1f}"
+            draw.text((8, 26), f"phase {phase % 1.0:.3f}  frame {frame_text}", fill=(90, 90, 96), font=small)
+            sheet.paste(cell, (i * w + 1, h))
             if i:
-                draw.line([(i * w, 0), (i * w, h + LABEL_HEIGHT)], fill=(200, 196, 188), width=1)
+                ImageDraw.Draw(sheet).line([(i * w, 0), (i * w, h + LABEL_HEIGHT)], fill=(200, 196, 188), width=1)
     return PoseSheet(image=np.asarray(sheet), names=POSE_NAMES, phases=tuple(float(p) for p in phases),
                      times=tuple(float(t) for t in times))
 

@@ -157,3 +157,16 @@ def test_legs_have_volume_and_feet_by_leg_type() -> None:
         feet = near_toe(ells[:, 0:3]) < rig.toe + 0.6 * rig.metatarsus + 0.02  # (a sole spans the foot)
         if name in ("dog", "bear", "horse"):
             assert feet.all()  # a paw, sole or fetlock by every toe
+
+
+def test_human_golden_side_view(renderer, snapshot) -> None:
+    """The upright biped: heel strike of the left foot, the right arm forward."""
+    snapshot.check("human_side", render(renderer, "human", frame=0))
+
+
+def test_poses_sheet_golden(snapshot) -> None:
+    from app.sheet import pose_sheet
+
+    sheet = pose_sheet(load_creature("human"), size=(120, 150))
+    assert sheet.names == ("contact", "down", "pass", "up", "contact")
+    snapshot.check("human_poses_sheet", sheet.image)
