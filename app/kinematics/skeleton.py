@@ -6,7 +6,8 @@ The hierarchy, from the body's root (the middle of the trunk):
 - forwards along the spine's segment centres to the neck's base, the head (the neck's
   top) and the nose;
 - backwards along the spine to the tail's base and along the tail to its tip;
-- each leg from the spine joint nearest its hip: hip, knee, ankle, ball, toe tip.
+- each leg from the spine joint nearest its hip: hip, knee, ankle, ball, toe tip;
+- each arm (bipeds) from the spine joint nearest its shoulder: shoulder, elbow, wrist, hand.
 
 Every joint's frame points its +Y axis at its first child (the bone's direction; an end
 joint keeps its parent's frame). The bone's roll comes from one of the body's axes,
@@ -25,6 +26,7 @@ from numpy.typing import NDArray
 from .motion import Motion
 
 LEG_JOINTS = ("hip", "knee", "ankle", "ball", "toe")
+ARM_JOINTS = ("shoulder", "elbow", "wrist", "hand")
 
 
 @dataclass(frozen=True)
@@ -117,6 +119,11 @@ def skeleton_points(motion: Motion) -> tuple[Skeleton, NDArray[np.float64], list
         parent = spine_index[nearest]
         for k, part in enumerate(LEG_JOINTS):
             parent = add(f"{leg_name}_{part}", parent, joints[:, leg, k])
+    for arm, side in zip(range(motion.arms.shape[1]), "LR"):
+        nearest = int(np.argmin(np.linalg.norm(spine[0] - motion.arms[0, arm, 0], axis=-1)))
+        parent = spine_index[nearest]
+        for k, part in enumerate(ARM_JOINTS):
+            parent = add(f"{side}_{part}", parent, motion.arms[:, arm, k])
     # The root's frame is the body's own.
     return Skeleton(tuple(names), tuple(parents)), np.stack(points, axis=1), primary, directions
 
