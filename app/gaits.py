@@ -13,6 +13,11 @@ Each preset says how many leg pairs it fits (:attr:`GaitPreset.pairs`): the elev
 tetrapod gaits two (the symmetrical ones also one: a biped's left/right alternation), the
 hexapod tripod and tetrapod three, the metachronal wave three or more.
 
+``flex`` (degrees, either way) is how far the spine flexes and extends with the hind legs'
+stance and swing, and ``pitch`` (degrees, over a cycle) how far the trunk pitches through
+the flights, in the bounding gaits (gallops, bounds); a creature scales both by its build
+(largest for small digitigrades, see :func:`app.rigging.trunk_factor`).
+
 ``cadence`` is the Froude-scaled stride frequency ``f * sqrt(h / g)`` (h = hip height),
 so one preset gives a horse and a cat each their own natural frequency. ``stride`` is
 the fore-aft travel of a planted foot relative to its hip, and ``step_height`` the swing
@@ -59,6 +64,8 @@ class GaitPreset:
     left_right: float | None = None
     phases: Mapping[str, float] | None = None
     pairs: tuple[int, int] = (2, 2)
+    flex: float = 0.0  # degrees the spine flexes and extends either way with the hind legs (bounding gaits)
+    pitch: float = 0.0  # degrees the trunk pitches over a cycle, through the stances and flights
 
     @property
     def symmetric(self) -> bool:
@@ -108,19 +115,19 @@ GAIT_PRESETS: dict[str, GaitPreset] = {
                    front_back=0.0, left_right=0.5, pairs=(1, 1)),
         GaitPreset("canter", "three-beat: RH, then LH with RF, then the leading LF",
                    duty_factor=0.42, cadence=0.60, stride=0.80, step_height=0.22, bob=0.045,
-                   phases=_asymmetric(rh=0.0, lh=0.27, rf=0.27, lf=0.50)),
+                   phases=_asymmetric(rh=0.0, lh=0.27, rf=0.27, lf=0.50), flex=3.0, pitch=4.0),
         GaitPreset("gallop", "transverse gallop: RH, LH, RF, LF in quick succession, then flight (horse)",
                    duty_factor=0.26, cadence=0.70, stride=0.90, step_height=0.25, bob=0.05,
-                   phases=_asymmetric(rh=0.0, lh=0.12, rf=0.35, lf=0.48)),
+                   phases=_asymmetric(rh=0.0, lh=0.12, rf=0.35, lf=0.48), flex=5.0, pitch=6.0),
         GaitPreset("rotary-gallop", "rotary gallop: RH, LH, LF, RF with two flights (cheetah, greyhound)",
                    duty_factor=0.26, cadence=0.75, stride=0.95, step_height=0.25, bob=0.05,
-                   phases=_asymmetric(rh=0.0, lh=0.12, rf=0.52, lf=0.40)),
+                   phases=_asymmetric(rh=0.0, lh=0.12, rf=0.52, lf=0.40), flex=9.0, pitch=7.0),
         GaitPreset("half-bound", "hind feet together, fore feet one after the other (rabbit, small mammals)",
                    duty_factor=0.40, cadence=0.70, stride=0.85, step_height=0.25, bob=0.05,
-                   phases=_asymmetric(rh=0.0, lh=0.0, rf=0.40, lf=0.50)),
+                   phases=_asymmetric(rh=0.0, lh=0.0, rf=0.40, lf=0.50), flex=8.0, pitch=7.0),
         GaitPreset("bound", "both hind feet together, then both fore feet half a cycle later",
                    duty_factor=0.40, cadence=0.70, stride=0.85, step_height=0.25, bob=0.05,
-                   front_back=0.5, left_right=0.0, pairs=(1, 2)),
+                   front_back=0.5, left_right=0.0, pairs=(1, 2), flex=10.0, pitch=8.0),
         GaitPreset("pronk", "all four feet together: a stiff-legged spring (springbok stott)",
                    duty_factor=0.35, cadence=0.60, stride=0.50, step_height=0.22, bob=0.04,
                    front_back=0.0, left_right=0.0, pairs=(1, 2)),

@@ -17,7 +17,7 @@ from .kinematics.gait import GaitParams, natural_frequency
 from .kinematics.oscillator import duty_from_bias
 from .kinematics.rig import (ArmShape, BodyShape, KeyPoses, Look, Overlap, Rig, SecondaryMotion, SpeedGaits,
                              leg_lengths)
-from .spec import CreatureSpec, GaitSpec, resolve_phases
+from .spec import CreatureSpec, GaitSpec, leg_type, resolve_phases
 from .styles import STYLES
 
 DEFAULT_TIMING_FPS = 24.0  # the frame rate frames_per_cycle counts in when none is given (film)
@@ -50,8 +50,21 @@ def frames_per_cycle(frequency: float, fps: float = DEFAULT_TIMING_FPS) -> float
     return fps / frequency
 
 
-def resolve_gait(gait: GaitSpec, feet: tuple[str, ...], hip_height: float, bob: float | None = None) -> GaitParams:
-    """Combine a gait spec with its preset. ``hip_height`` (m) sets the default frequency."""
+def trunk_factor(spec: CreatureSpec, hip_height: float) -> float:
+    """How much of a gait's spine flex and trunk pitch a creature shows: its hind legs' type
+    (digitigrade 1, plantigrade 0.6, unguligrade 0.4: a horse's back is stiff) times its
+    size (smaller bends more: (0.4 m / hip height)^0.25 within 0.7..1.3), times the
+    file's ``motion.spine_flex``."""
+    hind = spec.girdles[-1][0]
+    kind = {"digitigrade": 1.0, "plantigrade": 0.6, "unguligrade": 0.4}[leg_type(hind.ankle_lift)]
+    size = float(np.clip((0.4 / max(hip_height, 1e-3)) ** 0.25, 0.7, 1.3))
+    return kind * size * spec.motion.spine_flex
+
+
+def resolve_gait(gait: GaitSpec, feet: tuple[str, ...], hip_height: float, bob: float | None = None,
+                 trunk: float = 0.0) -> GaitParams:
+    """Combine a gait spec with its preset. ``hip_height`` (m) sets the default frequency;
+    ``trunk`` scales the preset's spine flex and trunk pitch (see :func:`trunk_factor`)."""
     preset = gait.preset_spec
     return GaitParams(
         preset=gait.preset,
@@ -62,6 +75,8 @@ def resolve_gait(gait: GaitSpec, feet: tuple[str, ...], hip_height: float, bob: 
         step_height=preset.step_height if gait.step_height is None else gait.step_height,
         bob=preset.bob if bob is None else bob,
         wave=gait.wave,
+        flex=math.radians(preset.flex) * trunk,
+        pitch=math.radians(preset.pitch) * trunk,
     )
 
 
@@ -78,7 +93,7 @@ def _speed_gaits(spec: CreatureSpec, hip_height: float) -> SpeedGaits:
     gaits = {}
     for name in order:
         own = spec.gait if name == spec.gait.preset and len(order) == 1 else GaitSpec(preset=name, wave=spec.gait.wave)
-        gaits[name] = resolve_gait(own, feet, hip_height, bob=spec.motion.bob)
+        gaits[name] = resolve_gait(own, feet, hip_height, bob=spec.motion.bob, trunk=trunk_factor(spec, hip_height))
     return SpeedGaits(walk_trot=spec.speed.walk_trot, trot_gallop=spec.speed.trot_gallop,
                       hysteresis=spec.speed.hysteresis, order=order, gaits=gaits)
 
@@ -160,7 +175,8 @@ def build_rig(spec: CreatureSpec) -> Rig:
         girdle_position=np.array([0.5 if body.posture == "upright" else p for _, p in girdles]),
         girdle_rest_height=rest_height,
         body=shape,
-        gait=resolve_gait(spec.gait, spec.foot_names, hip_height, bob=spec.motion.bob),
+        gait=resolve_gait(spec.gait, spec.foot_names, hip_height, bob=spec.motion.bob,
+                          trunk=trunk_factor(spec, hip_height) if spec.pair_count >= 2 else 0.0),
         motion=SecondaryMotion(yaw=math.radians(spec.motion.yaw), tail_sway=math.radians(spec.motion.tail_sway),
                                bob_phase=spec.motion.bob_phase, pelvis_tilt=math.radians(spec.motion.pelvis_tilt)),
         look=Look(spec.look.body_color, spec.look.left_color, spec.look.right_color),

@@ -178,6 +178,8 @@ MOTION_RULES: dict[str, Rule] = {
     "yaw": _num(0, 30, unit="deg", doc="how far the hips and shoulders turn with the feet"),
     "tail_sway": _num(0, 60, unit="deg", doc="side-to-side tail swing"),
     "pelvis_tilt": _num(0, 20, unit="deg", doc="how far the hips drop on the side of the swinging leg"),
+    "spine_flex": _num(0, 3, doc="scales how far the spine flexes and the trunk pitches in bounds and gallops "
+                       "(1: as the gait and the creature's build give; 0: a stiff back)"),
 }
 
 SPEED_RULES: dict[str, Rule] = {
@@ -300,6 +302,7 @@ class MotionSpec:
     yaw: float = 4.0
     tail_sway: float = 8.0
     pelvis_tilt: float = 0.0
+    spine_flex: float = 1.0
 
 
 @dataclass(frozen=True)

@@ -321,3 +321,83 @@ def test_frames_per_cycle_sets_the_frequency(human) -> None:
     spec = spec.with_overrides({"gait.frequency": 1.5})  # the other way round: frequency wins, cleanly
     assert spec.gait.frames_per_cycle is None and build_rig(spec).gait.frequency == 1.5
     assert math.isclose(build_rig(human).gait.frequency, 1.0)  # the human's 24 frames at 24 fps
+
+
+# -- a quadruped's trunk in bounds and gallops --------------------------------------------
+
+
+def _trunk_angles(motion) -> tuple[np.ndarray, np.ndarray]:
+    """Spine flexion (rear segment's pitch minus the front one's) and trunk pitch (the
+    chord from the rear segment to the front one), rad, per frame, from Motion.spine."""
+    tangent_pitch = np.arcsin(np.clip(motion.spine_tangent[..., 1], -1.0, 1.0))
+    chord = motion.spine[:, -1] - motion.spine[:, 0]
+    return tangent_pitch[:, 0] - tangent_pitch[:, -1], np.arctan2(chord[:, 1], np.hypot(chord[:, 0], chord[:, 2]))
+
+
+@pytest.mark.parametrize("creature, gait", [("dog", "bound"), ("dog", "gallop"), ("cat", "rotary-gallop"),
+                                            ("cat", "half-bound"), ("horse", "gallop")])
+def test_bounds_and_gallops_flex_the_spine_and_pitch_the_trunk(creature: str, gait: str) -> None:
+    rig = build_rig(load_creature(creature).with_overrides({"gait.preset": gait}))
+    assert rig.gait.flex > 0 and rig.gait.pitch > 0
+    motion = simulate(rig, 2.0 / rig.gait.frequency, 120.0, world=World(in_place=True))
+    flex, pitch = _trunk_angles(motion)
+    # flex is asked either way (its range twice it), pitch over the cycle.
+    assert np.ptp(flex) >= 2.0 * rig.gait.flex and np.ptp(pitch) >= rig.gait.pitch, (np.ptp(flex), np.ptp(pitch))
+    # Flexed (arched) as the hind feet reach forward to land, extended as they push off.
+    hind = rig.leg_count - 2
+    touchdown = np.nonzero(np.diff(motion.contact[:, hind].astype(int)) == 1)[0] + 1
+    liftoff = np.nonzero(np.diff(motion.contact[:, hind].astype(int)) == -1)[0] + 1
+    assert flex[touchdown].mean() > flex[liftoff].mean()
+    assert motion.reach_error[motion.contact].max() < 1e-9
+
+
+def test_small_digitigrades_bend_most_and_walks_stay_straight() -> None:
+    flex = {name: build_rig(load_creature(name).with_overrides({"gait.preset": "gallop"})).gait.flex
+            for name in ("cat", "dog", "horse", "bear")}
+    assert flex["cat"] > flex["dog"] > flex["bear"] > flex["horse"]
+    for gait in ("walk", "trot", "pace"):
+        motion = simulate(build_rig(load_creature("dog").with_overrides({"gait.preset": gait})), 1.0, 60.0,
+                          world=World(in_place=True))
+        assert np.ptp(_trunk_angles(motion)[0]) < 1e-3  # only the bob bends it, by hundredths of a degree
+    stiff = build_rig(load_creature("dog").with_overrides({"gait.preset": "bound", "motion.spine_flex": 0}))
+    assert stiff.gait.flex == 0.0
+
+
+def test_a_gait_switch_eases_the_back_into_the_gallop() -> None:
+    """Speeding up from a trot into a gallop: the back starts to flex without a jump, no
+    faster from frame to frame than it does in the steady gallop at the end."""
+    from app.kinematics.speed import simulate_speed
+
+    rig = build_rig(load_creature("dog"))
+    speeds = np.concatenate([np.linspace(2.0, 7.0, 600), np.full(240, 7.0)])
+    motion, gaits = simulate_speed(rig, speeds, 120.0)
+    assert gaits[0] == "trot" and gaits[-1] == "gallop"
+    flex, _ = _trunk_angles(motion)
+    steady = np.abs(np.diff(flex[-240:])).max()
+    assert np.abs(np.diff(flex)).max() <= 1.25 * steady
+    assert np.ptp(flex[-240:]) >= rig.speed.gaits["gallop"].flex
+
+
+# -- overlap ------------------------------------------------------------------------------
+
+
+def _fundamental_phase(signal: np.ndarray, clock: np.ndarray, harmonic: int) -> float:
+    angle = 2.0 * np.pi * harmonic * clock
+    centred = signal - signal.mean()
+    return float(np.arctan2(np.sum(centred * np.sin(angle)), np.sum(centred * np.cos(angle))) / (2.0 * np.pi))
+
+
+def test_overlap_delays_the_parts_it_names() -> None:
+    """The tail's sway and the head's nod follow the body by the overlap's delay."""
+    base = load_creature("dog")
+    phases = {}
+    for delay in (0.0, 0.1):
+        rig = build_rig(base.with_overrides({"overlap.tail": delay, "overlap.head": delay, "motion.yaw": 0}))
+        motion = simulate(rig, 2.0 / rig.gait.frequency, 120.0, world=World(in_place=True))
+        sway = motion.tail[:, -1, 0]
+        phases[delay] = _fundamental_phase(sway, motion.clock, 1)
+        if delay:
+            nod = motion.head[:, 1, 1] - motion.head[:, 0, 1]
+            still = simulate(build_rig(base), 2.0 / rig.gait.frequency, 120.0, world=World(in_place=True))
+            assert np.ptp(nod - (still.head[:, 1, 1] - still.head[:, 0, 1])) > 1e-3  # the head follows through
+    assert cyclic_distance(phases[0.1] - phases[0.0], 0.1) < 0.01  # the sway comes 0.1 cycle later

@@ -88,7 +88,8 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
                   ball: NDArray[np.float64], planted: NDArray[np.float64], stride_m: NDArray[np.float64],
                   bob: NDArray[np.float64], bob_lift: NDArray[np.float64],
                   forward: NDArray[np.float64], pose_height: NDArray[np.float64] | None = None,
-                  reach: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None) -> Girdles:
+                  reach: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+                  pitch: NDArray[np.float64] | None = None) -> Girdles:
     """Girdle frames for body arc lengths s (T,).
 
     support, ball (T, L, 3): each foot's ground support and ball target; planted (T, L) in
@@ -97,7 +98,8 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     lift for the bob and fore-aft offset for the yaw; pose_height (T,) m: the key poses'
     height, which replaces the bob; reach: (point (T, L, 3), length (L,)): how far each
     hip may be from which point of its foot (default: the ball, L_max; a rolling foot's
-    ankle, femur + tibia).
+    ankle, femur + tibia); pitch (T,) rad: the trunk pitches nose up by it (each girdle
+    raised or lowered by its distance from the trunk's middle).
     """
     s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
     point, tangent = world.path.sample(s_g)
@@ -115,6 +117,8 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
         height = ground + stand + bob_t * rest * (girdle_lift - 0.5)
     else:  # the key poses' heights are from the rest height; reach keeps them possible
         height = ground + rest + pose_height[:, None]
+    if pitch is not None:
+        height = height + np.tan(pitch)[:, None] * ((rig.girdle_position - 0.5) * rig.body_length)[None, :]
     reach_point, l_max = (ball, rig.l_max) if reach is None else reach
 
     # Never higher than lets a planted foot reach its ball: the hip sits beside the centre.
@@ -272,9 +276,12 @@ def _upright_spine(rig: Rig, girdles: Girdles, clock: NDArray[np.float64],
 
 
 def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64],
-                  clock: NDArray[np.float64], lag: Mapping[str, NDArray[np.float64]] | None = None) -> Spine:
+                  clock: NDArray[np.float64], lag: Mapping[str, NDArray[np.float64]] | None = None,
+                  flex: NDArray[np.float64] | None = None) -> Spine:
     """The trunk, neck, head and tail for girdles placed by :func:`place_girdles` (``lag``:
-    see :func:`_appendages`)."""
+    see :func:`_appendages`). ``flex`` (T,) rad arches the spine up (+) or hollows it (-):
+    the tangents at its knots turn by ``flex * (0.5 - position)``, so the rear end's and
+    the front end's directions differ by ``flex``."""
     if rig.body.upright:
         return _upright_spine(rig, girdles, clock, lag)
     body = rig.body
@@ -293,6 +300,11 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     dy[:, -1] = (y[:, -1] - y[:, -2]) / gap[-1]
     along_path = unit(heading + dy[..., None] * UP)
     tangent = rotate_y(along_path, yaw)
+    if flex is not None:  # turn each knot's tangent up (rear) or down (front) in its vertical plane
+        turn = flex[:, None] * (0.5 - pos)[None, :]  # (T, K)
+        up = UP - np.sum(UP * tangent, axis=-1, keepdims=True) * tangent
+        up = unit(np.where(np.linalg.norm(up, axis=-1, keepdims=True) > 1e-9, up, UP))
+        tangent = unit(np.cos(turn)[..., None] * tangent + np.sin(turn)[..., None] * up)
     third = gap / 3.0
     ctrl = np.stack([knots[:, :-1], knots[:, :-1] + tangent[:, :-1] * third[:, None],
                      knots[:, 1:] - tangent[:, 1:] * third[:, None], knots[:, 1:]], axis=-2)  # (T, K-1, 4, 3)

@@ -26,6 +26,8 @@ class GaitParams:
     step_height:  swing height in each leg's rest length
     bob:          body bob amplitude in leg rest lengths
     wave:         oscillator shape
+    flex:         how far (rad, either way) the spine flexes and extends with the hind legs
+    pitch:        how far (rad, over a cycle) the trunk pitches through stances and flights
     """
 
     preset: str
@@ -36,6 +38,8 @@ class GaitParams:
     step_height: float
     bob: float
     wave: WaveShape
+    flex: float = 0.0
+    pitch: float = 0.0
 
     @property
     def bias(self) -> float:

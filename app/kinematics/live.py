@@ -110,6 +110,7 @@ class LiveMotion:
         self.lift_at, self.land_at = plan.lift_at[0].copy(), plan.land_at[0].copy()
         self._freq_from = self._freq_to = g.frequency
         self._bob_from = self._bob_to = g.bob
+        self._trunk = np.array([g.flex, g.pitch])  # spine flex and trunk pitch amplitudes (rad), eased to the gait's
         self._wave_from = self._wave_to = g.wave
         self._blend = 1.0  # progress of the frequency / bob / wave blend, 0..1
         self._feet_settled = True
@@ -334,6 +335,7 @@ class LiveMotion:
         self.time += dt
         if self._blend < 1.0:
             self._blend = min(1.0, self._blend + cycles / BLEND_CYCLES)
+        self._trunk += (np.array([g.flex, g.pitch]) - self._trunk) * min(1.0, cycles / BLEND_CYCLES)
 
         after = self.foot_phase()
         landed = after < before
@@ -467,7 +469,8 @@ class LiveMotion:
         ease = smoothstep(swing)
         stride = np.where(plan.contact[0], self.stride, self.stride_lift + (self.stride - self.stride_lift) * ease)
         return {"clock": self.clock, "time": self.time, "travel": self.travel, "bob": self.bob,
-                "stride": stride * self.rig.leg_scale, "plan": plan, "wave": self._wave_now()}
+                "stride": stride * self.rig.leg_scale, "plan": plan, "wave": self._wave_now(),
+                "trunk": self._trunk.copy()}
 
     @property
     def cross_fading(self) -> bool:
@@ -487,7 +490,7 @@ class LiveMotion:
         f = self.frame_inputs()
         inputs = MotionInputs(clock=np.array([self.clock]), times=np.array([self.time]), plan=f["plan"],
                               travel=np.array([self.travel]), stride=f["stride"][None], bob=np.array([self.bob]),
-                              wave=f["wave"], waves=self._waves(f["plan"]))
+                              wave=f["wave"], waves=self._waves(f["plan"]), trunk=f["trunk"][None])
         return solve_motion(self.rig, self.world, inputs).pose(0)
 
 
@@ -500,4 +503,5 @@ def stack_inputs(frames: list[dict]) -> MotionInputs:
     return MotionInputs(clock=np.array([f["clock"] for f in frames]), times=np.array([f["time"] for f in frames]),
                         plan=plan, travel=np.array([f["travel"] for f in frames]),
                         stride=np.array([f["stride"] for f in frames]), bob=np.array([f["bob"] for f in frames]),
+                        trunk=np.array([f["trunk"] for f in frames]),
                         wave=waves.pop() if len(waves) == 1 else frames[-1]["wave"])

@@ -158,6 +158,28 @@ class MotionInputs:
     bob: NDArray[np.float64]
     wave: str
     waves: tuple[FootWave, FootWave] | None = None
+    trunk: NDArray[np.float64] | None = None
+
+
+def trunk_motion(rig: Rig, phase: NDArray[np.float64], wave: FootWave, trunk: NDArray[np.float64] | None
+                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+    """The spine's flexion and the trunk's pitch (T,) each, rad, for a body with two or
+    more girdles (None when the gait asks for neither). The spine flexes (arches up) as
+    the hind feet land, reaching forward, and extends half a cycle later as they push off
+    (the mean cosine of the hind feet's phases (T, L): smooth through the footfalls, and
+    nothing when they step half a cycle apart); the
+    trunk pitches nose up while the fore feet are in the air and the hind feet down, nose
+    down the other way round. ``trunk`` (T, 2) gives the amplitudes (either way), or the
+    gait's."""
+    if rig.girdle_rest_height.size < 2:
+        return None
+    amp = np.broadcast_to([rig.gait.flex, rig.gait.pitch], (phase.shape[0], 2)) if trunk is None else trunk
+    if not np.any(amp):
+        return None
+    fore, hind = [0, 1], [rig.leg_count - 2, rig.leg_count - 1]
+    flex = amp[:, 0] * np.cos(2.0 * np.pi * phase[:, hind]).mean(axis=1)  # feet out of step cancel
+    pitch = amp[:, 1] * (wave.lift[:, fore].mean(axis=1) - wave.lift[:, hind].mean(axis=1))
+    return flex, pitch
 
 
 def oscillators(rig: Rig, plan: FootPlan, wave: str) -> tuple[FootWave, FootWave]:
@@ -223,12 +245,15 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     posed = rig.poses.heights is not None
     bob = np.zeros_like(inputs.bob) if posed else inputs.bob
     height = _body_height(rig, plan, inputs.wave, bob)[:, 0] if posed else None
+    trunk = trunk_motion(rig, plan.phase, wave, inputs.trunk)
     girdles = place_girdles(rig, world, inputs.travel, feet.support, ball, planted, inputs.stride,
                             bob, bob_wave.lift, wave.forward, pose_height=height,
-                            reach=None if roll is None else (roll.ankle, roll.reach))
+                            reach=None if roll is None else (roll.ankle, roll.reach),
+                            pitch=None if trunk is None else trunk[1])
 
     # 3. Spine, neck, head, tail (following through by their overlap).
-    spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, _overlap(rig, plan, inputs.wave, bob))
+    spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, _overlap(rig, plan, inputs.wave, bob),
+                          flex=None if trunk is None else trunk[0])
 
     # 4. Hips beside the girdle centres, then the legs in their own frames.
     hips = girdles.centre[:, rig.girdle] + (rig.hip_side * rig.hip_offset)[None, :, None] * \
