@@ -184,7 +184,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
         arms=arm_shape(spec),
         poses=key_poses(spec, hip_height),
         overlap=Overlap(head=spec.overlap.head, neck=spec.overlap.neck, arms=spec.overlap.arms,
-                        tail=spec.overlap.tail),
+                        tail=spec.overlap.tail, ears=spec.overlap.ears),
         roll=per_leg("roll"),
     )
 

@@ -151,7 +151,8 @@ POSES_RULES: dict[str, Rule] = {
 
 OVERLAP_RULES: dict[str, Rule] = {
     part: _num(0, 0.5, doc=f"how far (cycle fraction) the {what} follows through behind the body")
-    for part, what in (("head", "head"), ("neck", "neck"), ("arms", "arms' swing"), ("tail", "tail"))
+    for part, what in (("head", "head"), ("neck", "neck"), ("arms", "arms' swing"), ("tail", "tail"),
+                       ("ears", "ears"))
 }
 
 GAIT_RULES: dict[str, Rule] = {
@@ -367,6 +368,7 @@ class OverlapSpec:
     neck: float = 0.0
     arms: float = 0.0
     tail: float = 0.0
+    ears: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -401,3 +401,15 @@ def test_overlap_delays_the_parts_it_names() -> None:
             still = simulate(build_rig(base), 2.0 / rig.gait.frequency, 120.0, world=World(in_place=True))
             assert np.ptp(nod - (still.head[:, 1, 1] - still.head[:, 0, 1])) > 1e-3  # the head follows through
     assert cyclic_distance(phases[0.1] - phases[0.0], 0.1) < 0.01  # the sway comes 0.1 cycle later
+
+
+def test_ears_follow_through_only_with_their_overlap() -> None:
+    base = load_creature("dog")
+    still = simulate(build_rig(base), 1.0, 60.0, world=World(in_place=True))
+    assert np.all(still.ear_lag == 0.0)
+    floppy = simulate(build_rig(base.with_overrides({"overlap.ears": 0.15})), 1.0, 60.0, world=World(in_place=True))
+    assert np.ptp(floppy.ear_lag) > np.radians(3.0)
+    from app.render.scene import motion_instances
+
+    a, b = motion_instances(still, False), motion_instances(floppy, False)
+    assert a.capsules.shape == b.capsules.shape and not np.allclose(a.capsules, b.capsules)  # the ears move

@@ -48,7 +48,8 @@ class Pose:
     ground has moved backwards (-Z) since time 0 (in place; 0 when travelling);
     travel: the body's arc length along its path (m); heel (L, 3) where each foot's heel
     touches (the ball for feet that do not roll or stand on their toes); arms (A, 4, 3)
-    shoulder, elbow, wrist and hand tip of each arm (A = 0 or 2, left first).
+    shoulder, elbow, wrist and hand tip of each arm (A = 0 or 2, left first); ear_lag
+    (rad) how far the ears are turned back by their follow-through (up when < 0).
     """
 
     joints: NDArray[np.float64]
@@ -66,6 +67,7 @@ class Pose:
     leg_names: tuple[str, ...]
     heel: NDArray[np.float64]
     arms: NDArray[np.float64]
+    ear_lag: float
 
 
 @dataclass(frozen=True)
@@ -96,6 +98,7 @@ class Motion:
     rig: Rig
     heel: NDArray[np.float64]  # (T, L, 3)
     arms: NDArray[np.float64]  # (T, A, 4, 3)
+    ear_lag: NDArray[np.float64]  # (T,) rad the ears turn back following through
     world: World = field(default_factory=World)
     gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
     reach_error: NDArray[np.float64] | None = None  # (T, L) m between each ball and its target
@@ -119,7 +122,7 @@ class Motion:
     def frames(self, first: int) -> "Motion":
         """The clip from frame ``first`` on."""
         per_frame = {"times", "clock", "joints", "contact", "phase", "spine", "spine_tangent", "neck", "head", "tail",
-                     "root", "ground_offset", "travel", "heel", "arms"}
+                     "root", "ground_offset", "travel", "heel", "arms", "ear_lag"}
         values = {name: getattr(self, name)[first:] for name in per_frame}
         if self.reach_error is not None:
             values["reach_error"] = self.reach_error[first:]
@@ -136,6 +139,7 @@ class Motion:
             values[f.name] = value if f.name in static else value[index]
         values["ground_offset"] = float(self.ground_offset[index])
         values["travel"] = float(self.travel[index])
+        values["ear_lag"] = float(self.ear_lag[index])
         return Pose(**values)
 
 
@@ -221,7 +225,7 @@ def _overlap(rig: Rig, plan: FootPlan, wave: str, bob: NDArray[np.float64]) -> d
     ago than now (the head and neck at the front girdle, the tail at the rear one)."""
     lag = {}
     now = None
-    for part, girdle in (("head", 0), ("neck", 0), ("tail", -1)):
+    for part, girdle in (("head", 0), ("neck", 0), ("tail", -1), ("ears", 0)):
         delay = getattr(rig.overlap, part)
         if delay > 0:
             now = _body_height(rig, plan, wave, bob) if now is None else now
@@ -252,8 +256,9 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
                             pitch=None if trunk is None else trunk[1])
 
     # 3. Spine, neck, head, tail (following through by their overlap).
-    spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, _overlap(rig, plan, inputs.wave, bob),
-                          flex=None if trunk is None else trunk[0])
+    lag = _overlap(rig, plan, inputs.wave, bob)
+    spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, lag, flex=None if trunk is None else trunk[0])
+    ear_lag = np.arctan2(lag["ears"], max(rig.body.ear_length, 1e-3)) if "ears" in lag else np.zeros(frames)
 
     # 4. Hips beside the girdle centres, then the legs in their own frames.
     hips = girdles.centre[:, rig.girdle] + (rig.hip_side * rig.hip_offset)[None, :, None] * \
@@ -311,7 +316,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     return Motion(times=inputs.times, clock=inputs.clock, joints=joints, contact=plan.contact, phase=plan.phase,
                   spine=spine_pts, spine_tangent=spine_tan, spine_radius=spine.radius, neck=neck, head=head,
                   tail=tail, root=root, ground_offset=ground_offset, travel=inputs.travel,
-                  leg_names=rig.leg_names, fps=fps, rig=rig, heel=heel, arms=arms, world=world,
+                  leg_names=rig.leg_names, fps=fps, rig=rig, heel=heel, arms=arms, ear_lag=ear_lag, world=world,
                   reach_error=reach_error)
 
 

@@ -113,12 +113,13 @@ class KeyPoses:
 
 @dataclass(frozen=True)
 class Overlap:
-    """Follow-through delays (cycle fractions) of the head, neck, arms and tail."""
+    """Follow-through delays (cycle fractions) of the head, neck, arms, tail and ears."""
 
     head: float = 0.0
     neck: float = 0.0
     arms: float = 0.0
     tail: float = 0.0
+    ears: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -182,7 +182,8 @@ def _arm_shapes(arms: NDArray[np.float64], rig: Rig, colors: NDArray[np.float64]
 
 
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
-               show_joints: bool, arms: NDArray[np.float64] | None = None) -> SceneInstances:
+               show_joints: bool, arms: NDArray[np.float64] | None = None,
+               ear_lag: NDArray[np.float64] | None = None) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
     array has a leading frame axis T."""
     look = rig.look
@@ -225,7 +226,10 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     if ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
             + sides * hx[:, None] * 0.55 * head_radius
-        ear_tip = ear_base + ear_length * _unit((hy - head_dir * 0.35)[:, None] + sides * hx[:, None] * 0.25)
+        lag = np.zeros(frames) if ear_lag is None else np.asarray(ear_lag, dtype=np.float64)
+        c, s_ = np.cos(lag)[:, None], np.sin(lag)[:, None]  # turned back (+) or up (-) by the follow-through
+        ear_dir = c * (hy - head_dir * 0.35) + s_ * (-head_dir - 0.35 * hy)
+        ear_tip = ear_base + ear_length * _unit(ear_dir[:, None] + sides * hx[:, None] * 0.25)
         capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
 
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
@@ -247,13 +251,14 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
 def motion_instances(motion: Motion, show_joints: bool = True) -> SceneInstances:
     """Instances of every frame of a clip: capsules (T, N, 11), ellipsoids (T, M, 18)."""
     return _instances(motion.joints, motion.spine, motion.spine_tangent, motion.spine_radius, motion.neck,
-                      motion.head, motion.tail, motion.rig, show_joints, motion.arms)
+                      motion.head, motion.tail, motion.rig, show_joints, motion.arms, motion.ear_lag)
 
 
 def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True) -> SceneInstances:
     """Instances of one pose: capsules (N, 11), ellipsoids (M, 18)."""
     batch = _instances(pose.joints[None], pose.spine[None], pose.spine_tangent[None], pose.spine_radius,
-                       pose.neck[None], pose.head[None], pose.tail[None], rig, show_joints, pose.arms[None])
+                       pose.neck[None], pose.head[None], pose.tail[None], rig, show_joints, pose.arms[None],
+                       np.array([pose.ear_lag]))
     return batch.frame(0)
 
 
