@@ -413,3 +413,18 @@ def test_ears_follow_through_only_with_their_overlap() -> None:
 
     a, b = motion_instances(still, False), motion_instances(floppy, False)
     assert a.capsules.shape == b.capsules.shape and not np.allclose(a.capsules, b.capsules)  # the ears move
+
+
+def test_ghosts_are_the_current_steps_key_poses_along_the_path(human) -> None:
+    from app.kinematics.ghosts import key_pose_ghosts
+
+    rig = build_rig(human)
+    for world in (World(in_place=True), World(path=CirclePath(3.0))):
+        ghosts = key_pose_ghosts(rig, world, clock=3.3, travel=3.3 * 1.05, phase=0.3)
+        assert ghosts.frame_count == 5
+        assert np.allclose(np.mod(ghosts.phase[:, 0], 1.0), np.mod(key_pose_phases(True), 1.0))
+        roots = ghosts.spine[:, 0, [0, 2]]
+        steps = np.linalg.norm(np.diff(roots, axis=0), axis=1)
+        assert np.all(steps > 0.05)  # spread along the path, not piled on the creature
+    second = key_pose_ghosts(rig, World(in_place=True), clock=3.7, travel=0.0, phase=0.7)
+    assert np.allclose(np.mod(second.phase[:, 0], 1.0), np.mod(key_pose_phases(False), 1.0))

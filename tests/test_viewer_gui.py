@@ -531,6 +531,9 @@ def test_key_poses_panel_styles_timing_and_arcs(display: str, tmp_path: Path) ->
         poses = bounced["creature"]["poses"]
         assert poses["down_height"] < poses["contact_height"] and poses["up_height"] < poses["pass_height"]
         assert bounced["error"] is None
+        click_widget(display, dump, "poses.ghosts")
+        assert read_state(dump, until=lambda s: s["ghosts"] == 5)["error"] is None
+        click_widget(display, dump, "poses.ghosts")
         click_widget(display, dump, "panel.Key poses")
         click_widget(display, dump, "panel.View")
         click_widget(display, dump, "arc.toe")

@@ -262,6 +262,19 @@ def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True) -> SceneInsta
     return batch.frame(0)
 
 
+GHOST_COLOR = np.array([0.93, 0.93, 0.96]) ** 2  # a pale grey-blue (linear)
+
+
+def ghost_instances(pose: Pose, rig: Rig, strength: float = 0.7) -> SceneInstances:
+    """A pose drawn as a ghost: its shapes (no joint markers) in colours faded ``strength``
+    of the way towards a pale grey; they cast no shadow of their own beyond the shapes'."""
+    shapes = pose_instances(pose, rig, show_joints=False)
+    caps, ells = shapes.capsules.copy(), shapes.ellipsoids.copy()
+    caps[:, 8:11] = caps[:, 8:11] * (1.0 - strength) + GHOST_COLOR * strength
+    ells[:, 15:18] = ells[:, 15:18] * (1.0 - strength) + GHOST_COLOR * strength
+    return SceneInstances(caps.astype(np.float32), ells.astype(np.float32), shapes.ellipsoid_casters)
+
+
 def creature_points(motion: Motion) -> NDArray[np.float64]:
     """Every joint, head, neck and tail point and the trunk's extent, (T, N, 3)."""
     pad = float(np.max(motion.spine_radius))

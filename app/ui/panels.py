@@ -784,6 +784,8 @@ def poses_panel(state: ViewerState, pc: PanelContext) -> None:
     frames = float(state.get("gait.frames_per_cycle"))
     imgui.text_disabled(f"{frames:.1f} frames a cycle at {fps:g} fps: a step on {frames / 2:.1f}s, "
                         f"{state.live.rig.gait.frequency:.2f} Hz")
+    changed, state.show_ghosts = imgui.checkbox("ghosts: this step's key poses along the path", state.show_ghosts)
+    _remember(state, "poses.ghosts")
     if state.live.rig.poses.heights is None:
         _wrapped_note("the body bobs with the gait; set a height or a style to key it")
 

@@ -21,6 +21,7 @@ from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
 from ..kinematics.arcs import ArcTrail
 from ..kinematics.drive import Driver
+from ..kinematics.ghosts import key_pose_ghosts
 from ..kinematics.herd import Herd
 from ..kinematics.live import LiveMotion
 from ..kinematics.overlays import (FootprintTrail, inside_polygon, planted_points, support_polygon,
@@ -153,6 +154,8 @@ class ViewerState:
     terrain_values: dict[str, dict[str, Any]] = field(default_factory=dict, init=False)
     footprints: FootprintTrail = field(default_factory=FootprintTrail, init=False, repr=False)
     arcs: ArcTrail = field(default_factory=ArcTrail, init=False, repr=False)
+    show_ghosts: bool = False  # the key poses of the current step drawn faintly along the path
+    _ghosts: tuple | None = field(default=None, init=False, repr=False)
     waypoints: list[tuple[float, float]] = field(default_factory=list, init=False)  # (x, z) the route goes through
     waypoint_edit: bool = False  # mouse on the ground: click adds, drag moves, right-click deletes
     path_values: dict[str, dict[str, Any]] = field(default_factory=lambda: {
@@ -637,6 +640,23 @@ class ViewerState:
         self.status = f"selected {self.spec.name} ({index + 1} of {len(self.members)})"
         self.frame_view()
         return True
+
+    def ghost_poses(self) -> list[Pose]:
+        """The key poses of the step the creature is in, along its path (Key poses panel's
+        ghosts); none unless asked for. Kept while the step and the creature are the same."""
+        if not self.show_ghosts:
+            return []
+        live = self.live
+        ref = live.rig.leg_count - 2
+        phase = float(live.foot_phase()[ref])
+        key = (id(live.rig), id(live.world), round(live.clock - phase, 6), phase < 0.5)
+        if self._ghosts is None or self._ghosts[0] != key:
+            try:
+                motion = key_pose_ghosts(live.rig, live.world, live.clock, live.travel, phase)
+            except GaitlabError:
+                return []
+            self._ghosts = (key, [motion.pose(i) for i in range(motion.frame_count)])
+        return self._ghosts[1]
 
     def creature_poses(self) -> list[tuple[Pose, SceneMember]]:
         """Poses of the scene's other creatures (file order, the selected one left out)."""

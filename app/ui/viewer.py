@@ -26,7 +26,7 @@ from ..render.arcs import arc_instances
 from ..render.camera import eye_ray, ground_point
 from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
-from ..render.scene import pose_instances
+from ..render.scene import ghost_instances, pose_instances
 from ..kinematics.world import World
 from ..spec import CreatureSpec
 from .imgui_renderer import ImguiRenderer
@@ -409,6 +409,7 @@ class Viewer:
             "scene": state.names, "selected": state.selected, "screen": self._creature_screen_points(),
             "arcs": {joint: int(points.shape[0]) for joint, points in state.arcs.trails()[0].items()},
             "arc_beads": int(sum(len(b) for b in state.arcs.trails()[1].values())),
+            "ghosts": len(state.ghost_poses()),
             "drive": None if state.driver is None else {
                 "speed": state.driver.ground_speed, "target": state.driver.target_speed,
                 "froude": state.driver.ground_froude, "gait": state.driver.gait,
@@ -471,6 +472,8 @@ class Viewer:
                     if self._herd_instances is None or self._herd_instances.show_joints != state.options.joints:
                         self._herd_instances = HerdInstances(state.herd, state.options.joints)
                     instances = instances + self._herd_instances.frame(state.herd, state.world.terrain.height)
+                for ghost in state.ghost_poses():
+                    instances = instances + ghost_instances(ghost, state.live.rig)
                 if state.options.arcs:
                     trails, beads = state.arcs.trails()
                     instances = instances + arc_instances(trails, beads, 0.012 * state.live.rig.hip_height)
