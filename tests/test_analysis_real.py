@@ -69,3 +69,16 @@ def test_the_long_clips_carry_no_note() -> None:
     for name in ("human_walk_cmu_12_01.bvh", "dog_walk_tencent_walkrun005_f120-419.bvh"):
         tracks, _ = load_tracks(str(DATA / name))
         assert analyze_tracks(tracks).notes == ()
+
+
+def test_cmu_walk_arms_swing_against_the_legs() -> None:
+    """The real human's hands: each farthest forward near the other foot's touchdown."""
+    from app.analysis.metrics import cyclic_distance
+
+    tracks, _ = load_tracks(str(DATA / "human_walk_cmu_12_01.bvh"))
+    assert tracks.hands is not None and tracks.hands.shape[1:] == (2, 3)
+    report = analyze_tracks(tracks)
+    assert cyclic_distance(report.arm_phase["L"], 0.5) < 0.15
+    assert cyclic_distance(report.arm_phase["R"], 0.0) < 0.15
+    dog, _ = load_tracks(str(DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"))
+    assert dog.hands is None and analyze_tracks(dog).arm_phase is None

@@ -127,7 +127,8 @@ def _leading_jumps(points: np.ndarray, limit: int = 5) -> int:
     return skip
 
 
-def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis) -> tuple[FootTracks, str]:
+def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis,
+            hands=None) -> tuple[FootTracks, str]:
     for what, values in (("foot", heel), ("toe", toe), ("body", body)):
         if not np.all(np.abs(values) < MAX_COORDINATE):
             raise InputError(f"{path}: {what} positions reach {float(np.nanmax(np.abs(values))):.3g} (or are not "
@@ -136,6 +137,8 @@ def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis) 
     times, heel, toe, body = times[skip:] - times[skip], heel[skip:], toe[skip:], body[skip:]
     up_axis = detect_up(body, heel) if up == "auto" else up
     heel, toe, body = (_to_y_up(a, up_axis) for a in (heel, toe, body))
+    if hands is not None:
+        hands = _to_y_up(hands[skip:], up_axis)
     hip = float(np.median(body[:, 1] - heel[..., 1].min(axis=1)))
     notes = []
     if units == "auto":
@@ -147,7 +150,8 @@ def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis) 
     if skip:
         notes.append(f"skipped {skip} leading frame{'s' if skip > 1 else ''} that jump into the motion (a rest pose)")
     tracks = FootTracks(times=np.asarray(times, dtype=np.float64), names=tuple(names), heel=heel * scale,
-                        toe=toe * scale, body=body * scale, source=path, hip_height=hip * scale)
+                        toe=toe * scale, body=body * scale, source=path, hip_height=hip * scale,
+                        hands=None if hands is None else hands * scale)
     return tracks, "; ".join(notes)
 
 
@@ -167,8 +171,14 @@ def tracks_from_bvh(path: str, feet: dict[str, tuple[str, str | None]] | None = 
     toes = [mapping.feet[n][1] or mapping.feet[n][0] for n in names]
     pos = clip.positions(ankles + toes + [clip.joints[0].name])
     heel, toe, body = pos[:, :len(names)], pos[:, len(names):2 * len(names)], pos[:, -1]
+    hands = None
+    if names == ["L", "R"]:  # a biped's hands, when the skeleton names them: the arms' phase
+        for prefix in ("", "mixamorig:"):
+            if f"{prefix}LeftHand" in clip.names and f"{prefix}RightHand" in clip.names:
+                hands = clip.positions([f"{prefix}LeftHand", f"{prefix}RightHand"])
+                break
     times = np.arange(clip.frames.shape[0]) * clip.frame_time
-    tracks, note = _finish(path, times, names, heel, toe, body, units, up)
+    tracks, note = _finish(path, times, names, heel, toe, body, units, up, hands)
     return tracks, f"{mapping.rig}: " + ", ".join(f"{n}={a}:{t}" for n, (a, t) in mapping.feet.items()) + (
         f"; {note}" if note else "")
 
