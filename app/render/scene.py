@@ -206,13 +206,17 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     trunk_r = np.concatenate([r[:1] * 0.8, r, r[-1:] * 0.9])
     trunk = _capsules(trunk_pts[:, :-1], trunk_pts[:, 1:], trunk_r[:-1], trunk_r[1:], body_color)
     # A deep neck rising from the chest, narrowing to the head.
-    neck_c = _capsules(neck[:, :1], neck[:, 1:], 0.68 * r[-1], 0.85 * head_radius, body_color)
+    upright = rig.body.upright  # a human: a slim neck, the skull sitting on it
+    neck_r = (0.45 * head_radius, 0.4 * head_radius) if upright else (0.68 * r[-1], 0.85 * head_radius)
+    neck_c = _capsules(neck[:, :1], neck[:, 1:], neck_r[0], neck_r[1], body_color)
 
     # Head: a round skull and a tapering muzzle towards the nose.
     skull_back, nose = head[:, 0], head[:, 1]  # (T, 3)
     head_len = np.linalg.norm(nose - skull_back, axis=-1, keepdims=True)
     head_dir = _unit(nose - skull_back)
     skull = skull_back + head_dir * np.minimum(0.5 * head_radius, 0.3 * head_len)
+    if upright:
+        skull = skull + _UP * 0.75 * head_radius
     # Long heads (a horse's: over four skull radii) keep a broad muzzle; short ones taper.
     long_head = float(np.clip((rig.body.head_length / max(head_radius, 1e-9) - 3.5) / 1.5, 0.0, 1.0))
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
@@ -278,7 +282,10 @@ def ghost_instances(pose: Pose, rig: Rig, strength: float = 0.7) -> SceneInstanc
 def creature_points(motion: Motion) -> NDArray[np.float64]:
     """Every joint, head, neck and tail point and the trunk's extent, (T, N, 3)."""
     pad = float(np.max(motion.spine_radius))
-    return np.concatenate([motion.joints.reshape(motion.frame_count, -1, 3), motion.head, motion.neck, motion.tail,
+    head = motion.head
+    if motion.rig.body.upright:  # the skull sits on top of the neck: its crown too
+        head = np.concatenate([head, head + _UP * 1.8 * motion.rig.body.head_radius], axis=1)
+    return np.concatenate([motion.joints.reshape(motion.frame_count, -1, 3), head, motion.neck, motion.tail,
                            motion.arms.reshape(motion.frame_count, -1, 3), motion.spine - pad, motion.spine + pad],
                           axis=1)
 
