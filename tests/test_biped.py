@@ -306,7 +306,7 @@ def test_bad_arc_joint_is_one_line(tmp_path) -> None:
 def test_render_with_arcs_draws_them(tmp_path) -> None:
     plain, arcs = tmp_path / "plain.png", tmp_path / "arcs.png"
     for out, extra in ((plain, []), (arcs, ["--arcs", "toe,hand"])):
-        result = gaitlab("render", "human", "--in-place", "--camera", "side", "--size", "160x120", "-o", str(out),
+        result = gaitlab("render", "human", "--in-place", "--camera", "side", "--size", "240x180", "-o", str(out),
                          *extra)
         assert result.returncode == 0, result.stderr
     a = np.asarray(Image.open(plain).convert("RGB")).astype(int)
