@@ -23,9 +23,14 @@ LegType = Literal["plantigrade", "digitigrade", "unguligrade"]
 LEG_TYPES: tuple[str, ...] = get_args(LegType)
 
 
+PLANTIGRADE_BELOW = 25.0  # degrees of ankle lift under which a foot stands on its sole (and its heel)
+UNGULIGRADE_FROM = 75.0  # degrees of ankle lift from which it stands on a hoof
+
+
 def leg_type(ankle_lift: float) -> LegType:
     """Which of the three leg types an ankle lift (degrees) reads as."""
-    return "plantigrade" if ankle_lift < 25 else "digitigrade" if ankle_lift < 75 else "unguligrade"
+    return "plantigrade" if ankle_lift < PLANTIGRADE_BELOW else "digitigrade" if ankle_lift < UNGULIGRADE_FROM \
+        else "unguligrade"
 
 # How recorded frames smooth their edges: FXAA over the creature (fast), multisampling
 # (finest, costly on a software renderer) or nothing.

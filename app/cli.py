@@ -235,8 +235,9 @@ def _animator_arguments(parser) -> None:
                         help=f"walk style to start the key poses from: {', '.join(WALK_STYLES)} (writes the "
                              "style's heights, foot angle, arm swing, torso lean and stride; --set adjusts them)")
     parser.add_argument("--frames-per-cycle", metavar="N", type=_positive("frames per cycle", 10000),
-                        help="timing in frames per cycle (two steps) at 24 fps instead of a frequency: a normal "
-                             "walk is 24 (a step on twelves); the same as --set gait.frames_per_cycle=N")
+                        help="timing in frames per cycle (two steps) instead of a frequency, counted at the "
+                             "creature's gait.timing_fps (24 unless it gives one): a normal walk is 24 (a step on "
+                             "twelves); the same as --set gait.frames_per_cycle=N")
 
 
 def _creature_arguments(parser: argparse.ArgumentParser, time_help: str) -> None:
@@ -575,19 +576,30 @@ def _load_with_overrides(args: argparse.Namespace, creature: str | None = None,
                                f"gaits are: {', '.join(GAIT_PRESETS)}")
         overrides["gait.preset"] = args.gait
     style = getattr(args, "style", None)
+    if getattr(args, "frames_per_cycle", None) is not None:
+        if getattr(args, "speed", None) is not None:
+            raise GaitlabError(f"--frames-per-cycle {args.frames_per_cycle:g} with --speed: the speed sets the timing "
+                               "(the gait's frequency follows it); give one of them")
+        overrides["gait.frames_per_cycle"] = args.frames_per_cycle
+    for text in args.overrides:
+        key, value = parse_override(text)
+        overrides[key] = value
+    spec = spec.with_overrides(overrides) if overrides else spec
     if style is not None:
         from .rigging import apply_style
 
         if style not in WALK_STYLES:
             raise GaitlabError(f"--style {style!r}: unknown style{did_you_mean(style, WALK_STYLES)}; styles are: "
                                f"{', '.join(WALK_STYLES)}")
+        # The style is scaled to the creature as edited; the file's own key-pose and
+        # stride settings on the command line then adjust it.
         spec = apply_style(spec, style)
-    if getattr(args, "frames_per_cycle", None) is not None:
-        overrides["gait.frames_per_cycle"] = args.frames_per_cycle
-    for text in args.overrides:
-        key, value = parse_override(text)
-        overrides[key] = value
-    return spec.with_overrides(overrides) if overrides else spec
+        mine = {k: v for k, v in overrides.items() if k.startswith("poses.") or k == "gait.stride"}
+        spec = spec.with_overrides(mine) if mine else spec
+        if getattr(args, "speed", None) is not None and not getattr(args, "quiet", False):
+            print(f"note: --style {style} with --speed: the speed sets the stride; the style's key poses apply",
+                  file=sys.stderr)
+    return spec
 
 
 def cmd_view(args: argparse.Namespace) -> int:
@@ -710,8 +722,8 @@ def cmd_poses(args: argparse.Namespace) -> int:
     from .sheet import write_pose_sheet
 
     output = args.output or Path(f"{Path(args.creature).stem}-poses.png")
-    if output_format(output) != "png":
-        raise GaitlabError(f"{output}: the poses sheet is a PNG; use a .png name")
+    if output.suffix.lower() != ".png" or output_format(output) != "png":
+        raise GaitlabError(f"{output}: the poses sheet is a PNG; give a file name ending in .png")
     if Path(args.creature).suffix.lower() == ".toml" and _is_scene(args.creature):
         raise GaitlabError(f"{args.creature}: a scene file; give one creature (a preset name or creature .toml)")
     spec = _load_with_overrides(args)

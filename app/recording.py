@@ -152,20 +152,27 @@ class Recording:
 
     def _arc_source(self, rig, request: RecordRequest):
         """The motion the arcs are drawn from, how many frames a cycle has, and whether the
-        whole cycle is drawn in every frame (a constant gait in place: a closed loop)."""
+        whole cycle is drawn in every frame: a PNG shows the cycle up to its frame; a
+        constant gait in place shows its closed loop; otherwise the trail grows behind."""
         if not request.arcs:
             return None
         from .kinematics.arcs import arc_points
 
-        per_cycle = max(2, int(round(request.fps / rig.gait.frequency)))
-        whole = self.format == "png" or (self.motion.in_place and request.speed is None)
         source = self.motion
-        if whole:
+        # Frames a cycle takes, from the clip's own clock (a speed ramp changes it).
+        step = float(np.median(np.diff(source.clock))) if source.frame_count > 1 else rig.gait.frequency / request.fps
+        per_cycle = max(2, int(round(1.0 / max(step, 1e-9))))
+        whole = self.format == "png" or (source.in_place and request.speed is None)
+        if self.format == "png":
+            period = 1.0 / rig.gait.frequency
+            source, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start - period, world=request.world,
+                                    closed=True)
+        elif whole:
             source, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=request.world)
         try:
             points = {joint: arc_points(source, joint) for joint in request.arcs}
         except ValueError as exc:
-            raise GaitlabError(str(exc)) from None
+            raise GaitlabError(f"--arcs: {exc}") from None
         return source, points, per_cycle, whole
 
     def _arc_shapes(self, index: int):

@@ -17,10 +17,9 @@ from .kinematics.gait import GaitParams, natural_frequency
 from .kinematics.oscillator import duty_from_bias
 from .kinematics.rig import (ArmShape, BodyShape, KeyPoses, Look, Overlap, Rig, SecondaryMotion, SpeedGaits,
                              leg_lengths)
+from .choices import PLANTIGRADE_BELOW
 from .spec import CreatureSpec, GaitSpec, leg_type, resolve_phases
-from .styles import STYLES
-
-DEFAULT_TIMING_FPS = 24.0  # the frame rate frames_per_cycle counts in when none is given (film)
+from .styles import DEFAULT_TIMING_FPS, STYLES, style_heights
 
 
 OUT_KNEE_POLE = np.array([0.6, 1.0])  # sprawled legs' knees bend up, and a little out (leg frame: forward=out, up)
@@ -43,11 +42,6 @@ def resolve_frequency(gait: GaitSpec, hip_height: float) -> float:
     if gait.frames_per_cycle is not None:
         return (gait.timing_fps or DEFAULT_TIMING_FPS) / gait.frames_per_cycle
     return natural_frequency(gait.preset_spec.cadence, hip_height)
-
-
-def frames_per_cycle(frequency: float, fps: float = DEFAULT_TIMING_FPS) -> float:
-    """Frames per cycle at ``fps`` for a stride frequency (Hz)."""
-    return fps / frequency
 
 
 def trunk_factor(spec: CreatureSpec, hip_height: float) -> float:
@@ -93,7 +87,8 @@ def _speed_gaits(spec: CreatureSpec, hip_height: float) -> SpeedGaits:
     gaits = {}
     for name in order:
         own = spec.gait if name == spec.gait.preset and len(order) == 1 else GaitSpec(preset=name, wave=spec.gait.wave)
-        gaits[name] = resolve_gait(own, feet, hip_height, bob=spec.motion.bob, trunk=trunk_factor(spec, hip_height))
+        gaits[name] = resolve_gait(own, feet, hip_height, bob=spec.motion.bob,
+                                   trunk=trunk_factor(spec, hip_height) if spec.pair_count >= 2 else 0.0)
     return SpeedGaits(walk_trot=spec.speed.walk_trot, trot_gallop=spec.speed.trot_gallop,
                       hysteresis=spec.speed.hysteresis, order=order, gaits=gaits)
 
@@ -106,7 +101,8 @@ def key_poses(spec: CreatureSpec, hip_height: float) -> KeyPoses:
     heights = None
     if poses.shaped:
         given = (poses.contact_height, poses.down_height, poses.pass_height, poses.up_height)
-        heights = np.array([style.heights[i] * hip_height if v is None else float(v) for i, v in enumerate(given)])
+        defaults = style_heights(style.name, hip_height)
+        heights = np.array([defaults[i] if v is None else float(v) for i, v in enumerate(given)])
     pick = lambda value, default: math.radians(default if value is None else value)  # noqa: E731
     return KeyPoses(heights=heights, foot_angle=pick(poses.foot_angle, style.foot_angle),
                     arm_swing=pick(poses.arm_swing, style.arm_swing), torso_lean=pick(poses.torso_lean, style.torso_lean))
@@ -139,7 +135,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
     rest_height = l_rest * np.cos(abduction)
     # A rolling plantigrade foot stands with its ankle under the hip: the hip's rest height
     # is the leg's span over the ankle (a nearly straight human leg).
-    rolls_flat = (per_leg("roll") > 0) & (lift < math.radians(25.0))
+    rolls_flat = (per_leg("roll") > 0) & (lift < math.radians(PLANTIGRADE_BELOW))
     bend = np.clip(per_leg("natural_bend"), 0.0, 0.8)
     rest_height = np.where(rolls_flat, (femur + tibia) * (1.0 - bend) + meta * np.sin(lift), rest_height)[0::2]
     body = spec.body
@@ -201,7 +197,7 @@ def apply_style(spec: CreatureSpec, name: str) -> CreatureSpec:
     style = STYLES[name]
     hip = build_rig(spec).hip_height
     keys = ("contact_height", "down_height", "pass_height", "up_height")
-    overrides: dict[str, object] = {f"poses.{k}": round(h * hip, 4) for k, h in zip(keys, style.heights)}
+    overrides: dict[str, object] = {f"poses.{k}": round(h, 4) for k, h in zip(keys, style_heights(name, hip))}
     overrides.update({"poses.style": name, "poses.foot_angle": style.foot_angle, "poses.arm_swing": style.arm_swing,
                       "poses.torso_lean": style.torso_lean, "gait.stride": style.stride})
     return spec.with_overrides(overrides, origin=f"style {name}")

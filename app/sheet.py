@@ -21,8 +21,9 @@ from .kinematics.world import World
 from .output import check_output_dir, write_png
 from .render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
 from .render.renderer import RenderOptions
-from .rigging import DEFAULT_TIMING_FPS, build_rig
+from .rigging import build_rig
 from .spec import CreatureSpec
+from .styles import DEFAULT_TIMING_FPS
 
 POSE_NAMES: tuple[str, ...] = ("contact", "down", "pass", "up", "contact")
 LABEL_HEIGHT = 44  # pixels under each pose for its label

@@ -24,7 +24,7 @@ import tomli_w
 
 from .choices import (KNEE_DIRECTIONS, POSTURES, WAVE_SHAPES, KneeDirection, LegType, Posture,  # noqa: F401
                       WaveShape, leg_type)
-from .styles import WALK_STYLES
+from .styles import DEFAULT_TIMING_FPS, WALK_STYLES
 from .errors import SpecError, did_you_mean
 from .output import atomic_write_text
 from .tomlfile import TomlProblem, parse_toml, read_toml
@@ -530,7 +530,7 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
     look = LookSpec(**_read_table(_subtable(data, "look", where, required=False), LOOK_RULES, "look", where))
     arms_t = _subtable(data, "arms", where, required=False)
     arms = ArmsSpec(**_read_table(arms_t, ARMS_RULES, "arms", where, required=("upper", "fore", "hand"))) \
-        if arms_t else None
+        if "arms" in data else None
     poses = PosesSpec(**_read_table(_subtable(data, "poses", where, required=False), POSES_RULES, "poses", where))
     overlap = OverlapSpec(**_read_table(_subtable(data, "overlap", where, required=False), OVERLAP_RULES,
                                         "overlap", where))
@@ -634,6 +634,13 @@ def _read_gait(table: Mapping[str, Any], feet: tuple[str, ...], where: str) -> G
     if gait.frames_per_cycle is not None and gait.frequency is not None:
         raise SpecError(f"{_at(where)}gait: give frequency or frames_per_cycle, not both (frequency = "
                         f"{gait.frequency:g}, frames_per_cycle = {gait.frames_per_cycle:g})")
+    if gait.frames_per_cycle is not None:
+        fps = gait.timing_fps or DEFAULT_TIMING_FPS
+        top = GAIT_RULES["frequency"].hi
+        if fps / gait.frames_per_cycle > top:
+            raise SpecError(f"{_at(where)}gait.frames_per_cycle = {gait.frames_per_cycle:g} at {fps:g} fps is "
+                            f"{fps / gait.frames_per_cycle:.3g} Hz; strides are at most {top:g} Hz: give at least "
+                            f"{fps / top:g} frames")
     if gait.phases is not None and (gait.front_back is not None or gait.left_right is not None):
         raise SpecError(f"{_at(where)}gait: give phases or front_back/left_right, not both")
     if not gait.preset_spec.symmetric and gait.phases is None and (

@@ -30,6 +30,7 @@ WalkStyleName = Literal["normal", "double-bounce", "sneak", "proud", "tired"]
 WALK_STYLES: tuple[str, ...] = get_args(WalkStyleName)
 KEY_POSES: tuple[str, ...] = ("contact", "down", "pass", "up")
 KEY_POSE_TIMES: tuple[float, ...] = (0.0, 0.25, 0.5, 0.75)  # fraction of a step at which each key pose falls
+DEFAULT_TIMING_FPS = 24.0  # the frame rate frames per cycle count in when a creature gives none (film)
 
 
 @dataclass(frozen=True)
@@ -44,6 +45,11 @@ class WalkStyle:
     foot_angle: float
     arm_swing: float
     torso_lean: float
+
+
+def style_heights(name: str, hip_height: float) -> tuple[float, float, float, float]:
+    """A style's key-pose heights (contact, down, pass, up) in metres for a hip height (m)."""
+    return tuple(h * hip_height for h in STYLES[name].heights)  # type: ignore[return-value]
 
 
 STYLES: dict[str, WalkStyle] = {s.name: s for s in (

@@ -428,3 +428,79 @@ def test_ghosts_are_the_current_steps_key_poses_along_the_path(human) -> None:
         assert np.all(steps > 0.05)  # spread along the path, not piled on the creature
     second = key_pose_ghosts(rig, World(in_place=True), clock=3.7, travel=0.0, phase=0.7)
     assert np.allclose(np.mod(second.phase[:, 0], 1.0), np.mod(key_pose_phases(False), 1.0))
+
+
+def test_arcs_stay_while_paused_and_ghosts_follow_the_ground(human) -> None:
+    from app.kinematics.arcs import ArcTrail
+    from app.kinematics.live import LiveMotion
+    from app.ui.state import ViewerState
+
+    rig = build_rig(human)
+    live, arcs = LiveMotion(rig), ArcTrail()
+    for _ in range(60):
+        live.step(1.0 / 60.0)
+        arcs.record(live.pose(), ("toe", "hand"), live.time, 1.0, 0)
+    for _ in range(3):  # paused: the same frame drawn again
+        arcs.record(live.pose(), ("toe", "hand"), live.time, 1.0, 0)
+    trails, beads = arcs.trails()
+    assert trails["toe"].shape[0] == 60 and sum(len(b) for b in beads.values()) >= 8
+    arcs.record(live.pose(), ("toe", "hand", "head"), live.time, 1.0, 0)  # a joint ticked while paused
+    assert "head" in arcs.trails()[0] and len(arcs.trails()[0]["toe"]) == 60
+
+    state = ViewerState(human, world=World(in_place=True))
+    state.show_ghosts = True
+    first = [p.spine[0].copy() for p in state.ghost_poses()]
+    for _ in range(6):
+        state.advance(1.0 / 60.0)
+    later = state.ghost_poses()
+    moved = state.live.travel - 0.0
+    assert len(later) == 5
+    fresh = key_pose_ghosts_now(state)
+    assert np.allclose([p.spine[0] for p in later], [p.spine[0] for p in fresh], atol=1e-9)
+    assert not np.allclose([p.spine[0] for p in later], first) and moved > 0
+
+
+def key_pose_ghosts_now(state):
+    from app.kinematics.ghosts import key_pose_ghosts
+
+    live = state.live
+    phase = float(live.foot_phase()[live.rig.leg_count - 2])
+    motion = key_pose_ghosts(live.rig, live.world, live.clock, live.travel, phase)
+    return [motion.pose(i) for i in range(motion.frame_count)]
+
+
+def test_a_png_s_arcs_are_the_cycle_up_to_its_frame(human, tmp_path) -> None:
+    from app.recording import Recording, RecordRequest
+    from app.render.clip import ViewSettings
+
+    request = RecordRequest(spec=human, output=tmp_path / "a.png", fps=24.0, start=2.0, arcs=("hip",),
+                            view=ViewSettings(size=(64, 48), antialias="off"))
+    recording = Recording(request)
+    try:
+        source, points, per_cycle, whole = recording._arcs
+        assert whole and per_cycle == 24
+        hip_now = recording.motion.joints[0, :, 0]
+        assert np.allclose(points["hip"][-1], hip_now, atol=1e-9)  # the trail ends where the creature is
+        assert points["hip"][0, 0, 2] < hip_now[0, 2] - 0.5  # and runs a cycle back
+    finally:
+        recording.cancel()
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["--frames-per-cycle", "24", "--speed", "1.2"], "--frames-per-cycle"),
+    (["--frames-per-cycle", "0.01"], "gait.frames_per_cycle"),
+])
+def test_timing_that_cannot_be_is_refused(tmp_path, args, needle) -> None:
+    result = gaitlab("render", "human", "-o", str(tmp_path / "r.gif"), *args)
+    assert result.returncode == 2 and needle in result.stderr and result.stderr.count("\n") == 1, result.stderr
+    assert not list(tmp_path.iterdir())
+
+
+def test_an_empty_arms_table_is_an_error(tmp_path) -> None:
+    text = (ROOT / "creatures" / "human.toml").read_text()
+    start = text.index("[arms]")
+    end = text.index("[gait]")
+    bad = tmp_path / "armless.toml"
+    bad.write_text(text[:start] + "[arms]\n\n" + text[end:])
+    with pytest.raises(SpecError, match="missing key arms.upper"):
+        load_creature(str(bad))

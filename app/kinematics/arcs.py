@@ -11,7 +11,11 @@ from numpy.typing import NDArray
 
 from ..choices import ARC_JOINTS, ArcJoint  # noqa: F401 (re-exported)
 from .motion import Motion
-from .poses import key_pose_phases
+from .poses import key_pose_phases, reference_foot
+
+
+def _others(joint: str) -> str:
+    return ", ".join(j for j in ARC_JOINTS if j not in (joint, "hand", "tail"))
 
 
 def arc_points(motion, joint: str) -> NDArray[np.float64]:
@@ -27,18 +31,18 @@ def arc_points(motion, joint: str) -> NDArray[np.float64]:
         return motion.heel
     if joint == "hand":
         if motion.arms.shape[-3] == 0:
-            raise ValueError("arc joint 'hand': this creature has no arms")
+            raise ValueError(f"arc joint 'hand': this creature has no arms; choose from {_others('hand')}")
         return motion.arms[..., 3, :]
     if joint == "head":
         return motion.head[..., 1:2, :]
     if np.linalg.norm(motion.tail[..., -1, :] - motion.tail[..., 0, :], axis=-1).max() <= 1e-9:
-        raise ValueError("arc joint 'tail': this creature has no tail")
+        raise ValueError(f"arc joint 'tail': this creature has no tail; choose from {_others('tail')}")
     return motion.tail[..., -1:, :]
 
 
 class ArcTrail:
     """The last cycle of arc points of a live creature, frame by frame (the viewer's
-    arcs): :meth:`record` each drawn pose, :meth:`shapes` for what to draw."""
+    arcs): :meth:`record` each drawn pose, :meth:`trails` for what to draw."""
 
     def __init__(self) -> None:
         self.times: list[float] = []
@@ -52,14 +56,21 @@ class ArcTrail:
         """Add a pose's points for ``joints`` at animation ``time`` (s), keeping ``period``
         seconds; ``reference`` is the foot whose phase places the key poses. Joints the
         creature lacks are left out."""
-        if self.times and time <= self.times[-1]:
+        if self.times and time < self.times[-1]:
             self.clear()  # time went back (a scrub or a reset): start over
-        row = {}
+        paused = bool(self.times) and time == self.times[-1]  # the same frame drawn again
+        row = {j: p for j, p in self.points[-1].items() if j in joints} if paused else {}
+        if paused:
+            self.points[-1] = row
         for joint in joints:
+            if joint in row:
+                continue
             try:
                 row[joint] = arc_points(pose, joint)
             except ValueError:
                 continue
+        if paused:
+            return
         self.times.append(time)
         self.phases.append(float(pose.phase[reference]))
         self.points.append(row)
@@ -72,15 +83,27 @@ class ArcTrail:
         """Each joint's trail (N, K, 3) and its key-pose beads (M, K, 3)."""
         if not self.points:
             return {}, {}
-        joints = [j for j in self.points[-1] if all(j in row for row in self.points)]
-        trails = {j: np.stack([row[j] for row in self.points]) for j in joints}
+        # A joint ticked a moment ago draws from the frame it was first recorded.
+        trails = {}
+        for j in self.points[-1]:
+            rows = [row[j] for row in self.points if j in row]
+            trails[j] = np.stack(rows)
         phase = np.asarray(self.phases)
-        keys = np.unique(np.mod(np.concatenate([key_pose_phases(True), key_pose_phases(False)]), 1.0))
+        keys = key_phases()
         # A key pose falls between two recorded frames where the phase passes it.
         before, after = phase[:-1, None], phase[1:, None]
         passed = ((before <= keys) & (after > keys)) | ((before > after) & ((keys >= before) | (keys < after)))
         frames = np.unique(np.nonzero(passed)[0] + 1)
-        return trails, {j: t[frames] for j, t in trails.items()}
+        beads = {}
+        for j, t in trails.items():
+            offset = len(self.points) - len(t)  # the rows before this joint was ticked
+            beads[j] = t[frames[frames >= offset] - offset]
+        return trails, beads
+
+
+def key_phases() -> NDArray[np.float64]:
+    """The cycle phases (8,) of the key poses of both steps, in [0, 1)."""
+    return np.unique(np.mod(np.concatenate([key_pose_phases(True), key_pose_phases(False)]), 1.0))
 
 
 def parse_arc_joints(text: str) -> tuple[str, ...]:
@@ -105,8 +128,8 @@ def key_pose_frames(motion: Motion, index: int, frames_per_cycle: int) -> NDArra
     """Frames in the trail ending at ``index`` where the key poses fall (contact, down,
     pass, up of both steps): the frames nearest each key-pose phase of the cycle."""
     start = max(0, index - frames_per_cycle)
-    phase = motion.phase[start:index + 1, motion.rig.leg_count - 2]
-    keys = np.unique(np.mod(np.concatenate([key_pose_phases(True), key_pose_phases(False)]), 1.0))
+    phase = motion.phase[start:index + 1, reference_foot(motion.rig)]
+    keys = key_phases()
     distance = np.abs(np.mod(phase[:, None] - keys[None, :] + 0.5, 1.0) - 0.5)  # (N, 8)
     step = 0.5 / max(frames_per_cycle, 1)
     near = distance <= step + 1e-12

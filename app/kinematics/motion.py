@@ -180,7 +180,7 @@ def trunk_motion(rig: Rig, phase: NDArray[np.float64], wave: FootWave, trunk: ND
     amp = np.broadcast_to([rig.gait.flex, rig.gait.pitch], (phase.shape[0], 2)) if trunk is None else trunk
     if not np.any(amp):
         return None
-    fore, hind = [0, 1], [rig.leg_count - 2, rig.leg_count - 1]
+    fore, hind = [0, 1], [reference_foot(rig), reference_foot(rig) + 1]
     flex = amp[:, 0] * np.cos(2.0 * np.pi * phase[:, hind]).mean(axis=1)  # feet out of step cancel
     pitch = amp[:, 1] * (wave.lift[:, fore].mean(axis=1) - wave.lift[:, hind].mean(axis=1))
     return flex, pitch
@@ -331,14 +331,15 @@ def travel_per_cycle(rig: Rig) -> float:
 
 
 def constant_gait_inputs(rig: Rig, world: World, clock: NDArray[np.float64],
-                         times: NDArray[np.float64]) -> MotionInputs:
-    """The inputs of a constant gait at clock values (T,) (body at arc length 0 at clock 0)."""
+                         times: NDArray[np.float64], origin: float = 0.0) -> MotionInputs:
+    """The inputs of a constant gait at clock values (T,), the body at arc length
+    ``origin`` (m) at clock 0."""
     per_cycle = travel_per_cycle(rig)
-    plan = plan_constant_gait(rig, world, clock, per_cycle)
+    plan = plan_constant_gait(rig, world, clock, per_cycle, origin=origin)
     stride = np.broadcast_to(rig.stride_length, plan.phase.shape)
     bob = np.full(clock.shape[0], rig.gait.bob)
-    return MotionInputs(clock=clock, times=times, plan=plan, travel=per_cycle * clock, stride=stride, bob=bob,
-                        wave=rig.gait.wave)
+    return MotionInputs(clock=clock, times=times, plan=plan, travel=origin + per_cycle * clock, stride=stride,
+                        bob=bob, wave=rig.gait.wave)
 
 
 def check_world(rig: Rig, world: World) -> None:

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from ..choices import PLANTIGRADE_BELOW
 from .gait import GaitParams, ground_speed
 
 MIN_CROUCH = 0.6  # a girdle never stands lower than this fraction of its rest height
@@ -200,7 +201,7 @@ class Rig:
     def heel_length(self) -> NDArray[np.float64]:
         """How far (m) behind the ball a foot's heel touches the ground (L,): the flat
         metatarsus of a plantigrade foot, 0 for feet that stand on their toes."""
-        return np.where(self.ankle_lift < np.radians(25.0), self.metatarsus * np.cos(self.ankle_lift), 0.0)
+        return np.where(self.ankle_lift < np.radians(PLANTIGRADE_BELOW), self.metatarsus * np.cos(self.ankle_lift), 0.0)
 
     @property
     def hip_height(self) -> float:

@@ -17,7 +17,7 @@ from ..export.formats import EXPORT_FORMATS
 from ..output import GIF_QUALITIES, MAX_CRF
 from ..render.camera import CAMERA_CHOICES, CAMERA_PRESETS
 from ..choices import ANTIALIAS_MODES, ARC_JOINTS, KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
-from ..styles import STYLES, WALK_STYLES
+from ..styles import DEFAULT_TIMING_FPS, STYLES, WALK_STYLES
 from ..spec import rule_for
 from .state import ViewerState
 
@@ -780,7 +780,7 @@ def poses_panel(state: ViewerState, pc: PanelContext) -> None:
         slider(state, pc, "gait.stride", "stride", 0.0, 1.5, f"%.3f {LEG_LENGTHS}")
         slider(state, pc, "gait.frames_per_cycle", "frames / cycle", 6.0, 96.0, "%.1f frames")
         imgui.end_table()
-    fps = state.spec.gait.timing_fps or 24.0
+    fps = state.spec.gait.timing_fps or DEFAULT_TIMING_FPS
     frames = float(state.get("gait.frames_per_cycle"))
     imgui.text_disabled(f"{frames:.1f} frames a cycle at {fps:g} fps: a step on {frames / 2:.1f}s, "
                         f"{state.live.rig.gait.frequency:.2f} Hz")

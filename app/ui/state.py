@@ -21,7 +21,8 @@ from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
 from ..kinematics.arcs import ArcTrail
 from ..kinematics.drive import Driver
-from ..kinematics.ghosts import key_pose_ghosts
+from ..kinematics.ghosts import key_pose_ghosts, shift_pose
+from ..kinematics.poses import reference_foot
 from ..kinematics.herd import Herd
 from ..kinematics.live import LiveMotion
 from ..kinematics.overlays import (FootprintTrail, inside_polygon, planted_points, support_polygon,
@@ -42,8 +43,8 @@ from ..render.overlays import Overlays
 from ..render.renderer import GroundView, RenderOptions, nice_grid_spacing
 from ..render.scene import leg_colors
 from ..resources import creatures_dir
-from ..rigging import DEFAULT_TIMING_FPS, apply_style, build_rig
-from ..styles import STYLES
+from ..rigging import apply_style, build_rig
+from ..styles import DEFAULT_TIMING_FPS, style_heights
 from ..spec import (LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, load_creature, spec_value,
                     without_adjustment)
 
@@ -218,7 +219,8 @@ class ViewerState:
         return spec_value(self.spec, key)
 
     def _resolved_pose(self, key: str) -> Any:
-        """A key pose value the file leaves open, as the creature walks it."""
+        """A key pose value the file leaves open: as the creature walks it; a height of a
+        creature whose bob is not keyed shows the normal style's (where editing starts)."""
         rig = self.live.rig
         poses = rig.poses
         if key == "gait.frames_per_cycle":
@@ -228,8 +230,7 @@ class ViewerState:
         names = ("contact_height", "down_height", "pass_height", "up_height")
         name = key.split(".", 1)[1]
         if name in names:
-            heights = poses.heights if poses.heights is not None else \
-                np.asarray(STYLES["normal"].heights) * rig.hip_height
+            heights = poses.heights if poses.heights is not None else style_heights("normal", rig.hip_height)
             return float(heights[names.index(name)])
         return float(np.degrees({"foot_angle": poses.foot_angle, "arm_swing": poses.arm_swing,
                                  "torso_lean": poses.torso_lean}[name]))
@@ -643,20 +644,27 @@ class ViewerState:
 
     def ghost_poses(self) -> list[Pose]:
         """The key poses of the step the creature is in, along its path (Key poses panel's
-        ghosts); none unless asked for. Kept while the step and the creature are the same."""
+        ghosts); none unless asked for. Solved once a step; in place, where the ground has
+        carried them since."""
         if not self.show_ghosts:
             return []
         live = self.live
-        ref = live.rig.leg_count - 2
+        ref = reference_foot(live.rig)
         phase = float(live.foot_phase()[ref])
-        key = (id(live.rig), id(live.world), round(live.clock - phase, 6), phase < 0.5)
-        if self._ghosts is None or self._ghosts[0] != key:
+        step = (round(live.clock - phase, 6), phase < 0.5)
+        cached = self._ghosts
+        if cached is None or cached[0] is not live.rig or cached[1] is not live.world or cached[2] != step:
             try:
                 motion = key_pose_ghosts(live.rig, live.world, live.clock, live.travel, phase)
             except GaitlabError:
                 return []
-            self._ghosts = (key, [motion.pose(i) for i in range(motion.frame_count)])
-        return self._ghosts[1]
+            cached = self._ghosts = (live.rig, live.world, step, live.travel,
+                                     [motion.pose(i) for i in range(motion.frame_count)])
+        poses = cached[4]
+        if live.world.in_place and live.travel != cached[3]:  # the ground has moved on under them
+            back = np.array([0.0, 0.0, cached[3] - live.travel])
+            poses = [shift_pose(p, back) for p in poses]
+        return poses
 
     def creature_poses(self) -> list[tuple[Pose, SceneMember]]:
         """Poses of the scene's other creatures (file order, the selected one left out)."""
@@ -1013,7 +1021,7 @@ class ViewerState:
         self.footprints.record(pose, self.live.time)
         rig = self.live.rig
         if self.options.arcs:
-            self.arcs.record(pose, self.options.arcs, self.live.time, 1.0 / self.live.frequency, rig.leg_count - 2)
+            self.arcs.record(pose, self.options.arcs, self.live.time, 1.0 / self.live.frequency, reference_foot(rig))
         else:
             self.arcs.clear()
         self._drop_passed_waypoints()
