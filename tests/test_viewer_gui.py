@@ -546,6 +546,15 @@ def test_key_poses_panel_styles_timing_and_arcs(display: str, tmp_path: Path) ->
         image = np.asarray(Image.open(_grab(display, shot)).convert("RGB")).astype(int)
         yellow = (image[..., 0] > 200) & (image[..., 1] > 150) & (image[..., 2] < 90)  # the toe's arc
         assert yellow.sum() > 100
+        # The Body panel's overlap: a click at 40% along the arms' delay slider (0..0.5 cycle).
+        click_widget(display, dump, "panel.View")
+        click_widget(display, dump, "panel.Body")
+        x0, y0, x1, y1 = read_state(dump, until=lambda s: "overlap.arms" in s["widgets"])["widgets"]["overlap.arms"]
+        xdotool(display, "mousemove", str(int(x0 + 0.4 * (x1 - x0))), str(int((y0 + y1) / 2)))
+        time.sleep(0.4)
+        xdotool(display, "click", "1")
+        delayed = read_state(dump, until=lambda s: abs(s["creature"].get("overlap", {}).get("arms", 0.0) - 0.2) < 0.03)
+        assert delayed["error"] is None
         quit_viewer(display, proc, window)
 
 
