@@ -64,8 +64,13 @@ class GaitPreset:
     left_right: float | None = None
     phases: Mapping[str, float] | None = None
     pairs: tuple[int, int] = (2, 2)
+    biped: str = ""  # what the gait is on two legs, where that differs from the description
     flex: float = 0.0  # degrees the spine flexes and extends either way with the hind legs (bounding gaits)
     pitch: float = 0.0  # degrees the trunk pitches over a cycle, through the stances and flights
+
+    def describe(self, pairs: int) -> str:
+        """The description for a body with ``pairs`` leg pairs."""
+        return self.biped if pairs == 1 and self.biped else self.description
 
     @property
     def symmetric(self) -> bool:
@@ -97,7 +102,9 @@ GAIT_PRESETS: dict[str, GaitPreset] = {
     for preset in (
         GaitPreset("walk", "lateral-sequence walk: LH, LF, RH, RF a quarter cycle apart (dog, horse)",
                    duty_factor=0.70, cadence=0.33, stride=0.65, step_height=0.12, bob=0.025,
-                   front_back=0.25, left_right=0.5, pairs=(1, 2)),
+                   front_back=0.25, left_right=0.5, pairs=(1, 2),
+                   biped="walk: left and right feet half a cycle apart, each down over half the cycle, both down "
+                         "at each change of feet (human, bird)"),
         GaitPreset("diagonal-walk", "diagonal-sequence walk: each hind foot is followed by the opposite fore foot (primates)",
                    duty_factor=0.70, cadence=0.33, stride=0.60, step_height=0.12, bob=0.025,
                    front_back=0.70, left_right=0.5, pairs=(1, 2)),

@@ -278,7 +278,7 @@ def gait_panel(state: ViewerState, pc: PanelContext) -> None:
     _remember(state, "gait")
     if chosen is not None:
         state.set_gait(chosen)
-    _wrapped_note(GAIT_PRESETS[state.spec.gait.preset].description)
+    _wrapped_note(GAIT_PRESETS[state.spec.gait.preset].describe(state.spec.pair_count))
     if _begin_rows("gait", pc):
         slider(state, pc, "gait.frequency", "frequency", 0.1, 6.0, "%.2f Hz")
         # Rows that do not apply stay, disabled, so the layout never moves under the cursor.
