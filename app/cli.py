@@ -225,8 +225,10 @@ def _clip_arguments(parser: argparse.ArgumentParser, output_help: str, cycles_he
     length = parser.add_mutually_exclusive_group()
     length.add_argument("--seconds", metavar="S", type=_positive("seconds", MAX_SECONDS), help="clip length in seconds")
     length.add_argument("--cycles", metavar="N", type=_positive("cycles", MAX_SECONDS), help=cycles_help)
-    parser.add_argument("--fps", metavar="F", type=_positive("frames per second", MAX_FPS), default=fps,
-                        help=f"frames per second (default: {fps:g})")
+    parser.add_argument("--fps", metavar="F", type=_positive("frames per second", MAX_FPS), default=None,
+                        help=f"frames per second (default: {fps:g}, or the creature's timing frame rate when its "
+                             "timing is given in frames per cycle)")
+    parser.set_defaults(default_fps=fps)
 
 
 def _animator_arguments(parser) -> None:
@@ -252,9 +254,10 @@ def _creature_arguments(parser: argparse.ArgumentParser, time_help: str) -> None
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="gaitlab", description="Procedural legged locomotion: tetrapods, insects, spiders and "
-                     "centipedes walking paths over terrain, their legs driven by gait oscillators and analytic "
-                     "IK, rendered headless or live.",
+    parser = _Parser(prog="gaitlab", description="Procedural legged locomotion: tetrapods, bipeds (a human, a "
+                     "bird, a theropod), insects, spiders and centipedes walking paths over terrain, their legs "
+                     "driven by gait oscillators and analytic IK, with an animator's key poses, styles and arcs, "
+                     "rendered headless or live.",
                      epilog="Run 'gaitlab COMMAND --help' for a command's options.")
     parser.add_argument("--version", action="version", version=f"gaitlab {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
@@ -457,6 +460,7 @@ def cmd_render(args: argparse.Namespace) -> int:
     output = args.output or Path(f"{Path(args.creature).stem}.gif")
     fmt = output_format(output)
     spec, world, speed = _creature_and_world(args)
+    _choose_fps(args, spec)
     from .kinematics.path import StraightPath
 
     turns = not isinstance(world.path, StraightPath)  # a straight line under the body says little
@@ -512,6 +516,16 @@ def cmd_render(args: argparse.Namespace) -> int:
             print(f"wrote {result.path}: {result.frames} frames, {result.seconds:.2f} s at {args.fps:g} fps "
                   f"({result.cycles:.2f} cycles of {spec.name} {gaits}), {w}x{h}, {size / 1024:.0f} KiB")
     return 0
+
+
+def _choose_fps(args: argparse.Namespace, spec) -> None:
+    """--fps, or the creature's timing frame rate when it gives frames per cycle (so a cycle
+    of 24 frames at 24 fps is 24 frames in the file), or the command's default."""
+    if args.fps is None:
+        from .styles import DEFAULT_TIMING_FPS
+
+        timed = spec.gait.frames_per_cycle is not None and args.speed is None
+        args.fps = (spec.gait.timing_fps or DEFAULT_TIMING_FPS) if timed else args.default_fps
 
 
 def _is_scene(name: str) -> bool:
@@ -707,6 +721,7 @@ def cmd_export(args: argparse.Namespace) -> int:
 
     output = args.output or Path(f"{Path(args.creature).stem}.bvh")
     spec, world, speed = _creature_and_world(args)
+    _choose_fps(args, spec)
     result = export_clip(spec, output, fps=args.fps, seconds=args.seconds, cycles=args.cycles, start=args.time,
                          speed=speed, world=world, loop=args.loop, ground=args.ground)
     if not args.quiet:

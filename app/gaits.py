@@ -10,8 +10,9 @@ number of leg pairs. Asymmetrical gaits (canter, gallops, half-bound) give an ex
 phase per foot and are defined for four-legged creatures.
 
 Each preset says how many leg pairs it fits (:attr:`GaitPreset.pairs`): the eleven
-tetrapod gaits two (the symmetrical ones also one: a biped's left/right alternation), the
-hexapod tripod and tetrapod three, the metachronal wave three or more.
+tetrapod gaits two (walk, bound and pronk also one: a biped's walk, and its hop with both
+feet), the biped run one, the hexapod tripod and tetrapod three, the metachronal wave
+three or more.
 
 ``flex`` (degrees, either way) is how far the spine flexes and extends with the hind legs'
 stance and swing, and ``pitch`` (degrees, over a cycle) how far the trunk pitches through
@@ -107,16 +108,16 @@ GAIT_PRESETS: dict[str, GaitPreset] = {
                          "at each change of feet (human, bird)"),
         GaitPreset("diagonal-walk", "diagonal-sequence walk: each hind foot is followed by the opposite fore foot (primates)",
                    duty_factor=0.70, cadence=0.33, stride=0.60, step_height=0.12, bob=0.025,
-                   front_back=0.70, left_right=0.5, pairs=(1, 2)),
+                   front_back=0.70, left_right=0.5, pairs=(2, 2)),
         GaitPreset("amble", "running walk / tölt: walk footfalls at a run's duty factor, always one foot down",
                    duty_factor=0.45, cadence=0.45, stride=0.65, step_height=0.14, bob=0.02,
-                   front_back=0.25, left_right=0.5, pairs=(1, 2)),
+                   front_back=0.25, left_right=0.5, pairs=(2, 2)),
         GaitPreset("trot", "diagonal pairs move together, a short flight between them",
                    duty_factor=0.40, cadence=0.55, stride=0.70, step_height=0.18, bob=0.035,
-                   front_back=0.5, left_right=0.5, pairs=(1, 2)),
+                   front_back=0.5, left_right=0.5, pairs=(2, 2)),
         GaitPreset("pace", "lateral pairs move together (camel, giraffe, some dogs)",
                    duty_factor=0.40, cadence=0.50, stride=0.70, step_height=0.16, bob=0.03,
-                   front_back=0.0, left_right=0.5, pairs=(1, 2)),
+                   front_back=0.0, left_right=0.5, pairs=(2, 2)),
         GaitPreset("run", "biped run: the feet alternate with a flight between steps (human, bird)",
                    duty_factor=0.36, cadence=0.45, stride=0.9, step_height=0.22, bob=0.04,
                    front_back=0.0, left_right=0.5, pairs=(1, 1)),

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..choices import ARC_JOINTS, ArcJoint  # noqa: F401 (re-exported)
+from ..errors import did_you_mean
 from .motion import Motion
 from .poses import key_pose_phases, reference_foot
 
@@ -113,7 +114,8 @@ def parse_arc_joints(text: str) -> tuple[str, ...]:
         raise ValueError(f"--arcs {text!r}: give joints separated by commas, from {', '.join(ARC_JOINTS)}")
     for name in names:
         if name not in ARC_JOINTS:
-            raise ValueError(f"--arcs: unknown joint {name!r}; choose from {', '.join(ARC_JOINTS)}")
+            raise ValueError(f"--arcs: unknown joint {name!r}{did_you_mean(name, ARC_JOINTS)}; choose from "
+                             f"{', '.join(ARC_JOINTS)}")
     return names
 
 

@@ -266,16 +266,19 @@ def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True) -> SceneInsta
     return batch.frame(0)
 
 
-GHOST_COLOR = np.array([0.93, 0.93, 0.96]) ** 2  # a pale grey-blue (linear)
+# Each key pose's ghost colour (contact, down, pass, up, next contact), sRGB: the Key poses
+# panel's legend uses the same.
+KEY_POSE_COLORS: tuple[str, ...] = ("#7fa7e8", "#7fd18b", "#f0c75e", "#e58fd0", "#7fa7e8")
 
 
-def ghost_instances(pose: Pose, rig: Rig, strength: float = 0.7) -> SceneInstances:
-    """A pose drawn as a ghost: its shapes (no joint markers) in colours faded ``strength``
-    of the way towards a pale grey; they cast no shadow of their own beyond the shapes'."""
+def ghost_instances(pose: Pose, rig: Rig, color: str = "#e8e8f0", strength: float = 0.75) -> SceneInstances:
+    """A pose drawn as a ghost: its shapes (no joint markers) tinted ``strength`` of the way
+    towards ``color`` (a key pose's, see :data:`KEY_POSE_COLORS`)."""
+    tint = srgb_to_linear(color)
     shapes = pose_instances(pose, rig, show_joints=False)
     caps, ells = shapes.capsules.copy(), shapes.ellipsoids.copy()
-    caps[:, 8:11] = caps[:, 8:11] * (1.0 - strength) + GHOST_COLOR * strength
-    ells[:, 15:18] = ells[:, 15:18] * (1.0 - strength) + GHOST_COLOR * strength
+    caps[:, 8:11] = caps[:, 8:11] * (1.0 - strength) + tint * strength
+    ells[:, 15:18] = ells[:, 15:18] * (1.0 - strength) + tint * strength
     return SceneInstances(caps.astype(np.float32), ells.astype(np.float32), shapes.ellipsoid_casters)
 
 

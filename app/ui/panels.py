@@ -17,6 +17,8 @@ from ..export.formats import EXPORT_FORMATS
 from ..output import GIF_QUALITIES, MAX_CRF
 from ..render.camera import CAMERA_CHOICES, CAMERA_PRESETS
 from ..choices import ANTIALIAS_MODES, ARC_JOINTS, KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
+from ..render.arcs import ARC_COLORS
+from ..render.scene import KEY_POSE_COLORS
 from ..styles import DEFAULT_TIMING_FPS, STYLES, WALK_STYLES
 from ..spec import rule_for
 from .state import ViewerState
@@ -239,7 +241,7 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
         state.load_preset(choice_made)
     _wrapped_note(state.spec.description or state.spec.source)
     for pair in (leg.name for leg in state.spec.legs):
-        imgui.separator_text(f"{pair.capitalize()} legs")
+        imgui.separator_text("Legs" if pair == "legs" else f"{pair.capitalize()} legs")
         current = state.leg_type(pair)
         width = (imgui.get_content_region_avail().x - 8 * pc.scale) / 3
         for i, kind in enumerate(LEG_TYPES):
@@ -282,8 +284,10 @@ def gait_panel(state: ViewerState, pc: PanelContext) -> None:
     if _begin_rows("gait", pc):
         slider(state, pc, "gait.frequency", "frequency", 0.1, 6.0, "%.2f Hz")
         # Rows that do not apply stay, disabled, so the layout never moves under the cursor.
-        imgui.begin_disabled(not state.gait_is_symmetric)
+        imgui.begin_disabled(not state.gait_is_symmetric or state.spec.pair_count == 1)
         slider(state, pc, "gait.front_back", "front / back", 0.0, 1.0, "%.3f")
+        imgui.end_disabled()
+        imgui.begin_disabled(not state.gait_is_symmetric)
         slider(state, pc, "gait.left_right", "left / right", 0.0, 1.0, "%.3f")
         imgui.end_disabled()
         bias = float(state.get("gait.bias"))
@@ -392,12 +396,14 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     if changed_f or changed_t or changed_u or count != options.footprint_count:
         state.options = replace(options, footprints=footprints, targets=targets, support=support,
                                 footprint_count=int(count))
-    imgui.separator_text("arcs (the last cycle)")
+    imgui.separator_text("arcs (the last cycle; right limbs darker)")
     chosen = list(state.options.arcs)
     for i, joint in enumerate(ARC_JOINTS):
         if i % 4:
             imgui.same_line()
+        imgui.push_style_color(imgui.Col_.check_mark, _hex_color(_ARC_HEX[joint]))
         changed, on = imgui.checkbox(joint, joint in chosen)
+        imgui.pop_style_color()
         _remember(state, f"arc.{joint}")
         if changed:
             chosen = [j for j in ARC_JOINTS if (j in chosen or (on and j == joint)) and not (not on and j == joint)]
@@ -754,6 +760,13 @@ def path_panel(state: ViewerState, pc: PanelContext) -> None:
         _remember(state, "path.clear")
 
 
+def _hex_color(color: str) -> imgui.ImVec4:
+    return imgui.ImVec4(*(int(color[i:i + 2], 16) / 255.0 for i in (1, 3, 5)), 1.0)
+
+
+_ARC_HEX = {joint: "#" + "".join(f"{int(round(255 * v ** 0.5)):02x}" for v in rgb) for joint, rgb in ARC_COLORS.items()}
+
+
 def poses_panel(state: ViewerState, pc: PanelContext) -> None:
     """Key poses, walk style and timing, as an animator shapes a walk."""
     imgui.text("style")
@@ -761,9 +774,10 @@ def poses_panel(state: ViewerState, pc: PanelContext) -> None:
         if i % 3:
             imgui.same_line()
         current = state.spec.poses.style == name
+        label = f"{name}*" if current and state.style_edited else name
         if current:
             imgui.push_style_color(imgui.Col_.button, imgui.get_style_color_vec4(imgui.Col_.button_active))
-        if imgui.button(name):
+        if imgui.button(f"{label}###{name}"):
             state.set_style(name)
         if current:
             imgui.pop_style_color()
@@ -782,10 +796,17 @@ def poses_panel(state: ViewerState, pc: PanelContext) -> None:
         imgui.end_table()
     fps = state.spec.gait.timing_fps or DEFAULT_TIMING_FPS
     frames = float(state.get("gait.frames_per_cycle"))
-    imgui.text_disabled(f"{frames:.1f} frames a cycle at {fps:g} fps: a step on {frames / 2:.1f}s, "
-                        f"{state.live.rig.gait.frequency:.2f} Hz")
+    step = frames / 2.0
+    step_text = f"{step:.0f}" if abs(step - round(step)) < 0.05 else f"{step:.1f}"
+    imgui.text_disabled(f"a step every {step_text} frames (on {step_text}s) at {fps:g} fps; "
+                        f"{state.live.rig.gait.frequency:.2f} strides a second")
     changed, state.show_ghosts = imgui.checkbox("ghosts: this step's key poses along the path", state.show_ghosts)
     _remember(state, "poses.ghosts")
+    if state.show_ghosts:
+        for i, (name, color) in enumerate(zip(("contact", "down", "pass", "up"), KEY_POSE_COLORS)):
+            if i:
+                imgui.same_line()
+            imgui.text_colored(_hex_color(color), name)
     if state.live.rig.poses.heights is None:
         _wrapped_note("the body bobs with the gait; set a height or a style to key it")
 

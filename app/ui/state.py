@@ -157,6 +157,7 @@ class ViewerState:
     arcs: ArcTrail = field(default_factory=ArcTrail, init=False, repr=False)
     show_ghosts: bool = False  # the key poses of the current step drawn faintly along the path
     _ghosts: tuple | None = field(default=None, init=False, repr=False)
+    _style_check: tuple | None = field(default=None, init=False, repr=False)
     waypoints: list[tuple[float, float]] = field(default_factory=list, init=False)  # (x, z) the route goes through
     waypoint_edit: bool = False  # mouse on the ground: click adds, drag moves, right-click deletes
     path_values: dict[str, dict[str, Any]] = field(default_factory=lambda: {
@@ -234,6 +235,25 @@ class ViewerState:
             return float(heights[names.index(name)])
         return float(np.degrees({"foot_angle": poses.foot_angle, "arm_swing": poses.arm_swing,
                                  "torso_lean": poses.torso_lean}[name]))
+
+    @property
+    def style_edited(self) -> bool:
+        """Whether the key poses differ from their style's values (the button shows a *)."""
+        style = self.spec.poses.style
+        if style is None:
+            return False
+        cached = self._style_check
+        if cached is None or cached[0] is not self.spec:
+            try:
+                mine, styled = build_rig(self.spec), build_rig(apply_style(self.spec, style))
+                a, b = mine.poses, styled.poses
+                edited = (a.heights is None or not np.allclose(a.heights, b.heights, atol=1e-4)
+                          or not np.allclose([a.foot_angle, a.arm_swing, a.torso_lean, mine.gait.stride],
+                                             [b.foot_angle, b.arm_swing, b.torso_lean, styled.gait.stride], atol=1e-4))
+            except GaitlabError:
+                edited = True
+            cached = self._style_check = (self.spec, edited)
+        return cached[1]
 
     def set_style(self, name: str) -> bool:
         """Start the key poses from a walk style (its heights, angles and stride)."""

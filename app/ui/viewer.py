@@ -26,7 +26,7 @@ from ..render.arcs import arc_instances
 from ..render.camera import eye_ray, ground_point
 from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
-from ..render.scene import ghost_instances, pose_instances
+from ..render.scene import KEY_POSE_COLORS, ghost_instances, pose_instances
 from ..kinematics.world import World
 from ..spec import CreatureSpec
 from .imgui_renderer import ImguiRenderer
@@ -472,8 +472,8 @@ class Viewer:
                     if self._herd_instances is None or self._herd_instances.show_joints != state.options.joints:
                         self._herd_instances = HerdInstances(state.herd, state.options.joints)
                     instances = instances + self._herd_instances.frame(state.herd, state.world.terrain.height)
-                for ghost in state.ghost_poses():
-                    instances = instances + ghost_instances(ghost, state.live.rig)
+                for ghost, color in zip(state.ghost_poses(), KEY_POSE_COLORS):
+                    instances = instances + ghost_instances(ghost, state.live.rig, color)
                 if state.options.arcs:
                     trails, beads = state.arcs.trails()
                     instances = instances + arc_instances(trails, beads, 0.012 * state.live.rig.hip_height)
