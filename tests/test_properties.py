@@ -10,6 +10,7 @@ from app import build_rig
 from app.errors import SpecError
 from app.gaits import GAIT_PRESETS, gaits_for
 from app.kinematics.clip import clip_motion
+from app.styles import WALK_STYLES
 from app.spec import creature_from_dict
 
 length = st.floats(0.03, 1.2)
@@ -43,8 +44,12 @@ def creatures(draw):
         "legs": {"fore": draw(leg_tables()), "hind": draw(leg_tables())},
         "gait": gait,
         "motion": {"bob": draw(st.floats(0.0, 0.2)), "yaw": draw(st.floats(0.0, 30.0)),
-                   "bob_phase": draw(st.floats(-1, 1))},
+                   "bob_phase": draw(st.floats(-1, 1)), "spine_flex": draw(st.floats(0.0, 3.0))},
+        "overlap": {part: draw(st.floats(0.0, 0.5)) for part in ("head", "neck", "tail", "ears")},
     }
+    for pair in ("fore", "hind"):  # foot roll on some legs
+        if draw(st.booleans()):
+            data["legs"][pair]["roll"] = draw(st.floats(0.0, 1.0))
     try:
         return creature_from_dict(data)
     except SpecError:
@@ -136,3 +141,77 @@ def test_any_body_plan_travels_with_planted_feet(spec, terrain, path) -> None:
     same = motion.contact[1:] & motion.contact[:-1] & (motion.phase[1:] > motion.phase[:-1])
     if same.any() and feasible:
         assert np.linalg.norm(np.diff(ball, axis=0), axis=-1)[same].max() < 1e-9  # planted feet never slip
+
+
+@st.composite
+def bipeds(draw):
+    """Random two-legged creatures: upright or horizontal, with or without arms, rolling
+    feet, key poses (a style or random heights), overlap."""
+    leg = draw(leg_tables())
+    leg.update(position=0.5, knee="forward", natural_bend=max(leg["natural_bend"], 0.01),
+               roll=draw(st.floats(0.0, 1.0)))
+    hip = 0.5 * (leg["femur"] + leg["tibia"])
+    data = {"name": "biped", "legs": {"legs": leg},
+            "body": {"length": draw(st.floats(0.1, 1.2)), "width": draw(st.floats(0.05, 0.5)), "radius": [0.05, 0.08],
+                     "posture": draw(st.sampled_from(["upright", "horizontal"])), "tail_length": draw(st.floats(0, 0.8))},
+            "gait": {"preset": draw(st.sampled_from(gaits_for(1))), "duty_factor": draw(st.floats(0.3, 0.8)),
+                     "stride": draw(st.floats(0.1, 1.0)), "step_height": draw(st.floats(0.05, 0.3))},
+            "motion": {"pelvis_tilt": draw(st.floats(0.0, 20.0)), "yaw": draw(st.floats(0.0, 20.0))},
+            "overlap": {part: draw(st.floats(0.0, 0.5)) for part in ("head", "neck", "arms", "tail", "ears")}}
+    if draw(st.booleans()):
+        data["arms"] = {"upper": draw(length), "fore": draw(length), "hand": draw(st.floats(0.01, 0.3)),
+                        "elbow": draw(st.floats(0.0, 150.0))}
+    if draw(st.booleans()):
+        data["poses"] = {"style": draw(st.sampled_from(list(WALK_STYLES)))}
+    else:
+        data["poses"] = {k: draw(st.floats(-0.3, 0.05)) * hip for k in
+                         ("contact_height", "down_height", "pass_height", "up_height")}
+    data["poses"].update(foot_angle=draw(st.floats(-30.0, 60.0)), arm_swing=draw(st.floats(0.0, 80.0)),
+                         torso_lean=draw(st.floats(-30.0, 45.0)))
+    try:
+        return creature_from_dict(data)
+    except SpecError:
+        assume(False)
+
+
+@SETTINGS
+@given(spec=bipeds(), world=st.sampled_from(["in-place", "straight", "circle"]))
+def test_any_biped_is_finite_exact_and_mirrored(spec, world) -> None:
+    from app.kinematics.motion import simulate
+    from app.kinematics.roll import bearing_points
+    from app.kinematics.world import World, WorldError
+    from app.scenes import make_world
+
+    rig = build_rig(spec)
+    place = World(in_place=True) if world == "in-place" else make_world(
+        "straight" if world == "straight" else f"circle:r={max(4.0 * rig.body_length, 3.0):.3f}", "flat")
+    try:
+        motion = simulate(rig, 1.0 / rig.gait.frequency, 48.0 * rig.gait.frequency, world=place)
+    except WorldError:
+        assume(False)
+    arrays = [motion.joints, motion.heel, motion.arms, motion.spine, motion.neck, motion.head, motion.tail,
+              motion.root, motion.ear_lag]
+    assert all(np.isfinite(a).all() for a in arrays)
+    bones = np.linalg.norm(np.diff(motion.joints, axis=2), axis=-1)
+    expected = np.stack([rig.femur, rig.tibia, rig.metatarsus, rig.toe], axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rel = np.where(expected > 0, np.abs(bones / expected - 1.0), bones)
+    assert rel.max() < 1e-9
+    if rig.arms is not None:
+        arm = np.linalg.norm(np.diff(motion.arms, axis=2), axis=-1)
+        assert np.allclose(arm, [rig.arms.upper, rig.arms.fore, rig.arms.hand], rtol=1e-9)
+    # Where the legs can put the foot as the roll asks (the ball on its target and the
+    # bearing point on the ground: an absurd leg, a femur eight times its tibia, cannot),
+    # what bears a planted foot never slips.
+    bearing, same = bearing_points(motion)
+    placed = (motion.reach_error < 1e-9) & (np.abs(bearing[..., 1]) < 1e-6)
+    reached = placed[:-1] & placed[1:]  # in both frames
+    moved = np.linalg.norm(np.diff(bearing, axis=0), axis=-1)
+    with np.errstate(invalid="ignore"):
+        assert np.nan_to_num(np.where(same & reached, moved, 0.0)).max() < 1e-6
+    alternating = abs(abs(rig.gait.offsets[1] - rig.gait.offsets[0]) - 0.5) < 1e-12  # walk, run; not a hop
+    if world == "in-place" and alternating:  # the second step is the first mirrored
+        half = motion.frame_count // 2
+        mirror = np.array([-1.0, 1.0, 1.0])
+        assert np.abs(motion.joints[half:2 * half, 0] - motion.joints[:half, 1] * mirror).max() < 1e-9
+        assert np.abs(motion.spine[half:2 * half] - motion.spine[:half] * mirror).max() < 1e-9

@@ -98,7 +98,7 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     lift for the bob and fore-aft offset for the yaw; pose_height (T,) m: the key poses'
     height, which replaces the bob; reach: (point (T, L, 3), length (L,)): how far each
     hip may be from which point of its foot (default: the ball, L_max; a rolling foot's
-    ankle, femur + tibia); pitch (T,) rad: the trunk pitches nose up by it (each girdle
+    ankle, femur + tibia, and no nearer than they fold); pitch (T,) rad: the trunk pitches nose up by it (each girdle
     raised or lowered by its distance from the trunk's middle).
     """
     s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
@@ -131,6 +131,10 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     # on a slope), nor crouched below MIN_CROUCH.
     near = ball[..., 1] + np.sqrt(np.maximum((1.02 * rig.l_min) ** 2 - horizontal ** 2, 0.0))
     near = near - (1.0 - planted) * 2.0 * rig.l_max
+    if reach is not None:  # ... nor nearer its foot's ankle than femur and tibia can fold
+        fold = 1.02 * np.abs(rig.femur - rig.tibia)
+        near = np.maximum(near, reach_point[..., 1] + np.sqrt(np.maximum(fold ** 2 - far ** 2, 0.0))
+                          - (1.0 - planted) * 2.0 * rig.l_max)
     lowest = np.maximum(ground + np.maximum(MIN_CROUCH * rest, 1.05 * np.maximum(rig.l_min[0::2], rig.l_min[1::2])),
                         np.maximum(near[:, 0::2], near[:, 1::2]))
     height = np.maximum(np.minimum(height, np.minimum(allowed[:, 0::2], allowed[:, 1::2])), lowest)

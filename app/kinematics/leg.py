@@ -229,8 +229,10 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
     height = hip[..., 1] + hf * fwd[..., 1] + hu * upv[..., 1] + hl * lat[..., 1] - ground_height
     room = np.arcsin(np.clip(0.5 * height / np.maximum(toe, 1e-12), 0.0, 1.0))
     drop = np.minimum(ankle_lift * np.clip(toe_curl, 0.0, 1.0), room)
-    if toe_angle is not None:  # a rolling foot's toe
+    if toe_angle is not None:  # a rolling foot's toe; blending in the air, its tip never below the ground
         drop = drop + toe_weight * (toe_angle - drop)
+        clear = np.arcsin(np.clip(height / np.maximum(toe, 1e-12), 0.0, 1.0))
+        drop = np.where(toe_weight < 1.0, np.minimum(drop, clear), drop)
     tf, tu = hf + toe * np.cos(drop), hu - toe * np.sin(drop)
 
     # Back to world space: hip + f * forward + u * up + l * lateral, for all four joints.

@@ -46,7 +46,7 @@ def _curve(heights: tuple[float, ...]) -> PchipInterpolator:
 def pose_height(heights: NDArray[np.float64], u: NDArray[np.float64]) -> NDArray[np.float64]:
     """The body's height offset (m) at step phases ``u`` (...), through the key poses'
     heights (4,) (contact, down, pass, up)."""
-    curve = _curve(tuple(float(h) for h in heights))
+    curve = _curve(tuple(round(float(h), 9) for h in heights))  # nanometres: no overflowing slopes
     return curve(np.mod(u, 1.0))
 
 

@@ -77,11 +77,12 @@ def _stance(rig: Rig, foot_angle: float, u: NDArray[np.float64], foothold: NDArr
     place): ball (T, L, 3), metatarsus angle and toe drop (T, L)."""
     r = rig.roll_amount
     a, b, c = r * HEEL_PART, 1.0 - r * RISE_PART, 1.0 - r * TOE_PART
-    x_heel = np.clip(u / np.where(a > 0, a, 1.0), 0.0, 1.0)
-    heel_pitch = np.where(a > 0, r * foot_angle * (1.0 - x_heel) ** 2, 0.0)  # toes up, about the heel
+    rolls = a > 1e-9  # a roll too small to last a frame is none
+    x_heel = np.clip(u / np.where(rolls, a, 1.0), 0.0, 1.0)
+    heel_pitch = np.where(rolls, r * foot_angle * (1.0 - x_heel) ** 2, 0.0)  # toes up, about the heel
     rise = r * HEEL_RISE * smoothstep((u - b) / np.maximum(c - b, 1e-9))
-    x_toe = np.clip((u - c) / np.where(c < 1.0, 1.0 - c, 1.0), 0.0, 1.0)
-    toe_pitch = np.where(c < 1.0, r * TOE_OFF * x_toe ** 2, 0.0)  # ball up, about the toe tip
+    x_toe = np.clip((u - c) / np.where(rolls, 1.0 - c, 1.0), 0.0, 1.0)
+    toe_pitch = np.where(rolls, r * TOE_OFF * x_toe ** 2, 0.0)  # ball up, about the toe tip
     heel = rig.heel_length
     toe = rig.toe
     on_heel = np.maximum(heel_pitch, 0.0)  # toes up: the foot turns about its heel; toes down: about its ball
@@ -107,7 +108,7 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     u = np.clip(plan.phase / plan.duty, 0.0, 1.0)
     stance_ball, stance_ankle, stance_drop = _stance(rig, foot_angle, u, plan.start, f_start, plan.start_normal)
     one = np.ones_like(u)
-    lift_ball, lift_ankle, lift_drop = _stance(rig, foot_angle, one, plan.start, f_start, plan.start_normal)
+    _, lift_ankle, lift_drop = _stance(rig, foot_angle, one, plan.start, f_start, plan.start_normal)
 
     s = plan.swing
     contact = plan.contact
@@ -124,8 +125,13 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     # The swing eases onto the ground; a rolling foot comes down with some speed instead,
     # so it strikes (a kink in its height, as a real heel strike).
     strike = STRIKE_DROP * (rig.heel_length + rig.toe) * r * (1.0 - s) * w_land
-    swing_ball = ball + w_lift[..., None] * (lift_ball - plan.start) + land_offset \
-        + strike[..., None] * plan.end_normal
+    # The toe-off pose fades as a turn back about the toe tip (which stays where the swing
+    # carries it, clear of the ground); the toe-off pose is all toe turn (the heel's part
+    # is over by then).
+    toe_turn = r * TOE_OFF * w_lift
+    lift_offset = (rig.toe * (1.0 - np.cos(toe_turn)))[..., None] * f_start \
+        + (rig.toe * np.sin(toe_turn))[..., None] * plan.start_normal
+    swing_ball = ball + lift_offset + land_offset + strike[..., None] * plan.end_normal
     out_ball = np.where((contact & rolling)[..., None], stance_ball, np.where(rolling[..., None], swing_ball, ball))
     weight = np.clip(w_lift + w_land, 1e-12, None)
     ankle = np.where(contact, stance_ankle, (w_lift * lift_ankle + w_land * land_ankle) / weight)
@@ -187,11 +193,13 @@ def contact_points(rig: Rig, foot_angle: float, phase: NDArray[np.float64], duty
 
 
 def bearing_points(motion) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """A motion's bearing points (T, L, 3) (see :func:`contact_points`) and where a foot
-    bears on the same point in two frames running (T-1, L): those points must not move."""
+    """A motion's bearing points (T, L, 3) (see :func:`contact_points`), in the ground's
+    frame (in place, moved on by the ground's travel), and where a foot bears on the same
+    point in two frames running (T-1, L): those points must not move."""
     rig = motion.rig
     duty = np.broadcast_to(rig.gait.duty_factor, motion.phase.shape)
     points = contact_points(rig, rig.poses.foot_angle, motion.phase, duty, motion.contact, motion.heel, motion.joints)
+    points[..., 2] += motion.ground_offset[:, None]
     part = roll_part(rig, rig.poses.foot_angle, motion.phase, duty)
     same = motion.contact[1:] & motion.contact[:-1] & (motion.phase[1:] > motion.phase[:-1]) & (part[1:] == part[:-1])
     return points, same
