@@ -153,6 +153,16 @@ def _begin_rows(name: str, pc: PanelContext) -> bool:
     return True
 
 
+def _checkbox(state: ViewerState, key: str, label: str, value: bool, tooltip: str = "") -> tuple[bool, bool]:
+    """A check box remembered as widget ``key`` (its rectangle for the state dump), with a
+    tooltip; returns (changed, value)."""
+    changed, value = imgui.checkbox(label, value)
+    _remember(state, key)
+    if tooltip and imgui.is_item_hovered():
+        imgui.set_tooltip(tooltip)
+    return changed, value
+
+
 def _label(text: str, tooltip: str) -> None:
     imgui.table_next_row()
     imgui.table_next_column()
@@ -372,21 +382,15 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
         state.options = replace(options, grid=grid, shadow=shadow, joints=joints, path=path)
     imgui.separator_text("overlays")
     options = state.options
-    changed_f, footprints = imgui.checkbox("footprints", options.footprints)
-    _remember(state, "overlay.footprints")
-    if imgui.is_item_hovered():
-        imgui.set_tooltip("The last footprints on the ground, in each leg's side colour, fading with age.")
+    changed_f, footprints = _checkbox(state, "overlay.footprints", "footprints", options.footprints,
+                                      "The last footprints on the ground, in each leg's side colour, fading with age.")
     imgui.same_line()
-    changed_t, targets = imgui.checkbox("targets", options.targets)
-    _remember(state, "overlay.targets")
-    if imgui.is_item_hovered():
-        imgui.set_tooltip("Amber rings where the swinging feet will touch down.")
+    changed_t, targets = _checkbox(state, "overlay.targets", "targets", options.targets,
+                                   "Amber rings where the swinging feet will touch down.")
     imgui.same_line()
-    changed_u, support = imgui.checkbox("support", options.support)
-    _remember(state, "overlay.support")
-    if imgui.is_item_hovered():
-        imgui.set_tooltip("The polygon of the planted feet and the trunk's centre dropped onto the ground:\n"
-                          "green inside (statically stable), red outside.")
+    changed_u, support = _checkbox(state, "overlay.support", "support", options.support,
+                                   "The polygon of the planted feet and the trunk's centre dropped onto the ground:\n"
+                                   "green inside (statically stable), red outside.")
     count = options.footprint_count
     if options.footprints:
         imgui.set_next_item_width(-1)
@@ -402,11 +406,10 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
         if i % 4:
             imgui.same_line()
         imgui.push_style_color(imgui.Col_.check_mark, _hex_color(_ARC_HEX[joint]))
-        changed, on = imgui.checkbox(joint, joint in chosen)
+        changed, on = _checkbox(state, f"arc.{joint}", joint, joint in chosen)
         imgui.pop_style_color()
-        _remember(state, f"arc.{joint}")
         if changed:
-            chosen = [j for j in ARC_JOINTS if (j in chosen or (on and j == joint)) and not (not on and j == joint)]
+            chosen = [j for j in ARC_JOINTS if (on if j == joint else j in chosen)]
             state.options = replace(state.options, arcs=tuple(chosen))
 
 
@@ -741,11 +744,9 @@ def path_panel(state: ViewerState, pc: PanelContext) -> None:
             if changed:
                 state.set_path(kind, dir=sides[side])
         imgui.end_table()
-    changed, edit = imgui.checkbox("edit waypoints on the ground", state.waypoint_edit)
-    _remember(state, "path.edit")
-    if imgui.is_item_hovered():
-        imgui.set_tooltip("Click on the ground to add a waypoint (the creature goes there next), drag one to move "
-                          "it, right-click one to delete it. Reached waypoints are dropped.")
+    changed, edit = _checkbox(state, "path.edit", "edit waypoints on the ground", state.waypoint_edit,
+                              "Click on the ground to add a waypoint (the creature goes there next), drag one to "
+                              "move it, right-click one to delete it. Reached waypoints are dropped.")
     if changed:
         state.waypoint_edit = edit
         if edit:
@@ -800,8 +801,8 @@ def poses_panel(state: ViewerState, pc: PanelContext) -> None:
     step_text = f"{step:.0f}" if abs(step - round(step)) < 0.05 else f"{step:.1f}"
     imgui.text_disabled(f"a step every {step_text} frames (on {step_text}s) at {fps:g} fps; "
                         f"{state.live.rig.gait.frequency:.2f} strides a second")
-    changed, state.show_ghosts = imgui.checkbox("ghosts: this step's key poses along the path", state.show_ghosts)
-    _remember(state, "poses.ghosts")
+    _, state.show_ghosts = _checkbox(state, "poses.ghosts", "ghosts: this step's key poses along the path",
+                                     state.show_ghosts)
     if state.show_ghosts:
         for i, (name, color) in enumerate(zip(("contact", "down", "pass", "up"), KEY_POSE_COLORS)):
             if i:
