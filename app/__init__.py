@@ -11,13 +11,32 @@ Public API::
 
 from __future__ import annotations
 
-from .kinematics import Motion, Pose, Rig
-from .kinematics.path import Path
-from .kinematics.terrain import Terrain
-from .rigging import build_rig
-from .spec import CreatureSpec, load_creature
+import importlib
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from .kinematics import Motion, Pose, Rig
+    from .kinematics.path import Path
+    from .kinematics.terrain import Terrain
+    from .rigging import build_rig
+    from .spec import CreatureSpec, load_creature
 
 __version__ = "0.2.0"
+
+# The public names, imported from their homes on first use: ``gaitlab --version`` and
+# ``--help`` start without loading numpy, scipy or the kinematics.
+_HOMES = {"Motion": ".kinematics", "Pose": ".kinematics", "Rig": ".kinematics", "Path": ".kinematics.path",
+          "Terrain": ".kinematics.terrain", "build_rig": ".rigging", "CreatureSpec": ".spec",
+          "load_creature": ".spec"}
+
+
+def __getattr__(name: str) -> Any:
+    home = _HOMES.get(name)
+    if home is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(home, __name__), name)
+    globals()[name] = value
+    return value
 
 
 def simulate(creature: CreatureSpec | Rig | str, seconds: float = 4.0, fps: float = 60.0, *,
@@ -27,8 +46,11 @@ def simulate(creature: CreatureSpec | Rig | str, seconds: float = 4.0, fps: floa
     (fixed dt = 1/fps), walking along ``path`` over ``terrain`` — each the same text the CLI
     takes (``"circle:r=3"``, ``"stairs:rise=0.1"``) or an object; default straight ahead on
     flat ground. ``in_place`` keeps the body at the origin and moves the ground instead."""
+    from .kinematics import Rig
     from .kinematics.motion import simulate as simulate_rig
-    from .scenes import make_world
+    from .rigging import build_rig
+    from .worlds import make_world
+    from .spec import load_creature
 
     if isinstance(creature, str):
         creature = load_creature(creature)

@@ -45,3 +45,27 @@ OVERLAYS: tuple[str, ...] = get_args(Overlay)
 # Joints whose paths over a cycle can be drawn as arcs (render --arcs, the viewer's View panel).
 ArcJoint = Literal["toe", "heel", "knee", "hip", "hand", "head", "tail"]
 ARC_JOINTS: tuple[str, ...] = get_args(ArcJoint)
+
+# Camera presets. Recordings also take "follow": the default preset's angle, kept to the
+# path's heading (as every preset is for a travelling creature).
+CameraPreset = Literal["three-quarter", "side", "front", "top", "chase"]
+CAMERA_PRESETS: tuple[str, ...] = get_args(CameraPreset)
+DEFAULT_CAMERA: CameraPreset = "three-quarter"
+CameraChoice = Literal["three-quarter", "side", "front", "top", "chase", "follow"]
+CAMERA_CHOICES: tuple[str, ...] = get_args(CameraChoice)
+
+# GIF size against fidelity (see app.output.gif): best (255 colours, lossless), good, small.
+GifQuality = Literal["best", "good", "small"]
+GIF_QUALITIES: tuple[str, ...] = get_args(GifQuality)
+DEFAULT_GIF_QUALITY: GifQuality = "good"
+
+# MP4 (H.264) constant rate factor: 0 lossless .. 51 smallest.
+DEFAULT_CRF = 18  # visually lossless for these flat-shaded pictures
+MAX_CRF = 51
+
+# Skeleton files `gaitlab export` writes.
+ExportFormat = Literal["bvh", "glb", "usda", "usdc"]
+EXPORT_FORMATS: tuple[str, ...] = get_args(ExportFormat)
+
+MAX_SIZE = 8192  # pixels: the widest or tallest image Gaitlab renders
+MAX_HERD = 1000  # animals in one herd

@@ -30,9 +30,10 @@ A leaf module: it imports nothing from Gaitlab.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
-import numpy as np
+if TYPE_CHECKING:
+    import numpy as np
 
 TETRAPOD_FEET: tuple[str, ...] = ("LF", "RF", "LH", "RH")
 BIPED_FEET: tuple[str, ...] = ("L", "R")
@@ -163,6 +164,8 @@ def phases_from_offsets(front_back: float, left_right: float, feet: tuple[str, .
     see :func:`foot_names`), in [0, 1): pair i from the rear at ``i * fb`` (left) and
     ``i * fb + lr`` (right); for a tetrapod ``LH=0, RH=lr, LF=fb, RF=fb+lr``."""
     pairs = len(feet) // 2
+    import numpy as np
+
     from_rear = pairs - 1 - np.arange(len(feet)) // 2
     right = np.arange(len(feet)) % 2
     return np.mod(from_rear * front_back + right * left_right, 1.0)
@@ -174,6 +177,8 @@ def preset_phases(name: str, feet: tuple[str, ...]) -> np.ndarray:
     if preset.symmetric:
         return phases_from_offsets(float(preset.front_back), float(preset.left_right), feet)
     assert preset.phases is not None
+    import numpy as np
+
     return np.mod(np.array([preset.phases[f] for f in feet], dtype=np.float64), 1.0)
 
 

@@ -15,8 +15,7 @@ import numpy as np
 from .gaits import gaits_for
 from .kinematics.gait import GaitParams, natural_frequency
 from .kinematics.oscillator import duty_from_bias
-from .kinematics.rig import (ArmShape, BodyShape, KeyPoses, Look, Overlap, Rig, SecondaryMotion, SpeedGaits,
-                             leg_lengths)
+from .kinematics.rig import ArmShape, BodyShape, KeyPoses, Rig, SecondaryMotion, SpeedGaits, leg_lengths
 from .choices import PLANTIGRADE_BELOW
 from .spec import CreatureSpec, GaitSpec, leg_type, resolve_phases
 from .styles import DEFAULT_TIMING_FPS, STYLES, style_heights
@@ -175,12 +174,11 @@ def build_rig(spec: CreatureSpec) -> Rig:
                           trunk=trunk_factor(spec, hip_height) if spec.pair_count >= 2 else 0.0),
         motion=SecondaryMotion(yaw=math.radians(spec.motion.yaw), tail_sway=math.radians(spec.motion.tail_sway),
                                bob_phase=spec.motion.bob_phase, pelvis_tilt=math.radians(spec.motion.pelvis_tilt)),
-        look=Look(spec.look.body_color, spec.look.left_color, spec.look.right_color),
+        look=spec.look,
         speed=_speed_gaits(spec, hip_height),
         arms=arm_shape(spec),
         poses=key_poses(spec, hip_height),
-        overlap=Overlap(head=spec.overlap.head, neck=spec.overlap.neck, arms=spec.overlap.arms,
-                        tail=spec.overlap.tail, ears=spec.overlap.ears),
+        overlap=spec.overlap,
         roll=per_leg("roll"),
     )
 

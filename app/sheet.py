@@ -19,8 +19,9 @@ from .kinematics.clip import clip_motion, frame_at
 from .kinematics.poses import key_pose_phases, reference_foot
 from .kinematics.world import World
 from .output import check_output_dir, write_png
-from .render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
-from .render.renderer import RenderOptions
+from .render.clip import ClipRenderer
+from .render.framing import clip_camera, loop_grid_spacing
+from .render.options import RenderOptions, ViewSettings
 from .rigging import build_rig
 from .spec import CreatureSpec
 from .styles import DEFAULT_TIMING_FPS

@@ -26,7 +26,7 @@ from timing import median_time  # noqa: E402  (bench/timing.py)
 
 from app import build_rig, load_creature  # noqa: E402
 from app.kinematics.motion import simulate  # noqa: E402
-from app.scenes import load_heightmap, make_world, parse_terrain  # noqa: E402
+from app.worlds import load_heightmap, make_world, parse_terrain  # noqa: E402
 
 
 def bench_travel(repeats: int) -> list[tuple[str, str]]:

@@ -52,9 +52,9 @@ def session_context():
     second standalone EGL context while another is alive corrupts the survivor's
     rendering (seen as noise in every later frame)."""
     if "ctx" not in _CONTEXT:
-        from app.render.context import create_headless_context
+        from app.render.context import shared_headless_context
 
-        _CONTEXT["ctx"] = create_headless_context()
+        _CONTEXT["ctx"] = shared_headless_context()
     return _CONTEXT["ctx"]
 
 
@@ -66,12 +66,6 @@ def current_renderer() -> str:
         except Exception as exc:  # no EGL at all: the GL tests report that themselves
             _RENDERER["name"] = f"none ({str(exc).splitlines()[0][:120]})"
     return _RENDERER["name"]
-
-
-def pytest_sessionfinish(session: pytest.Session, exitstatus: int) -> None:
-    ctx = _CONTEXT.pop("ctx", None)
-    if ctx is not None:
-        ctx.release()
 
 
 def pytest_report_header(config: pytest.Config) -> list[str]:

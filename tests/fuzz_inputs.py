@@ -184,7 +184,7 @@ def _load_creature(path: str) -> None:
 
 def _load_scene(path: str) -> None:
     from app import load_creature
-    from app.scenes import load_scene
+    from app.worlds import load_scene
 
     scene = load_scene(path)
     for entry in scene.creatures:

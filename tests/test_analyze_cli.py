@@ -16,9 +16,7 @@ DATA = Path(__file__).parent / "data"
 DOG_WALK = DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"
 
 
-def gaitlab(*args: str, cwd: Path) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True, cwd=cwd,
-                          env=os.environ.copy(), timeout=300)
+from cli_runner import gaitlab
 
 
 def test_table_for_a_creature(tmp_path: Path) -> None:
@@ -159,12 +157,8 @@ def test_bad_input(tmp_path: Path, case: str) -> None:
 
 
 def test_analyze_a_single_stride_clip_prints_the_note(tmp_path) -> None:
-    import subprocess
-    import sys
-
     data = Path(__file__).parent / "data" / "human_run_cmu_09_01.bvh"
-    out = subprocess.run([sys.executable, "-m", "app", "analyze", str(data)], capture_output=True, text=True,
-                         timeout=120, cwd=tmp_path)
+    out = gaitlab("analyze", str(data), cwd=tmp_path)
     assert out.returncode == 0, out.stderr
     assert "note         the clip holds a single stride" in out.stdout
     assert "gait         run" in out.stdout

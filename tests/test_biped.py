@@ -31,9 +31,7 @@ ROOT = Path(__file__).parents[1]
 MIRROR = np.array([-1.0, 1.0, 1.0])
 
 
-def gaitlab(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True, cwd=cwd,
-                          env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300)
+from cli_runner import gaitlab
 
 
 @pytest.fixture(scope="module")
@@ -473,7 +471,7 @@ def test_a_png_s_arcs_are_the_cycle_up_to_its_frame(human, tmp_path) -> None:
     from app.recording import Recording, RecordRequest
     from app.render.clip import ViewSettings
 
-    request = RecordRequest(spec=human, output=tmp_path / "a.png", fps=24.0, start=2.0, arcs=("hip",),
+    request = RecordRequest.of(human, output=tmp_path / "a.png", fps=24.0, start=2.0, arcs=("hip",),
                             view=ViewSettings(size=(64, 48), antialias="off"))
     recording = Recording(request)
     try:

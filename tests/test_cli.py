@@ -17,9 +17,7 @@ from app.output import gif_durations
 DOG = Path(__file__).parents[1] / "creatures" / "dog.toml"
 
 
-def gaitlab(*args: str, cwd: Path | None = None, env: dict | None = None) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True, cwd=cwd,
-                          env={**os.environ, **(env or {})}, timeout=300)
+from cli_runner import gaitlab, gaitlab_process
 
 
 def test_console_script_is_installed() -> None:
@@ -181,8 +179,8 @@ def test_bad_creature_file(tmp_path: Path, case: str) -> None:
 
 
 def test_missing_egl_names_the_package_to_install(tmp_path: Path) -> None:
-    out = gaitlab("render", "dog", "-o", "x.png", cwd=tmp_path,
-                  env={"__EGL_VENDOR_LIBRARY_FILENAMES": str(tmp_path / "none.json")})
+    out = gaitlab_process("render", "dog", "-o", "x.png", cwd=tmp_path,
+                          env={"__EGL_VENDOR_LIBRARY_FILENAMES": str(tmp_path / "none.json")})
     assert out.returncode == 2 and "Traceback" not in out.stderr
     line, = out.stderr.strip().splitlines()
     assert "EGL" in line and "apt-get install libegl1 libgl1-mesa-dri" in line

@@ -16,7 +16,8 @@ from app.analysis.sources import load_tracks
 from app.export import write_bvh
 from app.kinematics.clip import clip_motion
 from app.kinematics.skeleton import skeleton_clip
-from app.scenes import make_world
+from app.worlds import make_world
+from cli_runner import gaitlab
 
 PRESETS = ("ant", "bear", "cat", "centipede", "deer", "dog", "horse", "spider")
 
@@ -69,11 +70,9 @@ def test_analysing_the_export_measures_the_same_gait(tmp_path: Path, creature: s
 
 
 def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:
-    import subprocess
-    import sys
+    def run(*a: str):
+        return gaitlab(*a, cwd=tmp_path)
 
-    run = lambda *a: subprocess.run([sys.executable, "-m", "app", *a], capture_output=True, text=True,  # noqa: E731
-                                    cwd=tmp_path, timeout=120)
     out = run("export", "dog", "--gait", "trot", "--cycles", "6", "--fps", "60", "-o", "dog.bvh")
     assert out.returncode == 0, out.stderr
     assert "41 joints" in out.stdout and "metres, Y up" in out.stdout
@@ -94,11 +93,7 @@ def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:
     (["--set", "legs.hind.femur=-1", "-o", "dog.bvh"], "legs.hind.femur"),
 ])
 def test_export_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path: Path, args, message) -> None:
-    import subprocess
-    import sys
-
-    out = subprocess.run([sys.executable, "-m", "app", "export", "dog", *args], capture_output=True, text=True,
-                         cwd=tmp_path, timeout=120)
+    out = gaitlab("export", "dog", *args, cwd=tmp_path)
     assert out.returncode == 2
     assert message in out.stderr and "Traceback" not in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
@@ -257,11 +252,12 @@ def test_usd_skeleton_animation_reads_back(tmp_path: Path, creature: str, suffix
 
 
 def test_a_clip_of_no_frames_is_refused_and_nothing_written(tmp_path: Path, monkeypatch) -> None:
+    import app.cast as cast_module
     import app.export.clip as export_module
     from app.errors import GaitlabError
 
-    real = export_module.clip_motion
-    monkeypatch.setattr(export_module, "clip_motion", lambda *a, **k: (lambda m: (m[0].frames(m[0].frame_count),
+    real = cast_module.clip_motion  # every clip is simulated there (a creature's, or a scene's)
+    monkeypatch.setattr(cast_module, "clip_motion", lambda *a, **k: (lambda m: (m[0].frames(m[0].frame_count),
                                                                                   m[1]))(real(*a, **k)))
     with pytest.raises(GaitlabError, match="the clip has no frames"):
         export_module.export_clip(load_creature("dog"), tmp_path / "dog.glb")

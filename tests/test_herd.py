@@ -18,7 +18,8 @@ from app.render.camera import frame_points
 from app.render.clip import ClipRenderer, ViewSettings
 from app.render.herd import HerdInstances
 from app.render.renderer import GroundView, RenderOptions
-from app.scenes import make_world
+from app.worlds import make_world
+from cli_runner import gaitlab
 
 DT = 1.0 / 60.0
 
@@ -118,22 +119,21 @@ def test_a_herd_is_drawn_with_the_same_draw_calls_as_one_animal(gl_ctx, monkeypa
 def test_render_refuses_bad_herds_in_one_line(tmp_path) -> None:
     for args, words in ((["--herd", "0"], "give 1 to 1000"), (["--herd", "100000"], "give 1 to 1000"),
                         (["--herd", "5", "--in-place"], "drop --in-place")):
-        out = subprocess.run([sys.executable, "-m", "app", "render", "dog", *args, "-o", "x.png"], cwd=tmp_path,
-                             capture_output=True, text=True, timeout=60)
+        out = gaitlab("render", "dog", *args, "-o", "x.png", cwd=tmp_path)
         assert out.returncode == 2, out.stderr
         assert words in out.stderr and "Traceback" not in out.stderr and len(out.stderr.strip().splitlines()) == 1
         assert not (tmp_path / "x.png").exists()
     with pytest.raises(GaitlabError):
-        RecordRequest(spec=load_creature("dog"), output=tmp_path / "x.png", herd=0)
+        RecordRequest.of(load_creature("dog"), output=tmp_path / "x.png", herd=0)
     with pytest.raises(GaitlabError, match="in-place"):
-        RecordRequest(spec=load_creature("dog"), output=tmp_path / "x.png", herd=3, world=World(in_place=True))
+        RecordRequest.of(load_creature("dog"), output=tmp_path / "x.png", herd=3, world=World(in_place=True))
 
 
 def first_frame(gl_ctx, tmp_path, **request) -> np.ndarray:
     """The first frame a PNG recording of the dog would write (small, no antialiasing)."""
     from app.recording import Recording
 
-    job = Recording(RecordRequest(spec=load_creature("dog"), output=tmp_path / "frame.png",
+    job = Recording(RecordRequest.of(load_creature("dog"), output=tmp_path / "frame.png",
                                   view=ViewSettings(size=(192, 144), antialias="off"), **request), ctx=gl_ctx)
     try:
         return job._render(0)
@@ -156,7 +156,7 @@ def test_travelling_on_hills_golden(gl_ctx, snapshot, tmp_path) -> None:
 def test_scene_files_take_a_herd_and_refuse_bad_ones(tmp_path) -> None:
     from app.kinematics.world import WorldError
     from app.resources import scenes_dir
-    from app.scenes import load_scene
+    from app.worlds import load_scene
 
     scene = load_scene(scenes_dir() / "herd.toml")
     assert scene.creatures[0].herd == 20

@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 
 import numpy as np
+import pytest
 
 from app import build_rig, load_creature
 from app.kinematics.live import LiveMotion, stack_inputs
@@ -46,6 +47,7 @@ class SlipMeter:
         self.planted = contact[-1].copy()
 
 
+@pytest.mark.long
 def test_an_hour_with_gait_switches_keeps_feet_planted_and_memory_flat() -> None:
     spec = load_creature("dog")
     rigs = [build_rig(spec.with_overrides({"gait.preset": g})) for g in GAITS]

@@ -124,7 +124,7 @@ def many_legged(draw):
 def test_any_body_plan_travels_with_planted_feet(spec, terrain, path) -> None:
     from app.kinematics.motion import simulate
     from app.kinematics.world import WorldError
-    from app.scenes import make_world
+    from app.worlds import make_world
 
     rig = build_rig(spec)
     # Feet can stay planted only where the stride is within the legs' reach (otherwise the
@@ -181,7 +181,7 @@ def test_any_biped_is_finite_exact_and_mirrored(spec, world) -> None:
     from app.kinematics.motion import simulate
     from app.kinematics.roll import bearing_points
     from app.kinematics.world import World, WorldError
-    from app.scenes import make_world
+    from app.worlds import make_world
 
     rig = build_rig(spec)
     place = World(in_place=True) if world == "in-place" else make_world(

@@ -99,7 +99,7 @@ def test_travelling_cameras_keep_the_creature_in_frame_and_chase_stays_behind(ca
     from app.kinematics.world import World
     from app.render.clip import ViewSettings, clip_cameras
     from app.render.scene import creature_points
-    from app.scenes import parse_path
+    from app.worlds import parse_path
 
     rig = build_rig(load_creature("dog"))
     world = World(path=parse_path(f"figure-eight:r={2 * rig.body_length:.3f}"))

@@ -12,13 +12,13 @@ DT = 1.0 / 60.0
 
 
 def scene_state() -> ViewerState:
-    from app.cli import _creature_and_world
+    from app.cli.inputs import load_cast
 
     args = build_parser().parse_args(["view", str(scenes_dir() / "garden.toml")])
-    spec, world, _ = _creature_and_world(args)
-    state = ViewerState(spec, world=world)
-    for member_spec, member_world in args.scene_members:
-        assert state.add_creature(member_spec, member_world), state.error
+    lead, *others = load_cast(args)
+    state = ViewerState(lead.spec, world=lead.world)
+    for actor in others:
+        assert state.add_creature(actor.spec, actor.world), state.error
     return state
 
 

@@ -9,7 +9,7 @@ import pytest
 from app import build_rig, load_creature
 from app.kinematics.clip import clip_motion
 from app.kinematics.skeleton import LEG_JOINTS, forward_kinematics, skeleton_clip
-from app.scenes import make_world
+from app.worlds import make_world
 
 CASES = [("dog", None, None), ("horse", None, None), ("bear", None, None), ("ant", None, None),
          ("spider", None, None), ("centipede", None, None), ("dog", "circle:r=2", "hills:amp=0.1"),

@@ -22,7 +22,7 @@ from app.kinematics.live import LiveMotion
 from app.kinematics.motion import simulate as simulate_rig
 from app.kinematics.terrain import StairsTerrain
 from app.resources import preset_creature_names
-from app.scenes import make_world
+from app.worlds import make_world
 
 PRESETS = preset_creature_names()
 

@@ -17,14 +17,12 @@ from app import simulate
 from app.kinematics.path import CirclePath, FigureEightPath, StraightPath, WaypointPath
 from app.kinematics.terrain import HeightGrid, HillsTerrain, SlopeTerrain, StairsTerrain
 from app.kinematics.world import WorldError
-from app.scenes import load_heightmap, load_mesh_terrain, load_scene, parse_path, parse_terrain
+from app.worlds import load_heightmap, load_mesh_terrain, load_scene, parse_path, parse_terrain
 
 ROOT = Path(__file__).parents[1]
 
 
-def gaitlab(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "app", *args], capture_output=True, text=True, cwd=cwd,
-                          env={**os.environ, "PYTHONPATH": str(ROOT)}, timeout=300)
+from cli_runner import gaitlab
 
 
 def test_path_text_forms() -> None:
@@ -203,7 +201,7 @@ def test_every_scene_creature_is_checked(tmp_path: Path) -> None:
 
 def test_the_viewer_pauses_where_the_ground_offers_no_foothold() -> None:
     from app import load_creature
-    from app.scenes import make_world
+    from app.worlds import make_world
     from app.ui.state import ViewerState
 
     state = ViewerState(load_creature("dog"), world=make_world("straight", "hills:amp=0.28,seed=5"))

@@ -20,14 +20,14 @@ from .formats import EXPORT_FORMATS, export_format
 
 if TYPE_CHECKING:
     from .bvh import bvh_text, write_bvh
-    from .clip import ExportResult, export_clip
+    from .clip import ExportResult, export_cast, export_clip
     from .gltf import gltf_document, write_glb
     from .usd import write_usd
 
-_HOMES = {"bvh_text": "bvh", "write_bvh": "bvh", "ExportResult": "clip", "export_clip": "clip",
+_HOMES = {"bvh_text": "bvh", "write_bvh": "bvh", "ExportResult": "clip", "export_clip": "clip", "export_cast": "clip",
           "gltf_document": "gltf", "write_glb": "gltf", "write_usd": "usd"}
 
-__all__ = ["EXPORT_FORMATS", "ExportResult", "bvh_text", "export_clip", "export_format", "gltf_document", "write_bvh",
+__all__ = ["EXPORT_FORMATS", "ExportResult", "bvh_text", "export_cast", "export_clip", "export_format", "gltf_document", "write_bvh",
            "write_glb", "write_usd"]
 
 

@@ -1,4 +1,6 @@
-"""``gaitlab export``: simulate a clip as ``render`` would and write it as a skeleton."""
+"""``gaitlab export``: simulate a clip as ``render`` would and write it as skeletons:
+one creature, or every creature of a scene (one skeleton each in a glTF or USD file; one
+BVH file each)."""
 
 from __future__ import annotations
 
@@ -6,13 +8,12 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from ..cast import Actor, Cast, cast_motions
 from ..errors import OutputError
-from ..limits import check_clip
-from ..kinematics.clip import clip_motion
-from ..kinematics.skeleton import skeleton_clip
+from ..kinematics.skeleton import SkeletonClip, skeleton_clip
 from ..kinematics.world import World
+from ..limits import check_clip
 from ..output import check_output_dir
-from ..rigging import build_rig
 from ..spec import CreatureSpec
 from .bvh import write_bvh
 from .formats import export_format
@@ -22,19 +23,44 @@ from .usd import write_usd
 
 @dataclass(frozen=True)
 class ExportResult:
-    path: Path
+    path: Path  # the file written (the first, for BVH files of a scene)
     frames: int
-    joints: int
+    joints: int  # in all skeletons
     seconds: float
-    units: str = "metres, Y up"  # both formats
+    units: str = "metres, Y up"  # every format
+    paths: tuple[Path, ...] = ()  # every file written (several BVH files for a scene)
+    skeletons: int = 1
 
 
 def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float = 30.0, seconds: float | None = None,
                 cycles: float | None = None, start: float = 0.0, speed: tuple[float, float] | None = None,
                 world: World | None = None, loop: bool = False, ground: bool = False) -> ExportResult:
-    """Simulate ``spec`` (as ``gaitlab render`` does) and write the skeleton to ``output``
-    (format by suffix). ``loop``: whole cycles with the closing frame (last = first).
-    Checks the output before simulating; writes atomically; raises
+    """One creature's clip (see :func:`export_cast`)."""
+    return export_cast((Actor(spec, world or World(), speed),), output, fps, seconds, cycles, start, loop, ground)
+
+
+def bvh_paths(output: str | os.PathLike[str], cast: Cast) -> list[Path]:
+    """Where each creature's BVH goes: ``output`` itself for one creature; for several,
+    ``STEM-NAME.bvh`` beside it (``STEM-NAME-2.bvh`` for a second of the same name)."""
+    output = Path(output)
+    if len(cast) == 1:
+        return [output]
+    seen: dict[str, int] = {}
+    paths = []
+    for actor in cast:
+        seen[actor.spec.name] = seen.get(actor.spec.name, 0) + 1
+        count = seen[actor.spec.name]
+        suffix = actor.spec.name + (f"-{count}" if count > 1 else "")
+        paths.append(output.with_name(f"{output.stem}-{suffix}{output.suffix}"))
+    return paths
+
+
+def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, seconds: float | None = None,
+                cycles: float | None = None, start: float = 0.0, loop: bool = False,
+                ground: bool = False) -> ExportResult:
+    """Simulate the cast (as ``gaitlab render`` does) and write its skeletons to
+    ``output`` (format by suffix). ``loop``: whole cycles with the closing frame (last =
+    first). Checks the output before simulating; writes atomically; raises
     :class:`GaitlabError` with one line for bad input."""
     fmt = export_format(output)
     check_output_dir(output)
@@ -42,29 +68,32 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
         from .usd import _pxr
 
         _pxr()  # usd-core installed? (say so before simulating)
-    check_clip(fps, seconds, cycles, start, speed)
-    if loop and (seconds is not None or speed is not None):
+    speeds = [actor.speed for actor in cast]
+    for speed in speeds:
+        check_clip(fps, seconds, cycles, start, speed)
+    if loop and (seconds is not None or any(speeds)):
         raise OutputError("a looped export is whole cycles whose last frame equals the first: give a length in "
                           "cycles, without seconds or a speed")
     if ground and fmt != "glb":
         raise OutputError(f"--ground adds the terrain as a mesh to glTF files; write .glb (not .{fmt})")
-    if ground and world is not None and world.in_place:
+    if ground and any(actor.world.in_place for actor in cast):
         raise OutputError("--ground: an in-place clip's ground moves under the feet; export it travelling "
                           "(without --in-place)")
     if cycles is None and seconds is None:
-        cycles = None if speed is not None else 2.0
-        seconds = 4.0 if speed is not None else None
-    rig = build_rig(spec)
-    motion, _ = clip_motion(rig, fps, seconds, cycles, start, speed, world=world or World(), closed=loop)
-    if motion.frame_count == 0:
+        cycles = None if speeds[0] is not None else 2.0
+        seconds = 4.0 if speeds[0] is not None else None
+    motions, _ = cast_motions(cast, fps, seconds, cycles, start, closed=loop)
+    if motions[0].frame_count == 0:
         raise OutputError(f"{os.fspath(output)}: the clip has no frames at {fps:g} fps; give a longer --seconds "
                           "or --cycles")
-    clip = skeleton_clip(motion)
-    seconds_out = (clip.frame_count - int(loop)) / fps  # a looped clip's closing frame adds no time
+    clips: list[SkeletonClip] = [skeleton_clip(m) for m in motions]
+    seconds_out = (clips[0].frame_count - int(loop)) / fps  # a looped clip's closing frame adds no time
+    names = [p.stem.removeprefix(Path(output).stem + "-") for p in bvh_paths(output, cast)]
     if fmt == "bvh":
-        path = write_bvh(output, clip)
+        paths = [write_bvh(p, c) for p, c in zip(bvh_paths(output, cast), clips)]
     elif fmt == "glb":
-        path = write_glb(output, motion, clip, ground=ground)
+        paths = [write_glb(output, motions, clips, ground=ground, names=names if len(cast) > 1 else None)]
     else:
-        path = write_usd(output, motion, clip)
-    return ExportResult(Path(path), clip.frame_count, clip.skeleton.count, seconds_out)
+        paths = [write_usd(output, motions, clips, names=names)]
+    return ExportResult(Path(paths[0]), clips[0].frame_count, sum(c.skeleton.count for c in clips), seconds_out,
+                        paths=tuple(Path(p) for p in paths), skeletons=len(clips))

@@ -3,12 +3,10 @@
 from __future__ import annotations
 
 import os
-from typing import Literal
 
+from ..choices import EXPORT_FORMATS, ExportFormat
 from ..output.files import format_by_suffix
 
-ExportFormat = Literal["bvh", "glb", "usda", "usdc"]
-EXPORT_FORMATS: tuple[str, ...] = ("bvh", "glb", "usda", "usdc")
 
 
 def export_format(path: str | os.PathLike[str]) -> ExportFormat:

@@ -64,10 +64,10 @@ GROUND_MAX_CELLS = 600  # per side: the ground mesh's resolution is capped
 GROUND_MAX_CELL = 0.25  # m: coarser cells would no longer follow the terrain the feet stand on
 
 
-def _ground(motion: Motion, blob: "_Blob", doc: gl.GLTF2) -> int:
-    """A mesh of the ground under the clip (the terrain over the area the creature covers);
-    the index of its node."""
-    points = np.concatenate([motion.joints.reshape(-1, 3), motion.spine.reshape(-1, 3)])
+def _ground(motions: list[Motion], blob: _Blob, doc: gl.GLTF2) -> int:
+    """A mesh of the ground under the clip (the terrain over the area the creatures
+    cover); the index of its node."""
+    points = np.concatenate([p for m in motions for p in (m.joints.reshape(-1, 3), m.spine.reshape(-1, 3))])
     lo = points[:, [0, 2]].min(axis=0) - GROUND_MARGIN
     hi = points[:, [0, 2]].max(axis=0) + GROUND_MARGIN
     extent = float((hi - lo).max())
@@ -76,7 +76,8 @@ def _ground(motion: Motion, blob: "_Blob", doc: gl.GLTF2) -> int:
         raise OutputError(f"--ground: the clip covers {extent:.0f} m; the ground mesh is made for clips up to "
                           f"{GROUND_MAX_CELL * GROUND_MAX_CELLS:.0f} m across (export a shorter clip, or without "
                           "--ground)")
-    position, normal, indices = motion.terrain.surface((float(lo[0]), float(lo[1])), (float(hi[0]), float(hi[1])), cell)
+    terrain = motions[0].terrain
+    position, normal, indices = terrain.surface((float(lo[0]), float(lo[1])), (float(hi[0]), float(hi[1])), cell)
     attributes = gl.Attributes(POSITION=blob.add(position.astype(np.float32), gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER,
                                                  bounds=True),
                                NORMAL=blob.add(normal.astype(np.float32), gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER))
@@ -89,15 +90,9 @@ def _ground(motion: Motion, blob: "_Blob", doc: gl.GLTF2) -> int:
     return len(doc.nodes) - 1
 
 
-def gltf_document(motion: Motion, clip: SkeletonClip, ground: bool = False) -> gl.GLTF2:
-    """The clip as a glTF document with its binary blob attached; ``ground`` adds the
-    terrain under the clip as a second mesh (not for in-place clips, whose ground moves)."""
-    skeleton = clip.skeleton
-    J, T = skeleton.count, clip.frame_count
-    doc = gl.GLTF2(asset=gl.Asset(generator="Gaitlab", version="2.0"))
-    blob = _Blob(doc)
-
-    # The mesh, as drawn in the first frame, bound rigidly to the joints.
+def _skinned_mesh(motion: Motion, clip: SkeletonClip, name: str, blob: _Blob, doc: gl.GLTF2) -> int:
+    """The creature's mesh as drawn in the first frame, bound rigidly to its joints; the
+    index of the mesh."""
     mesh = creature_mesh(motion, clip)
     position, normal, color = (a.astype(np.float32) for a in (mesh.positions, mesh.normals, mesh.colors))
     joints0 = np.zeros((len(mesh.joint), 4), np.uint16)
@@ -111,50 +106,82 @@ def gltf_document(motion: Motion, clip: SkeletonClip, ground: bool = False) -> g
         COLOR_0=blob.add(color, gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER),
         JOINTS_0=blob.add(joints0, gl.VEC4, gl.UNSIGNED_SHORT, gl.ARRAY_BUFFER),
         WEIGHTS_0=blob.add(weights0, gl.VEC4, gl.FLOAT, gl.ARRAY_BUFFER))
-    material = gl.Material(name="creature", pbrMetallicRoughness=gl.PbrMetallicRoughness(
-        baseColorFactor=[1.0, 1.0, 1.0, 1.0], metallicFactor=0.0, roughnessFactor=0.7))
-    doc.materials.append(material)
-    doc.meshes.append(gl.Mesh(name=f"{motion.rig.name if hasattr(motion.rig, 'name') else 'creature'}",
-                              primitives=[gl.Primitive(attributes=attributes, material=0, indices=blob.add(
-                                  indices, gl.SCALAR, gl.UNSIGNED_INT, gl.ELEMENT_ARRAY_BUFFER))]))
+    if not doc.materials or doc.materials[0].name != "creature":
+        doc.materials.insert(0, gl.Material(name="creature", pbrMetallicRoughness=gl.PbrMetallicRoughness(
+            baseColorFactor=[1.0, 1.0, 1.0, 1.0], metallicFactor=0.0, roughnessFactor=0.7)))
+    doc.meshes.append(gl.Mesh(name=name, primitives=[gl.Primitive(attributes=attributes, material=0, indices=blob.add(
+        indices, gl.SCALAR, gl.UNSIGNED_INT, gl.ELEMENT_ARRAY_BUFFER))]))
+    return len(doc.meshes) - 1
 
-    # Joints: nodes with the first frame's local transform.
+
+def _skeleton(clip: SkeletonClip, prefix: str, blob: _Blob, doc: gl.GLTF2) -> tuple[int, int]:
+    """The joints as nodes with the first frame's local transform, and their skin; the
+    index of the first joint's node and of the skin."""
+    skeleton = clip.skeleton
+    first = len(doc.nodes)
     q0 = Rotation.from_matrix(clip.local_rotation[0]).as_quat()
-    for j in range(J):
-        children = skeleton.children(j)
-        doc.nodes.append(gl.Node(name=skeleton.names[j], translation=[float(v) for v in clip.local_translation[0, j]],
+    for j in range(skeleton.count):
+        children = [first + c for c in skeleton.children(j)]
+        doc.nodes.append(gl.Node(name=prefix + skeleton.names[j],
+                                 translation=[float(v) for v in clip.local_translation[0, j]],
                                  rotation=[float(v) for v in q0[j]], children=children or None))
-    world = np.tile(np.eye(4), (J, 1, 1))
+    world = np.tile(np.eye(4), (skeleton.count, 1, 1))
     world[:, :3, :3] = clip.world_rotation[0]
     world[:, :3, 3] = clip.world_position[0]
     inverse_bind = np.linalg.inv(world).transpose(0, 2, 1).astype(np.float32)  # column-major
-    doc.skins.append(gl.Skin(name="skeleton", joints=list(range(J)), skeleton=0,
-                             inverseBindMatrices=blob.add(inverse_bind, gl.MAT4, gl.FLOAT)))
-    doc.nodes.append(gl.Node(name="creature", mesh=0, skin=0))
-    roots = [0, J]
-    if ground:
-        roots.append(_ground(motion, blob, doc))
-    doc.scenes.append(gl.Scene(name="gaitlab", nodes=roots))
-    doc.scene = 0
+    doc.skins.append(gl.Skin(name=f"{prefix}skeleton", joints=list(range(first, first + skeleton.count)),
+                             skeleton=first, inverseBindMatrices=blob.add(inverse_bind, gl.MAT4, gl.FLOAT)))
+    return first, len(doc.skins) - 1
 
-    # The animation: rotations of every joint, translations where offsets change.
-    times = (clip.times - clip.times[0]).astype(np.float32)
-    time_accessor = blob.add(times, gl.SCALAR, gl.FLOAT, bounds=True)
-    animation = gl.Animation(name="clip", channels=[], samplers=[])
+
+def _animate(clip: SkeletonClip, first: int, times: int, blob: _Blob, animation: gl.Animation) -> None:
+    """Channels for a skeleton's joints (nodes from ``first``): rotations of every joint,
+    translations where offsets change (the root carries the travel)."""
     moving = np.ptp(clip.local_translation, axis=0).max(axis=-1) > 1e-9
-    for j in range(J):
+    for j in range(clip.skeleton.count):
         q = continuous_quaternions(clip.local_rotation[:, j]).astype(np.float32)
-        animation.samplers.append(gl.AnimationSampler(input=time_accessor, output=blob.add(q, gl.VEC4, gl.FLOAT),
+        animation.samplers.append(gl.AnimationSampler(input=times, output=blob.add(q, gl.VEC4, gl.FLOAT),
                                                       interpolation="LINEAR"))
         animation.channels.append(gl.AnimationChannel(sampler=len(animation.samplers) - 1,
-                                                      target=gl.AnimationChannelTarget(node=j, path="rotation")))
+                                                      target=gl.AnimationChannelTarget(node=first + j,
+                                                                                       path="rotation")))
         if j == 0 or moving[j]:
             t = clip.local_translation[:, j].astype(np.float32)
-            animation.samplers.append(gl.AnimationSampler(input=time_accessor,
-                                                          output=blob.add(t, gl.VEC3, gl.FLOAT),
+            animation.samplers.append(gl.AnimationSampler(input=times, output=blob.add(t, gl.VEC3, gl.FLOAT),
                                                           interpolation="LINEAR"))
             animation.channels.append(gl.AnimationChannel(sampler=len(animation.samplers) - 1, target=(
-                gl.AnimationChannelTarget(node=j, path="translation"))))
+                gl.AnimationChannelTarget(node=first + j, path="translation"))))
+
+
+def gltf_document(motion: Motion | list[Motion], clip: SkeletonClip | list[SkeletonClip],
+                  ground: bool = False, names: list[str] | None = None) -> gl.GLTF2:
+    """A clip (or several: a scene's creatures, each its own skeleton, skin and mesh, in
+    one animation) as a glTF document with its binary blob attached; ``ground`` adds the
+    terrain under the clip as a mesh (not for in-place clips, whose ground moves).
+    ``names`` prefix each creature's joints (needed when there are several)."""
+    motions = motion if isinstance(motion, list) else [motion]
+    clips = clip if isinstance(clip, list) else [clip]
+    prefixes = [f"{n}:" for n in names] if names else [""] * len(clips)
+    doc = gl.GLTF2(asset=gl.Asset(generator="Gaitlab", version="2.0"))
+    blob = _Blob(doc)
+    meshes = [_skinned_mesh(m, c, m.rig.name, blob, doc) for m, c in zip(motions, clips)]
+    roots = []
+    skeletons = []
+    for c, prefix in zip(clips, prefixes):
+        skeletons.append(_skeleton(c, prefix, blob, doc))
+        roots.append(skeletons[-1][0])
+    for (first, skin), mesh, m in zip(skeletons, meshes, motions):
+        doc.nodes.append(gl.Node(name=m.rig.name if len(clips) > 1 else "creature", mesh=mesh, skin=skin))
+        roots.append(len(doc.nodes) - 1)
+    if ground:
+        roots.append(_ground(motions, blob, doc))
+    doc.scenes.append(gl.Scene(name="gaitlab", nodes=roots))
+    doc.scene = 0
+    times = (clips[0].times - clips[0].times[0]).astype(np.float32)
+    time_accessor = blob.add(times, gl.SCALAR, gl.FLOAT, bounds=True)
+    animation = gl.Animation(name="clip", channels=[], samplers=[])
+    for c, (first, _) in zip(clips, skeletons):
+        _animate(c, first, time_accessor, blob, animation)
     doc.animations.append(animation)
     while len(blob.data) % 4:
         blob.data.append(0)
@@ -163,9 +190,10 @@ def gltf_document(motion: Motion, clip: SkeletonClip, ground: bool = False) -> g
     return doc
 
 
-def write_glb(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip, ground: bool = False) -> Path:
-    """Write the clip as a binary glTF (.glb), atomically (``ground``: see :func:`gltf_document`)."""
-    doc = gltf_document(motion, clip, ground)
+def write_glb(path: str | os.PathLike[str], motion: Motion | list[Motion], clip: SkeletonClip | list[SkeletonClip],
+              ground: bool = False, names: list[str] | None = None) -> Path:
+    """Write the clip(s) as a binary glTF (.glb), atomically (see :func:`gltf_document`)."""
+    doc = gltf_document(motion, clip, ground, names)
     with AtomicPath(path) as out:
         out.tmp.write_bytes(b"".join(doc.save_to_bytes()))
     return Path(path)

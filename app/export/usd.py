@@ -51,56 +51,31 @@ def _matrices(rotation: NDArray[np.float64], translation: NDArray[np.float64], G
     return out
 
 
-def write_usd(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip) -> Path:
-    """Write the clip as a UsdSkel stage (.usda or .usdc by suffix), atomically."""
+def write_usd(path: str | os.PathLike[str], motion: Motion | list[Motion], clip: SkeletonClip | list[SkeletonClip],
+              names: list[str] | None = None) -> Path:
+    """Write the clip as a UsdSkel stage (.usda or .usdc by suffix), atomically: one
+    creature at ``/Creature``, or several (a scene's), each its own SkelRoot
+    ``/Scene/NAME``."""
     Gf, Sdf, Usd, UsdGeom, UsdSkel, Vt = _pxr()
+    motions = motion if isinstance(motion, list) else [motion]
+    clips = clip if isinstance(clip, list) else [clip]
     out = AtomicPath(path)
     try:
         stage = Usd.Stage.CreateNew(str(out.tmp))
         UsdGeom.SetStageUpAxis(stage, UsdGeom.Tokens.y)
         UsdGeom.SetStageMetersPerUnit(stage, 1.0)
-        T = clip.frame_count
-        stage.SetTimeCodesPerSecond(clip.fps)
-        stage.SetFramesPerSecond(clip.fps)
+        T = clips[0].frame_count
+        stage.SetTimeCodesPerSecond(clips[0].fps)
+        stage.SetFramesPerSecond(clips[0].fps)
         stage.SetStartTimeCode(0)
         stage.SetEndTimeCode(max(T - 1, 0))
-        root = UsdSkel.Root.Define(stage, "/Creature")
+        if len(clips) == 1:
+            root = _creature(stage, "/Creature", motions[0], clips[0])
+        else:
+            root = UsdGeom.Xform.Define(stage, "/Scene")
+            for m, c, name in zip(motions, clips, names or [f"creature{i}" for i in range(len(clips))]):
+                _creature(stage, f"/Scene/{_prim_name(name)}", m, c)
         stage.SetDefaultPrim(root.GetPrim())
-        skeleton = UsdSkel.Skeleton.Define(stage, "/Creature/Skeleton")
-        paths = joint_paths(clip)
-        skeleton.CreateJointsAttr(paths)
-        skeleton.CreateBindTransformsAttr(Vt.Matrix4dArray(
-            _matrices(clip.world_rotation[0], clip.world_position[0], Gf)))
-        skeleton.CreateRestTransformsAttr(Vt.Matrix4dArray(
-            _matrices(clip.local_rotation[0], clip.local_translation[0], Gf)))
-        animation = UsdSkel.Animation.Define(stage, "/Creature/Skeleton/Motion")
-        animation.CreateJointsAttr(paths)
-        translations = animation.CreateTranslationsAttr()
-        rotations = animation.CreateRotationsAttr()
-        animation.CreateScalesAttr().Set(Vt.Vec3hArray([Gf.Vec3h(1, 1, 1)] * len(paths)))
-        quat = np.stack([continuous_quaternions(clip.local_rotation[:, j]) for j in range(len(paths))], axis=1)
-        for t in range(T):
-            translations.Set(Vt.Vec3fArray.FromNumpy(clip.local_translation[t].astype(np.float32)), t)
-            rotations.Set(Vt.QuatfArray([Gf.Quatf(float(q[3]), float(q[0]), float(q[1]), float(q[2]))
-                                         for q in quat[t]]), t)
-        UsdSkel.BindingAPI.Apply(skeleton.GetPrim()).CreateAnimationSourceRel().SetTargets([animation.GetPath()])
-
-        mesh_data = creature_mesh(motion, clip)
-        mesh = UsdGeom.Mesh.Define(stage, "/Creature/Body")
-        mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.positions.astype(np.float32)))
-        mesh.CreateFaceVertexCountsAttr(Vt.IntArray([3] * len(mesh_data.faces)))
-        mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(mesh_data.faces.reshape(-1).astype(np.int32)))
-        mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.normals.astype(np.float32)))
-        mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
-        mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)
-        colors = UsdGeom.PrimvarsAPI(mesh).CreatePrimvar("displayColor", Sdf.ValueTypeNames.Color3fArray,
-                                                         UsdGeom.Tokens.vertex)
-        colors.Set(Vt.Vec3fArray.FromNumpy(mesh_data.colors.astype(np.float32)))
-        binding = UsdSkel.BindingAPI.Apply(mesh.GetPrim())
-        binding.CreateSkeletonRel().SetTargets([skeleton.GetPath()])
-        binding.CreateJointIndicesPrimvar(False, 1).Set(Vt.IntArray.FromNumpy(mesh_data.joint.astype(np.int32)))
-        binding.CreateJointWeightsPrimvar(False, 1).Set(Vt.FloatArray([1.0] * len(mesh_data.joint)))
-        binding.CreateGeomBindTransformAttr(Gf.Matrix4d(1.0))
         stage.GetRootLayer().Save()
     except OutputError:
         out.discard()
@@ -115,3 +90,51 @@ def write_usd(path: str | os.PathLike[str], motion: Motion, clip: SkeletonClip) 
         out.discard()
         raise
     return out.commit()
+
+
+def _prim_name(name: str) -> str:
+    """A valid USD prim name from a creature name."""
+    clean = "".join(c if c.isalnum() or c == "_" else "_" for c in name)
+    return clean if clean and not clean[0].isdigit() else f"_{clean}"
+
+
+def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
+    """One creature's SkelRoot at ``where``: skeleton, animation and skinned mesh."""
+    Gf, Sdf, Usd, UsdGeom, UsdSkel, Vt = _pxr()
+    root = UsdSkel.Root.Define(stage, where)
+    skeleton = UsdSkel.Skeleton.Define(stage, f"{where}/Skeleton")
+    paths = joint_paths(clip)
+    skeleton.CreateJointsAttr(paths)
+    skeleton.CreateBindTransformsAttr(Vt.Matrix4dArray(
+        _matrices(clip.world_rotation[0], clip.world_position[0], Gf)))
+    skeleton.CreateRestTransformsAttr(Vt.Matrix4dArray(
+        _matrices(clip.local_rotation[0], clip.local_translation[0], Gf)))
+    animation = UsdSkel.Animation.Define(stage, f"{where}/Skeleton/Motion")
+    animation.CreateJointsAttr(paths)
+    translations = animation.CreateTranslationsAttr()
+    rotations = animation.CreateRotationsAttr()
+    animation.CreateScalesAttr().Set(Vt.Vec3hArray([Gf.Vec3h(1, 1, 1)] * len(paths)))
+    quat = np.stack([continuous_quaternions(clip.local_rotation[:, j]) for j in range(len(paths))], axis=1)
+    for t in range(clip.frame_count):
+        translations.Set(Vt.Vec3fArray.FromNumpy(clip.local_translation[t].astype(np.float32)), t)
+        rotations.Set(Vt.QuatfArray([Gf.Quatf(float(q[3]), float(q[0]), float(q[1]), float(q[2]))
+                                     for q in quat[t]]), t)
+    UsdSkel.BindingAPI.Apply(skeleton.GetPrim()).CreateAnimationSourceRel().SetTargets([animation.GetPath()])
+
+    mesh_data = creature_mesh(motion, clip)
+    mesh = UsdGeom.Mesh.Define(stage, f"{where}/Body")
+    mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.positions.astype(np.float32)))
+    mesh.CreateFaceVertexCountsAttr(Vt.IntArray([3] * len(mesh_data.faces)))
+    mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(mesh_data.faces.reshape(-1).astype(np.int32)))
+    mesh.CreateNormalsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.normals.astype(np.float32)))
+    mesh.SetNormalsInterpolation(UsdGeom.Tokens.vertex)
+    mesh.CreateSubdivisionSchemeAttr(UsdGeom.Tokens.none)
+    colors = UsdGeom.PrimvarsAPI(mesh).CreatePrimvar("displayColor", Sdf.ValueTypeNames.Color3fArray,
+                                                     UsdGeom.Tokens.vertex)
+    colors.Set(Vt.Vec3fArray.FromNumpy(mesh_data.colors.astype(np.float32)))
+    binding = UsdSkel.BindingAPI.Apply(mesh.GetPrim())
+    binding.CreateSkeletonRel().SetTargets([skeleton.GetPath()])
+    binding.CreateJointIndicesPrimvar(False, 1).Set(Vt.IntArray.FromNumpy(mesh_data.joint.astype(np.int32)))
+    binding.CreateJointWeightsPrimvar(False, 1).Set(Vt.FloatArray([1.0] * len(mesh_data.joint)))
+    binding.CreateGeomBindTransformAttr(Gf.Matrix4d(1.0))
+    return root

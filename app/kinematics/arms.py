@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 
 from .rig import ArmShape
 
-UP = np.array([0.0, 1.0, 0.0])
+from .frames import UP
 FORWARD_BEND = 0.6  # extra elbow bend per radian of forward swing
 WRIST_FLEX = 0.15  # rad the hand turns further than the forearm
 ARM_SPREAD = 0.06  # rad the arms hang out from the body

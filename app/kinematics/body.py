@@ -26,7 +26,7 @@ from .rig import MIN_CROUCH, Rig
 from .spine import bezier, bezier_tangent
 from .world import World
 
-UP = np.array([0.0, 1.0, 0.0])
+from .frames import UP
 TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension

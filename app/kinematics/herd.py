@@ -20,13 +20,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from ..choices import MAX_HERD
 from ..errors import GaitlabError
 from .clip import clip_motion
 from .motion import Motion
 from .rig import Rig
 from .world import IN_PLACE
 
-MAX_HERD = 1000
 CYCLE_FRAMES = 64  # frames of the solved cycle; poses between them are blended
 
 

@@ -5,7 +5,7 @@ Every terrain answers :meth:`Terrain.height` ((N, 2) -> (N,)) and :meth:`Terrain
 procedural kinds are exact functions (flat, slope, hills from a sum of smooth waves with
 analytic normals, stairs with vertical risers); heightmap images and mesh files become a
 :class:`HeightGrid` (bilinear heights, normals from central differences). Loading files
-lives in :mod:`app.scenes`; this module only does numbers.
+lives in :mod:`app.worlds`; this module only does numbers.
 
 ``max_slope`` (radians) is the steepest ground a foot may stand on (see
 :mod:`app.kinematics.footholds`).

@@ -16,11 +16,11 @@ import tempfile
 from pathlib import Path
 from typing import Literal
 
+from ..choices import MAX_SIZE
 from ..errors import OutputError
 
 OutputFormat = Literal["png", "gif", "mp4"]
 OUTPUT_FORMATS: tuple[str, ...] = ("png", "gif", "mp4")
-MAX_SIZE = 8192
 PARTIAL = ".partial"  # temporary files are named .STEM.HOST_PID-RANDOM.partial.SUFFIX
 
 

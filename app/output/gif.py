@@ -21,19 +21,17 @@ import threading
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import IO, Literal
+from typing import IO
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ..choices import DEFAULT_GIF_QUALITY, GIF_QUALITIES, GifQuality
 from ..errors import OutputError
 from .background import BackgroundWriter
 from .files import AtomicPath, cannot_write
 
 GIF_MAX_FPS = 50  # browsers slow down frame delays under 20 ms
-GifQuality = Literal["best", "good", "small"]
-GIF_QUALITIES: tuple[str, ...] = ("best", "good", "small")
-DEFAULT_GIF_QUALITY: GifQuality = "good"
 GIFSICLE_MAX_PIXELS = 3000 * 480 * 360  # frames x width x height: gifsicle joins it all in memory
 CHUNK_FRAMES = 200  # frames per part optimised by gifsicle while later ones render
 MAX_GIFSICLES = 2  # parts optimised at once

@@ -18,12 +18,11 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ..choices import DEFAULT_CRF, MAX_CRF
 from ..errors import OutputError
 from .background import BackgroundWriter
 from .files import AtomicPath, cannot_write
 
-DEFAULT_CRF = 18  # visually lossless for these flat-shaded pictures
-MAX_CRF = 51
 X264_PRESET = "superfast"
 
 

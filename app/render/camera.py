@@ -4,19 +4,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Literal, get_args
 
 from pyglm import glm
 import numpy as np
 from numpy.typing import NDArray
 
-CameraPreset = Literal["three-quarter", "side", "front", "top", "chase"]
-CAMERA_PRESETS: tuple[str, ...] = get_args(CameraPreset)
-DEFAULT_CAMERA: CameraPreset = "three-quarter"
-# What recordings take: a preset, or "follow" (the default preset's angle, kept to the
-# path's heading as every preset is for a travelling creature).
-CameraChoice = Literal["three-quarter", "side", "front", "top", "chase", "follow"]
-CAMERA_CHOICES: tuple[str, ...] = get_args(CameraChoice)
+from ..choices import CAMERA_CHOICES, CAMERA_PRESETS, DEFAULT_CAMERA, CameraChoice, CameraPreset  # noqa: F401
 CHASE_LOOK_AHEAD = 1.2  # body lengths of ground ahead that the chase camera keeps in view
 
 

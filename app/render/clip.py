@@ -1,4 +1,4 @@
-"""Rendering a motion clip frame by frame, headless: the one path every recording takes.
+"""Rendering a clip frame by frame, headless: the one path every recording takes.
 
 ``gaitlab render`` and the viewer's Record panel both go through :class:`ClipRenderer`,
 so the same settings give the same pixels.
@@ -6,8 +6,7 @@ so the same settings give the same pixels.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from typing import Iterator
+from collections.abc import Sequence
 
 import moderngl
 import numpy as np
@@ -15,147 +14,59 @@ from numpy.typing import NDArray
 
 from ..choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS, Antialias
 from ..kinematics.motion import Motion
-from .camera import DEFAULT_CAMERA, Camera, CameraChoice, clear_elevations, frame_points, look_ahead, preset_for
-from .context import create_headless_context
+from .camera import Camera
+from .context import shared_headless_context
+from .framing import clip_camera, clip_cameras, loop_grid_spacing  # noqa: F401  (re-exported)
 from .fxaa import screen_tiles
-from .renderer import GroundView, RenderOptions, SceneRenderer, nice_grid_spacing
-from .scene import SceneInstances, box_corners, creature_points, motion_bounds, motion_instances
+from .options import GroundView, RenderOptions, ViewSettings  # noqa: F401  (re-exported)
+from .renderer import SceneRenderer
+from .scene import SceneInstances, frame_instances, motion_instances
 from .target import OffscreenTarget
-
-FOLLOW_SMOOTHING = 1.0  # seconds over which the follow camera averages the ground's height
-
-
-@dataclass(frozen=True)
-class ViewSettings:
-    """How a clip is filmed: image size (pixels), camera preset, antialiasing, options.
-
-    ``antialias``: "fxaa" (the default: one pass over the pixels near the creature,
-    about half the time of multisampling on a software renderer, nearly the same look),
-    "msaa" (``samples`` per pixel, the finest edges) or "off"."""
-
-    size: tuple[int, int] = (480, 360)
-    camera: CameraChoice = DEFAULT_CAMERA
-    antialias: Antialias = DEFAULT_ANTIALIAS
-    samples: int = 4  # multisampling's samples per pixel, for antialias "msaa"
-    options: RenderOptions = field(default_factory=RenderOptions)
-
-
-def clip_camera(motion: Motion, view: ViewSettings) -> Camera:
-    """The preset camera framing the creature over the whole clip (no jitter); for a
-    travelling creature, its first frame of :func:`clip_cameras`."""
-    return clip_cameras(motion, view)[0]
-
-
-def clip_cameras(motion: Motion, view: ViewSettings, extra: NDArray[np.float64] | None = None) -> list[Camera]:
-    """A camera per frame. In place: one fixed preset camera framing the whole clip. A
-    travelling creature is followed: the preset's angle is kept relative to the path's
-    heading, the target moves with the body along its path (at the ground's height,
-    smoothed), and the distance frames the creature's whole motion about that point, so
-    it never leaves the frame and the camera does not jitter with the steps. ``extra``
-    (T, K, 3): more points to keep in view (a herd around a travelling creature)."""
-    w, h = view.size
-    aspect = w / h
-    preset = preset_for(view.camera)
-    length = motion.rig.body_length
-    if motion.in_place:
-        points = look_ahead(motion_bounds(motion), preset, length)
-        return [frame_points(points, preset, aspect=aspect)] * motion.frame_count
-    points, tangents = motion.path.sample(motion.travel)
-    heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
-    ground = np.zeros(motion.frame_count)
-    if not motion.terrain.flat:
-        from scipy.ndimage import uniform_filter1d
-
-        window = max(1, int(round(FOLLOW_SMOOTHING * motion.fps)))
-        ground = uniform_filter1d(motion.terrain.height(points), size=window, mode="nearest")
-    anchor = np.column_stack([points[:, 0], ground, points[:, 1]])
-    c, s = np.cos(heading), np.sin(heading)
-    points_all = creature_points(motion)
-    if extra is not None:
-        points_all = np.concatenate([points_all, extra], axis=1)
-    rel = points_all - anchor[:, None, :]
-    # Into each frame's heading frame (the creature facing +Z): rotate by -heading about Y.
-    local = np.stack([c[:, None] * rel[..., 0] - s[:, None] * rel[..., 2], rel[..., 1],
-                      s[:, None] * rel[..., 0] + c[:, None] * rel[..., 2]], axis=-1).reshape(-1, 3)
-    lo, hi = local.min(axis=0), local.max(axis=0)
-    lo[1] = min(lo[1], 0.0)
-    base = frame_points(look_ahead(box_corners(lo, hi), preset, length), preset, aspect=aspect)
-    tx, ty, tz = base.target
-    targets = anchor + np.stack([c * tx + s * tz, np.full_like(c, ty), -s * tx + c * tz], axis=-1)
-    azimuths = base.azimuth + np.degrees(heading)
-    elevations = np.full(motion.frame_count, base.elevation)
-    if not motion.terrain.flat and not base.top_down:
-        # Rise over hills that would hide the creature; smoothly (the highest need within
-        # a second either side, then averaged), and never lower than the preset.
-        from scipy.ndimage import maximum_filter1d, uniform_filter1d
-
-        need = clear_elevations(targets, azimuths, base.elevation, base.distance, motion.terrain.height,
-                                margin=0.1 * motion.rig.hip_height)
-        window = max(1, int(round(FOLLOW_SMOOTHING * motion.fps)))
-        elevations = np.maximum(uniform_filter1d(maximum_filter1d(need, 2 * window + 1, mode="nearest"), window,
-                                                 mode="nearest"), base.elevation)
-    return [replace(base, target=tuple(float(v) for v in targets[i]), azimuth=float(azimuths[i]),
-                    elevation=float(elevations[i])) for i in range(motion.frame_count)]
-
-
-def loop_grid_spacing(motion: Motion, cycles: float | None) -> float:
-    """A round grid spacing for the creature's size; for a clip of whole cycles it is
-    nudged so the ground has moved a whole number of major squares (5 lines) by the end,
-    which makes the loop seamless."""
-    spacing = nice_grid_spacing(motion.rig.hip_height * 1.6)
-    travel = float(motion.travel[-1] - motion.travel[0]) + (
-        float(motion.travel[1] - motion.travel[0]) if motion.frame_count > 1 else 0.0)
-    if cycles and travel > 0:
-        majors = max(1, round(travel / (5.0 * spacing)))
-        spacing = travel / (5.0 * majors)
-    return spacing
 
 
 class ClipRenderer:
-    """Headless renderer of clips; owns an EGL context unless given one. ``antialias``
-    and ``samples`` as in :class:`ViewSettings`."""
+    """Headless renderer of clips, in the given context or the process's shared EGL one
+    (never released here). ``antialias`` and ``samples`` as in :class:`ViewSettings`."""
 
     def __init__(self, size: tuple[int, int], antialias: Antialias = DEFAULT_ANTIALIAS, samples: int = 4,
                  ctx: moderngl.Context | None = None) -> None:
         if antialias not in ANTIALIAS_MODES:
             raise ValueError(f"antialias {antialias!r}: choose one of {', '.join(ANTIALIAS_MODES)}")
-        self._owns_ctx = ctx is None
-        self.ctx = ctx or create_headless_context()
+        self.ctx = ctx or shared_headless_context()
         self.scene = SceneRenderer(self.ctx)
         self.target = OffscreenTarget(self.ctx, size, samples=samples if antialias == "msaa" else 0,
                                       fxaa=antialias == "fxaa", shaders=self.scene.shaders)
-        self._cache: tuple[Motion, bool, SceneInstances] | None = None
+        self._cache: dict[int, tuple[Motion, bool, SceneInstances]] = {}
 
     def _instances(self, motion: Motion, joints: bool) -> SceneInstances:
-        """Every frame's instances, built in one vectorised pass and kept for the clip."""
-        if self._cache is None or self._cache[0] is not motion or self._cache[1] != joints:
-            self._cache = (motion, joints, motion_instances(motion, show_joints=joints))
-        return self._cache[2]
+        """Every frame's instances of a clip, built in one vectorised pass and kept."""
+        cached = self._cache.get(id(motion))
+        if cached is None or cached[0] is not motion or cached[1] != joints:
+            cached = self._cache[id(motion)] = (motion, joints, motion_instances(motion, show_joints=joints))
+        return cached[2]
 
-    def frame(self, motion: Motion, index: int, camera: Camera, options: RenderOptions,
-              extra: SceneInstances | None = None) -> NDArray[np.uint8]:
-        """Frame ``index`` of ``motion`` (and ``extra`` shapes, e.g. a herd) as (H, W, 3) uint8."""
-        scene = self._instances(motion, options.joints).frame(index)
-        if extra is not None:
-            scene = scene + extra
-        ground = GroundView(terrain=motion.terrain, offset=float(motion.ground_offset[index]),
-                            path=None if motion.in_place else motion.path, travel=float(motion.travel[index]))
+    def frame(self, motions: Motion | Sequence[Motion], index: int, camera: Camera, options: RenderOptions,
+              extra: SceneInstances | Sequence[SceneInstances] | None = None) -> NDArray[np.uint8]:
+        """Frame ``index`` of one clip or of several (a scene's creatures, over the first
+        one's ground) and ``extra`` shapes (herds, arcs), as (H, W, 3) uint8."""
+        motions = [motions] if isinstance(motions, Motion) else list(motions)
+        extras = [] if extra is None else [extra] if isinstance(extra, SceneInstances) else list(extra)
+        if len(self._cache) > 4 * len(motions):  # a new clip: forget the old ones
+            self._cache = {k: v for k, v in self._cache.items() if any(v[0] is m for m in motions)}
+        scene = frame_instances([self._instances(m, options.joints).frame(index) for m in motions] + extras)
+        lead = motions[0]
+        ground = GroundView(terrain=lead.terrain, offset=float(lead.ground_offset[index]),
+                            path=None if lead.in_place else lead.path, travel=float(lead.travel[index]))
         self.scene.draw_instances(scene, ground, camera, self.target.fbo, options)
         tiles = screen_tiles(scene, camera, self.target.size) if self.target.fxaa else None
         return self.target.read(tiles)
 
-    def frames(self, motion: Motion, cameras: list[Camera], options: RenderOptions) -> Iterator[NDArray[np.uint8]]:
-        for index in range(motion.frame_count):
-            yield self.frame(motion, index, cameras[index], options)
-
     def release(self) -> None:
         self.target.release()
         self.scene.release()
-        if self._owns_ctx:
-            self.ctx.release()
 
-    def __enter__(self) -> "ClipRenderer":
+    def __enter__(self) -> ClipRenderer:
         return self
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, *exc: object) -> None:
         self.release()

@@ -18,6 +18,21 @@ _EGL_HINT = ("install Mesa's EGL and OpenGL drivers, e.g. on Debian/Ubuntu: "
              "apt-get install libegl1 libgl1-mesa-dri")
 
 
+_SHARED: list[moderngl.Context] = []
+
+
+def shared_headless_context() -> moderngl.Context:
+    """The process's one headless context, made on first use and kept until exit.
+
+    Every headless renderer in a process draws in it (``gaitlab render``, the tests, a
+    script recording several clips): making and releasing a second standalone EGL
+    context while another is alive corrupts the survivor's rendering on Mesa (seen as
+    noise in every later frame), and one context saves its start-up cost per clip."""
+    if not _SHARED:
+        _SHARED.append(create_headless_context())
+    return _SHARED[0]
+
+
 def create_headless_context() -> moderngl.Context:
     """A standalone OpenGL >= 3.3 context with no window (EGL on Linux).
 

@@ -14,17 +14,38 @@ from functools import lru_cache
 import numpy as np
 from numpy.typing import NDArray
 
+from ..kinematics.frames import UP
 from ..kinematics.motion import Motion, Pose
 from ..kinematics.rig import Rig
 
-CAPSULE_FLOATS = 11  # a (3), b (3), radius a/b (2), colour (3)
-ELLIPSOID_FLOATS = 18  # centre, axis x, axis y, axis z, radii, colour (3 each)
+class Cap:
+    """The columns of a capsule row: end points a and b, their radii, the colour."""
+
+    A = slice(0, 3)
+    B = slice(3, 6)
+    RADII = slice(6, 8)  # radius at a, radius at b
+    COLOR = slice(8, 11)
+    FLOATS = 11
+
+
+class Ell:
+    """The columns of an ellipsoid row: centre, the three axes, radii along them, colour."""
+
+    CENTRE = slice(0, 3)
+    AXES = (slice(3, 6), slice(6, 9), slice(9, 12))  # x, y, z
+    RADII = slice(12, 15)
+    COLOR = slice(15, 18)
+    FLOATS = 18
+
+
+CAPSULE_FLOATS = Cap.FLOATS
+ELLIPSOID_FLOATS = Ell.FLOATS
 
 # Bone radius along the leg as a fraction of the leg's radius at the hip:
 # hip, knee, ankle, ball, toe tip.
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
 _EYE_COLOR = np.array([0.02, 0.02, 0.025])
-_UP = np.array([0.0, 1.0, 0.0])
+_UP = UP
 
 
 @lru_cache(maxsize=256)
@@ -65,13 +86,22 @@ class SceneInstances:
         ells = np.concatenate([self.ellipsoids[:a], other.ellipsoids[:b], self.ellipsoids[a:], other.ellipsoids[b:]])
         return SceneInstances(np.concatenate([self.capsules, other.capsules]), ells, a + b)
 
+    def spheres(self, casters_only: bool = False) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Bounding spheres of one frame's shapes: centres (N, 3) and radii (N,) — each
+        capsule's two ends with their radii, each ellipsoid's centre with its largest
+        radius (``casters_only``: only the ellipsoids that cast shadows)."""
+        caps = self.capsules.astype(np.float64)
+        ells = self.ellipsoids[:self.ellipsoid_casters] if casters_only else self.ellipsoids
+        ells = ells.astype(np.float64)
+        centres = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], ells[:, Ell.CENTRE]])
+        radii = np.concatenate([caps[:, Cap.RADII].T.ravel(), ells[:, Ell.RADII].max(axis=1)])
+        return centres, radii
+
     def box(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """World box (lo, hi), each (3,) in metres, around every shape of one frame,
         radii included."""
-        caps, ells = self.capsules.astype(np.float64), self.ellipsoids.astype(np.float64)
-        centres = np.concatenate([caps[:, 0:3], caps[:, 3:6], ells[:, 0:3]])
-        radii = np.concatenate([caps[:, 6], caps[:, 7], ells[:, 12:15].max(axis=1)])[:, None]
-        return (centres - radii).min(axis=0), (centres + radii).max(axis=0)
+        centres, radii = self.spheres()
+        return (centres - radii[:, None]).min(axis=0), (centres + radii[:, None]).max(axis=0)
 
 
 def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -277,9 +307,20 @@ def ghost_instances(pose: Pose, rig: Rig, color: str = "#e8e8f0", strength: floa
     tint = srgb_to_linear(color)
     shapes = pose_instances(pose, rig, show_joints=False)
     caps, ells = shapes.capsules.copy(), shapes.ellipsoids.copy()
-    caps[:, 8:11] = caps[:, 8:11] * (1.0 - strength) + tint * strength
-    ells[:, 15:18] = ells[:, 15:18] * (1.0 - strength) + tint * strength
+    caps[:, Cap.COLOR] = caps[:, Cap.COLOR] * (1.0 - strength) + tint * strength
+    ells[:, Ell.COLOR] = ells[:, Ell.COLOR] * (1.0 - strength) + tint * strength
     return SceneInstances(caps.astype(np.float32), ells.astype(np.float32), shapes.ellipsoid_casters)
+
+
+def frame_instances(parts: list[SceneInstances]) -> SceneInstances:
+    """One frame's shapes of several creatures (and herds, ghosts, arcs) as one set to
+    draw, every part's shadow casters first: what the viewer and recordings both draw."""
+    if len(parts) == 1:
+        return parts[0]
+    casters = [p.ellipsoids[:p.ellipsoid_casters] for p in parts]
+    rest = [p.ellipsoids[p.ellipsoid_casters:] for p in parts]
+    return SceneInstances(np.concatenate([p.capsules for p in parts]), np.concatenate(casters + rest),
+                          sum(p.ellipsoid_casters for p in parts))
 
 
 def creature_points(motion: Motion) -> NDArray[np.float64]:

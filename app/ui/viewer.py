@@ -26,9 +26,8 @@ from ..render.arcs import arc_instances
 from ..render.camera import eye_ray, ground_point
 from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
-from ..render.scene import KEY_POSE_COLORS, ghost_instances, pose_instances
-from ..kinematics.world import World
-from ..spec import CreatureSpec
+from ..render.scene import KEY_POSE_COLORS, SceneInstances, frame_instances, ghost_instances, pose_instances
+from ..cast import Cast
 from .imgui_renderer import ImguiRenderer
 from .file_dialog import FileDialog, dialogs_available
 from .monitor import GaitMonitor
@@ -54,8 +53,6 @@ class ViewerOptions:
     dump_state: Path | None = None  # write the viewer state as JSON (automation, tests)
     presets: list[str] = field(default_factory=list)
     overlays: tuple[str, ...] = ()  # turned on at start: footprints, targets, support
-    herd: int = 1  # animals in all: the creature and herd - 1 following it
-    scene_members: tuple = ()  # (spec, world) of a scene's other creatures
 
 
 def _setup_style(scale: float) -> bool:
@@ -108,26 +105,30 @@ def _ema(old: float, new: float, k: float = 0.1) -> float:
 class Viewer:
     """One viewer window and its GL/ImGui resources."""
 
-    def __init__(self, spec: CreatureSpec, options: ViewerOptions, world: World | None = None) -> None:
+    def __init__(self, cast: Cast, options: ViewerOptions) -> None:
+        lead = cast[0]
         self.options = options
         self.imgui_ctx = imgui.create_context()
         imgui.get_io().set_ini_filename("")
         self.implot_ctx = implot.create_context()
-        self.window = GlfwWindow(options.size, f"Gaitlab - {spec.name}", vsync=options.vsync,
+        self.window = GlfwWindow(options.size, f"Gaitlab - {lead.spec.name}", vsync=options.vsync,
                                  samples=options.samples)
         self.ctx = moderngl.create_context(require=330)
         self.scale = self.window.content_scale
         icons = _setup_style(self.scale)
         self.scene = SceneRenderer(self.ctx)
         self.ui = ImguiRenderer(self.ctx, self.scene.shaders)
-        self.state = ViewerState(spec, world=world or World())
+        self.state = ViewerState(lead.spec, world=lead.world)
         self.state.show_ui = not options.hide_ui
-        for member_spec, member_world in options.scene_members:
-            if not self.state.add_creature(member_spec, member_world):
+        for actor in cast[1:]:
+            if not self.state.add_creature(actor.spec, actor.world):
                 raise GaitlabError(self.state.error or "scene")
-        if options.herd > 1 and not self.state.set_herd(options.herd):
-            raise GaitlabError(self.state.error or "herd")
-        self._herd_instances: HerdInstances | None = None
+        for index, actor in enumerate(cast):
+            self.state.selected = index
+            if actor.herd > 1 and not self.state.set_herd(actor.herd):
+                raise GaitlabError(self.state.error or "herd")
+        self.state.selected = 0
+        self._herd_instances: dict[int, HerdInstances] = {}
         if options.overlays:
             self.state.options = replace(self.state.options, **{name: True for name in options.overlays})
         _, _, vw, vh = self._scene_viewport()
@@ -241,9 +242,8 @@ class Viewer:
         win_w, win_h = self.window.window_size
         vp = np.array(self.state.camera.view_proj(vw / max(vh, 1)), dtype=np.float64)
         out = []
-        for index, member in enumerate(self.state.members or [None]):
-            live = self.state.live if member is None else member.live
-            clip = vp @ np.append(live.pose().root[:3, 3], 1.0)
+        for session in self.state.sessions:
+            clip = vp @ np.append(session.live.pose().root[:3, 3], 1.0)
             ndc = clip[:2] / clip[3] if clip[3] > 1e-9 else np.array([9.0, 9.0])
             x = (vx + (ndc[0] + 1.0) * 0.5 * vw) * win_w / max(fb_w, 1)
             y = (fb_h - (vy + (ndc[1] + 1.0) * 0.5 * vh)) * win_h / max(fb_h, 1)
@@ -332,6 +332,27 @@ class Viewer:
         inverse = np.linalg.inv(np.array(self.state.camera.view_proj(vw / vh), dtype=np.float64))
         world = inverse @ ndc
         self.state.focus(tuple(float(v) for v in world[:3] / world[3]))
+
+    def _instances(self, pose) -> SceneInstances:
+        """What the 3-D view draws this frame: every creature of the scene, their herds,
+        the selected one's key-pose ghosts and arcs (one set, as recordings draw)."""
+        state = self.state
+        joints = state.options.joints
+        parts = [pose_instances(pose, state.live.rig, joints)]
+        parts += [pose_instances(other, session.live.rig, joints) for other, session in state.creature_poses()]
+        for session in state.sessions:
+            if session.herd is None:
+                continue
+            cached = self._herd_instances.get(id(session.herd))
+            if cached is None or cached.show_joints != joints:
+                cached = self._herd_instances[id(session.herd)] = HerdInstances(session.herd, joints)
+            parts.append(cached.frame(session.herd, session.world.terrain.height))
+        parts += [ghost_instances(ghost, state.live.rig, color)
+                  for ghost, color in zip(state.ghost_poses(), KEY_POSE_COLORS)]
+        if state.options.arcs:
+            trails, beads = state.arcs.trails()
+            parts.append(arc_instances(trails, beads, 0.012 * state.live.rig.hip_height))
+        return frame_instances(parts)
 
     # -- outputs ----------------------------------------------------------------------
 
@@ -465,19 +486,7 @@ class Viewer:
                 self.ctx.screen.use()
                 if viewport[0] > 0:  # the sidebar's background (the panels draw none)
                     self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
-                instances = pose_instances(pose, state.live.rig, state.options.joints)
-                for other_pose, member in state.creature_poses():  # a scene's other creatures (a handful)
-                    instances = instances + pose_instances(other_pose, member.live.rig, state.options.joints)
-                if state.herd is not None:
-                    if self._herd_instances is None or self._herd_instances.show_joints != state.options.joints:
-                        self._herd_instances = HerdInstances(state.herd, state.options.joints)
-                    instances = instances + self._herd_instances.frame(state.herd, state.world.terrain.height)
-                for ghost, color in zip(state.ghost_poses(), KEY_POSE_COLORS):
-                    instances = instances + ghost_instances(ghost, state.live.rig, color)
-                if state.options.arcs:
-                    trails, beads = state.arcs.trails()
-                    instances = instances + arc_instances(trails, beads, 0.012 * state.live.rig.hip_height)
-                self.scene.draw_instances(instances,
+                self.scene.draw_instances(self._instances(pose),
                                           state.ground(pose), state.camera, self.ctx.screen, state.options, viewport,
                                           multisampled=self.options.samples > 0, overlays=state.overlays(pose))
                 self._resolve_pick(viewport)
@@ -549,9 +558,9 @@ class Viewer:
         self.window.close()
 
 
-def run_viewer(spec: CreatureSpec, options: ViewerOptions, world: World | None = None) -> int:
-    """Open the viewer on ``spec`` walking in ``world``; returns the exit status."""
-    viewer = Viewer(spec, options, world)
+def run_viewer(cast: Cast, options: ViewerOptions) -> int:
+    """Open the viewer on the cast (one creature, or a scene's); returns the exit status."""
+    viewer = Viewer(cast, options)
     try:
         return viewer.run()
     finally:
@@ -559,6 +568,7 @@ def run_viewer(spec: CreatureSpec, options: ViewerOptions, world: World | None =
 
 
 if __name__ == "__main__":  # pragma: no cover
+    from ..cast import Actor
     from ..spec import load_creature
 
-    sys.exit(run_viewer(load_creature("dog"), ViewerOptions()))
+    sys.exit(run_viewer((Actor(load_creature("dog")),), ViewerOptions()))

@@ -1,6 +1,4 @@
-"""Recording a creature to PNG, GIF or MP4: the single path used by ``gaitlab render``
-and by the viewer's Record panel, so equal settings give equal pixels.
-"""
+"""A recording in progress: a cast rendered frame by frame into its file."""
 
 from __future__ import annotations
 
@@ -12,64 +10,22 @@ from typing import Callable
 import moderngl
 import numpy as np
 
-from .errors import GaitlabError
-from .limits import MAX_FPS, MAX_SECONDS, MAX_SPEED, check_clip  # noqa: F401  (re-exported)
-from .kinematics.clip import clip_motion, frame_at
-from .kinematics.herd import Herd, HerdTrack, check_herd_size, follow_leader
-from .kinematics.world import World
-from .output import (DEFAULT_CRF, DEFAULT_GIF_QUALITY, GIF_MAX_FPS, GIF_QUALITIES, MAX_SIZE, GifQuality, GifWriter,
-                     Mp4Writer, cannot_write, check_crf, check_output_dir, output_format, write_png)
-from .render.clip import ClipRenderer, ViewSettings, clip_cameras, loop_grid_spacing
-from .render.herd import HerdInstances
-from .render.renderer import RenderOptions
-from .rigging import build_rig
-from .spec import CreatureSpec
+from ..cast import Actor, cast_frames_at, cast_motions
+from ..errors import GaitlabError
+from ..kinematics.clip import clip_motion
+from ..kinematics.herd import Herd, HerdTrack, follow_leader
+from ..kinematics.motion import Motion
+from ..kinematics.rig import Rig
+from ..output import GifWriter, Mp4Writer, cannot_write, check_output_dir, output_format, write_png
+from ..render.clip import ClipRenderer
+from ..render.framing import clip_cameras, loop_grid_spacing
+from ..render.herd import HerdInstances
+from ..render.scene import SceneInstances, creature_points
+from ..rigging import build_rig
+from .request import RecordRequest, RecordResult
 
 
 Progress = Callable[[int, int], None]
-
-
-@dataclass(frozen=True)
-class RecordRequest:
-    """What to record. Give ``seconds`` or ``cycles`` (default: two whole cycles, which
-    loop seamlessly); ``start`` is the time (s) of the first frame (of the only one, for
-    PNG). ``view`` sets size, camera, multisampling and what is drawn."""
-
-    spec: CreatureSpec
-    output: Path
-    fps: float = 25.0
-    seconds: float | None = None
-    cycles: float | None = None
-    start: float = 0.0
-    view: ViewSettings = field(default_factory=ViewSettings)
-    speed: tuple[float, float] | None = None  # m/s at the first and last frame: speed-driven gaits
-    world: World = field(default_factory=World)  # path and terrain (default: straight ahead, flat)
-    gif_quality: GifQuality = DEFAULT_GIF_QUALITY  # GIF size against fidelity: best, good, small
-    crf: int = DEFAULT_CRF  # MP4 (H.264) constant rate factor: 0 lossless .. 51 smallest
-    herd: int = 1  # animals in all: the creature and herd - 1 more of its kind following it
-    arcs: tuple[str, ...] = ()  # joints whose paths over the last cycle are drawn (see kinematics.arcs)
-
-    def __post_init__(self) -> None:
-        if self.gif_quality not in GIF_QUALITIES:
-            raise GaitlabError(f"GIF quality {self.gif_quality!r}: choose one of {', '.join(GIF_QUALITIES)}")
-        check_crf(self.crf)
-        w, h = self.view.size
-        if not (1 <= w <= MAX_SIZE and 1 <= h <= MAX_SIZE):
-            raise GaitlabError(f"size {w}x{h}: width and height must be between 1 and {MAX_SIZE}")
-        check_clip(self.fps, self.seconds, self.cycles, self.start, self.speed)
-        check_herd_size(self.herd)
-        if self.herd > 1 and self.world.in_place:
-            raise GaitlabError(f"a herd of {self.herd} travels: drop --in-place")
-
-
-@dataclass(frozen=True)
-class RecordResult:
-    path: Path
-    frames: int
-    seconds: float
-    cycles: float
-    gaits: tuple[str, ...] = ()  # the gaits a speed-driven clip went through, in order
-    notes: tuple[str, ...] = ()  # things the user should know about the file (e.g. an optimiser missing)
 
 
 class Recording:
@@ -92,26 +48,30 @@ class Recording:
         if self.format == "mp4" and (w % 2 or h % 2):
             raise GaitlabError(f"{request.output}: MP4 (H.264, yuv420p) needs an even width and height, "
                                f"got {w}x{h}")
-        rig = build_rig(request.spec)
+        lead = request.lead
+        rig = build_rig(lead.spec)
         self.frequency = rig.gait.frequency
         view = request.view
-        world = request.world
-        self._herd: tuple[Herd, HerdTrack, HerdInstances] | None = None
         if self.format == "png":
             # Framed as the cycle around the frame would be (no jitter between frames of a
             # film strip made with --time).
-            cycle, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=world)
-            self.motion = frame_at(rig, request.start, request.fps, world)
-            self.cameras = clip_cameras(cycle, view, self._herd_points(rig, cycle, request))[:1]
-            if self._herd is not None:  # the herd as it is at the frame: the cycle's first
-                self._herd = (self._herd[0], _first_frame(self._herd[1]), self._herd[2])
-            self.options = _with_grid(view.options, loop_grid_spacing(cycle, None))
+            cycle, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=lead.world)
+            self.motions = cast_frames_at(request.cast, request.start, request.fps)
+            framed = [cycle, *cast_motions(request.cast[1:], request.fps, cycle.frame_count / request.fps,
+                                           start=request.start)[0]] if len(request.cast) > 1 else [cycle]
+            herds = [_herd_track(actor, m, request.fps, view.options.joints) for actor, m in zip(request.cast, framed)]
+            self.cameras = clip_cameras(cycle, view, _points_in_view(framed, herds))[:1]
+            # The herds as they are at the frame: the cycle's first.
+            self._herds = [None if h is None else (h[0], _first_frame(h[1]), h[2]) for h in herds]
+            self.options = replace(view.options, grid_spacing=loop_grid_spacing(cycle, None))
             self.cycles: float | None = None
         else:
-            self.motion, self.cycles = clip_motion(rig, request.fps, request.seconds, request.cycles, request.start,
-                                                   request.speed, world=world)
-            self.cameras = clip_cameras(self.motion, view, self._herd_points(rig, self.motion, request))
-            self.options = _with_grid(view.options, loop_grid_spacing(self.motion, self.cycles))
+            self.motions, self.cycles = cast_motions(request.cast, request.fps, request.seconds, request.cycles,
+                                                     request.start)
+            self._herds = [_herd_track(actor, m, request.fps, view.options.joints)
+                           for actor, m in zip(request.cast, self.motions)]
+            self.cameras = clip_cameras(self.motion, view, _points_in_view(self.motions, self._herds))
+            self.options = replace(view.options, grid_spacing=loop_grid_spacing(self.motion, self.cycles))
         self.total = self.motion.frame_count
         self._arcs = self._arc_source(rig, request)
         self.done = 0
@@ -133,51 +93,41 @@ class Recording:
             self.cancel()
             raise
 
-    def _herd_points(self, rig, motion, request: RecordRequest) -> np.ndarray | None:
-        """With a herd: simulate it after the creature over ``motion`` and return every
-        animal's body point per frame (T, N, 3), for the camera to keep in view."""
-        if request.herd <= 1:
-            return None
-        points, tangents = motion.path.sample(motion.travel)
-        heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
-        herd = Herd(rig, request.herd - 1)
-        track = follow_leader(herd, points, heading, request.fps)
-        self._herd = (herd, track, HerdInstances(herd, request.view.options.joints))
-        top = float(rig.hip_height + rig.body.head_radius)
-        reach = 0.75 * float(rig.body_length + rig.body.head_length) * 1.1  # nose and tail of the largest
-        ground = motion.terrain.height(track.position)  # (T, N): the animals stand on the terrain
-        xyz = np.stack([track.position[..., 0], ground, track.position[..., 1]], axis=-1)
-        corners = [np.array([dx, dy, dz]) for dx in (-reach, reach) for dy in (0.0, top) for dz in (-reach, reach)]
-        return np.concatenate([xyz + c for c in corners], axis=1)
+    @property
+    def motion(self) -> Motion:
+        """The first creature's motion (it times the clip; the camera follows it)."""
+        return self.motions[0]
 
-    def _arc_source(self, rig, request: RecordRequest):
-        """The motion the arcs are drawn from, how many frames a cycle has, and whether the
-        whole cycle is drawn in every frame: a PNG shows the cycle up to its frame; a
-        constant gait in place shows its closed loop; otherwise the trail grows behind."""
+    def _arc_source(self, rig: Rig, request: RecordRequest):
+        """The motion the arcs are drawn from (the first creature's), how many frames a
+        cycle has, and whether the whole cycle is drawn in every frame: a PNG shows the
+        cycle up to its frame; a constant gait in place shows its closed loop; otherwise
+        the trail grows behind."""
         if not request.arcs:
             return None
-        from .kinematics.arcs import arc_points
+        from ..kinematics.arcs import arc_points
 
         source = self.motion
+        world, speed = request.lead.world, request.lead.speed
         # Frames a cycle takes, from the clip's own clock (a speed ramp changes it).
         step = float(np.median(np.diff(source.clock))) if source.frame_count > 1 else rig.gait.frequency / request.fps
         per_cycle = max(2, int(round(1.0 / max(step, 1e-9))))
-        whole = self.format == "png" or (source.in_place and request.speed is None)
+        whole = self.format == "png" or (source.in_place and speed is None)
         if self.format == "png":
             period = 1.0 / rig.gait.frequency
-            source, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start - period, world=request.world,
+            source, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start - period, world=world,
                                     closed=True)
         elif whole:
-            source, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=request.world)
+            source, _ = clip_motion(rig, request.fps, cycles=1.0, start=request.start, world=world)
         try:
             points = {joint: arc_points(source, joint) for joint in request.arcs}
         except ValueError as exc:
             raise GaitlabError(f"--arcs: {exc}") from None
         return source, points, per_cycle, whole
 
-    def _arc_shapes(self, index: int):
-        from .kinematics.arcs import key_pose_frames, trail
-        from .render.arcs import arc_instances
+    def _arc_shapes(self, index: int) -> SceneInstances:
+        from ..kinematics.arcs import key_pose_frames, trail
+        from ..render.arcs import arc_instances
 
         source, points, per_cycle, whole = self._arcs
         end = source.frame_count - 1 if whole else index
@@ -188,14 +138,15 @@ class Recording:
 
     def _render(self, index: int) -> np.ndarray:
         assert self._renderer is not None
-        extra = None
-        if self._herd is not None:
-            herd, track, instances = self._herd
-            extra = instances.frame(track.apply(herd, min(index, len(track.phase) - 1)), self.motion.terrain.height)
+        extra = []
+        for motion, herd in zip(self.motions, self._herds):
+            if herd is not None:
+                animals, track, instances = herd
+                extra.append(instances.frame(track.apply(animals, min(index, len(track.phase) - 1)),
+                                             motion.terrain.height))
         if self._arcs is not None:
-            shapes = self._arc_shapes(index)
-            extra = shapes if extra is None else extra + shapes
-        return self._renderer.frame(self.motion, index, self.cameras[index], self.options, extra)
+            extra.append(self._arc_shapes(index))
+        return self._renderer.frame(self.motions, index, self.cameras[index], self.options, extra)
 
     @property
     def finished(self) -> bool:
@@ -292,17 +243,41 @@ def record(request: RecordRequest, progress: Progress | None = None,
     return job.finish()
 
 
+HerdParts = tuple[Herd, HerdTrack, HerdInstances]
+
+
+def _herd_track(actor: Actor, motion: Motion, fps: float, joints: bool) -> HerdParts | None:
+    """An actor's herd following it over ``motion`` (its animals, their track and their
+    instances), or None without a herd."""
+    if actor.herd <= 1:
+        return None
+    points, tangents = motion.path.sample(motion.travel)
+    heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
+    herd = Herd(motion.rig, actor.herd - 1)
+    return herd, follow_leader(herd, points, heading, fps), HerdInstances(herd, joints)
+
+
 def _first_frame(track: HerdTrack) -> HerdTrack:
     return HerdTrack(track.position[:1], track.heading[:1], track.phase[:1])
 
 
-def _with_grid(options: RenderOptions, spacing: float) -> RenderOptions:
-    return replace(options, grid_spacing=spacing)
+def _herd_box(motion: Motion, herd: HerdParts, frames: int) -> np.ndarray:
+    """Corners of each animal's box (T, 8 N, 3) over a herd's track, for the camera."""
+    animals, track, _ = herd
+    rig = motion.rig
+    top = float(rig.hip_height + rig.body.head_radius)
+    reach = 0.75 * float(rig.body_length + rig.body.head_length) * 1.1  # nose and tail of the largest
+    position = track.position[:frames]
+    ground = motion.terrain.height(position)  # (T, N): the animals stand on the terrain
+    xyz = np.stack([position[..., 0], ground, position[..., 1]], axis=-1)
+    corners = [np.array([dx, dy, dz]) for dx in (-reach, reach) for dy in (0.0, top) for dz in (-reach, reach)]
+    return np.concatenate([xyz + c for c in corners], axis=1)
 
 
-def gif_fps_warning(fps: float) -> str | None:
-    """A warning for GIF frame rates that browsers do not play at full speed."""
-    if fps > GIF_MAX_FPS:
-        return (f"warning: GIF frame delays under 20 ms ({fps:g} fps) are slowed down by most browsers; "
-                f"use --fps {GIF_MAX_FPS} or less, or write .mp4")
-    return None
+def _points_in_view(motions: list[Motion], herds: list[HerdParts | None]) -> np.ndarray | None:
+    """Points (T, N, 3) besides the first creature's that the camera keeps in frame: the
+    other creatures' and every herd's; None when there are none."""
+    frames = motions[0].frame_count
+    parts = [creature_points(m) for m in motions[1:]]
+    parts += [_herd_box(m, h, frames) for m, h in zip(motions, herds) if h is not None]
+    return np.concatenate(parts, axis=1) if parts else None

@@ -1,0 +1,116 @@
+"""From the command line's words to what a command works on: the creature with its
+changes (``--gait``, ``--set``, ``--style``, ``--frames-per-cycle``), and the cast of a
+clip (that creature on ``--path`` / ``--terrain``, or every creature of a scene file)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ..errors import GaitlabError, did_you_mean
+from ..gaits import GAIT_PRESETS
+from ..styles import WALK_STYLES
+
+if TYPE_CHECKING:
+    from ..cast import Cast
+    from ..spec import CreatureSpec
+
+
+def is_scene(name: str) -> bool:
+    """Whether a .toml argument is a scene file (it has [[creatures]]) rather than a creature."""
+    from ..tomlfile import TomlProblem, read_toml
+
+    path = Path(name)
+    if path.suffix.lower() != ".toml" or not path.is_file():
+        return False
+    try:
+        return "creatures" in read_toml(path)
+    except TomlProblem:
+        return False  # the creature loader reports it
+
+
+def creature_changes(args: argparse.Namespace) -> dict[str, object]:
+    """The overrides ``--gait``, ``--frames-per-cycle`` and ``--set`` ask for (``--set``
+    keys are checked against the creature when they are applied)."""
+    overrides: dict[str, object] = {}
+    if args.gait is not None:
+        if args.gait not in GAIT_PRESETS:
+            raise GaitlabError(f"--gait {args.gait!r}: unknown gait{did_you_mean(args.gait, GAIT_PRESETS)}; "
+                               f"gaits are: {', '.join(GAIT_PRESETS)}")
+        overrides["gait.preset"] = args.gait
+    if args.frames_per_cycle is not None:
+        if getattr(args, "speed", None) is not None:
+            raise GaitlabError(f"--frames-per-cycle {args.frames_per_cycle:g} with --speed: the speed sets the timing "
+                               "(the gait's frequency follows it); give one of them")
+        overrides["gait.frames_per_cycle"] = args.frames_per_cycle
+    return overrides
+
+
+def load_creature_args(args: argparse.Namespace, creature: str | None = None,
+                       base_overrides: dict[str, object] | None = None, origin: str = "--set") -> CreatureSpec:
+    """The creature named on the command line (or in a scene) with the scene's settings,
+    then --gait, --frames-per-cycle, --set and --style applied."""
+    from ..spec import load_creature, parse_override
+
+    spec = load_creature(creature or args.creature)
+    if base_overrides:
+        spec = spec.with_overrides(base_overrides, origin=origin)
+    overrides = creature_changes(args)
+    for text in args.overrides:
+        key, value = parse_override(text, spec)
+        overrides[key] = value
+    spec = spec.with_overrides(overrides) if overrides else spec
+    style = args.style
+    if style is not None:
+        from ..rigging import apply_style
+
+        if style not in WALK_STYLES:
+            raise GaitlabError(f"--style {style!r}: unknown style{did_you_mean(style, WALK_STYLES)}; styles are: "
+                               f"{', '.join(WALK_STYLES)}")
+        # The style is scaled to the creature as edited; the file's own key-pose and
+        # stride settings on the command line then adjust it.
+        spec = apply_style(spec, style)
+        mine = {k: v for k, v in overrides.items() if k.startswith("poses.") or k == "gait.stride"}
+        spec = spec.with_overrides(mine) if mine else spec
+        if getattr(args, "speed", None) is not None and not getattr(args, "quiet", False):
+            print(f"note: --style {style} with --speed: the speed sets the stride; the style's key poses apply",
+                  file=sys.stderr)
+    return spec
+
+
+def load_cast(args: argparse.Namespace) -> Cast:
+    """What the command films, exports or shows: the creature on --path / --terrain (or in
+    place) at --speed with --herd, or every creature of a scene file, each with the
+    command line's creature changes (the scene's own speed and herd unless given)."""
+    from ..cast import Actor, cast_of_scene
+    from ..worlds import load_scene, make_world
+
+    speed = getattr(args, "speed", None)
+    herd = getattr(args, "herd", None)
+    if is_scene(args.creature):
+        given = [flag for flag, value in (("--path", args.path), ("--terrain", args.terrain),
+                                          ("--in-place", args.in_place)) if value]
+        if given:
+            raise GaitlabError(f"{', '.join(given)}: a scene file sets its own path and terrain")
+        scene = load_scene(args.creature)
+
+        def creature(entry) -> CreatureSpec:
+            overrides = {**entry.overrides, **({"gait.preset": entry.gait} if entry.gait else {})}
+            return load_creature_args(args, entry.creature, overrides, origin=args.creature)
+
+        return cast_of_scene(scene, creature, speed, herd)
+    world = make_world(args.path, args.terrain, args.in_place)
+    return (Actor(load_creature_args(args), world, speed, herd or 1),)
+
+
+def choose_fps(args: argparse.Namespace, spec: CreatureSpec, speed: tuple[float, float] | None) -> float:
+    """--fps, or the creature's timing frame rate when it gives frames per cycle (so a
+    cycle of 24 frames at 24 fps is 24 frames in the file), or the command's default."""
+    if args.fps is not None:
+        return float(args.fps)
+    from ..styles import DEFAULT_TIMING_FPS
+
+    timed = spec.gait.frames_per_cycle is not None and speed is None
+    return float(spec.gait.timing_fps or DEFAULT_TIMING_FPS) if timed else float(args.default_fps)

@@ -1,0 +1,202 @@
+"""The ground pass: the flat floor (a disc fading into the horizon) with the creatures'
+shadow on it, or a terrain patch; the path ribbon; overlays (footprints, targets, the
+support polygon); and the sky band. Owns its GL objects (create, draw, release)."""
+
+from __future__ import annotations
+
+import math
+
+import moderngl
+import numpy as np
+
+from ..kinematics.path import left_of
+from ..kinematics.terrain import Terrain
+from .camera import Camera
+from .instanced import InstancedMesh
+from .lighting import floor_light, shadow_footprint, sky_band
+from .meshes import unit_sphere
+from .options import GroundView, RenderOptions
+from .overlays import SUPPORT_COLOR, Overlays
+from .scene import ELLIPSOID_FLOATS, SceneInstances, srgb_to_linear
+from .shaders import ShaderLibrary
+from .uniforms import Uniforms
+
+FLOOR_SEGMENTS = 64
+TERRAIN_CELLS = 72  # the terrain patch around the creature is this many cells across
+ELLIPSOID_LAYOUT = ("3f", ("in_pos",), "3f 3f 3f 3f 3f 3f/i",
+                    ("in_center", "in_axis_x", "in_axis_y", "in_axis_z", "in_radii", "in_color"), ELLIPSOID_FLOATS)
+
+
+class StreamBuffer:
+    """A vertex buffer rewritten every frame, grown (never shrunk) as needed."""
+
+    def __init__(self, ctx: moderngl.Context, program: moderngl.Program) -> None:
+        self.capacity = 64
+        self.vbo = ctx.buffer(reserve=self.capacity, dynamic=True)
+        self.vao = ctx.vertex_array(program, [(self.vbo, "3f", "in_position")])
+
+    def draw(self, strip: np.ndarray) -> None:
+        data = strip.tobytes()
+        if len(data) > self.capacity:
+            self.capacity = len(data) * 2
+            self.vbo.orphan(self.capacity)
+        self.vbo.write(data)
+        self.vao.render(moderngl.TRIANGLE_STRIP, vertices=len(strip))
+
+    def release(self) -> None:
+        self.vao.release()
+        self.vbo.release()
+
+
+class GroundPass:
+    """Everything under and around the creatures."""
+
+    def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary, uniforms: Uniforms) -> None:
+        self.ctx = ctx
+        self.uniforms = uniforms
+        self.floor_prog = shaders.program("ground.vert", "ground.frag")
+        # The floor is a disc (a fan) out to where the fog has reached the horizon colour.
+        angles = np.linspace(0.0, 2.0 * np.pi, FLOOR_SEGMENTS + 1)
+        disc = np.concatenate([[[0.0, 0.0]], np.stack([np.cos(angles), np.sin(angles)], axis=1)]).astype("f4")
+        self.floor_vbo = ctx.buffer(disc.tobytes())
+        self.floor_vao = ctx.vertex_array(self.floor_prog, [(self.floor_vbo, "2f", "in_xz")])
+        quad = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4")
+        self.quad_vbo = ctx.buffer(quad.tobytes())
+        self.shadow_prog = shaders.program("ground.vert", "ground_shadow.frag")
+        self.shadow_vao = ctx.vertex_array(self.shadow_prog, [(self.quad_vbo, "2f", "in_xz")])
+        self.sky_prog = shaders.program("background.vert", "background.frag")
+        self.sky_vbo = ctx.buffer(reserve=4 * 3 * 4, dynamic=True)
+        self.sky_vao = ctx.vertex_array(self.sky_prog, [(self.sky_vbo, "2f 1f", "in_ndc", "in_height")])
+        self.terrain_prog = shaders.program("terrain.vert", "terrain.frag")
+        self.overlay_prog = shaders.program("overlay.vert", "overlay.frag")
+        self._terrain_key: tuple | None = None
+        self._terrain_objects: list = []
+        self._terrain_vao: moderngl.VertexArray | None = None
+        self.path = StreamBuffer(ctx, self.overlay_prog)
+        self.outline = StreamBuffer(ctx, self.overlay_prog)
+        lit, depth = shaders.program("ellipsoid.vert", "lit.frag"), shaders.program("ellipsoid.vert", "depth.frag")
+        # Overlay markers on the ground (footprints, targets): flat discs, no shadow.
+        self.markers = InstancedMesh(ctx, lit, depth, unit_sphere(4, 12), unit_sphere(2, 4), *ELLIPSOID_LAYOUT)
+
+    @property
+    def lit_programs(self) -> tuple[moderngl.Program, ...]:
+        """The programs that take the light's and camera's uniforms."""
+        return (self.floor_prog, self.shadow_prog, self.terrain_prog, self.overlay_prog)
+
+    def set_fog_and_grid(self, centre: np.ndarray, radius: float, fog: tuple[float, float], ground: GroundView,
+                         options: RenderOptions) -> None:
+        """The fog around the creatures and the grid's look, for every ground program."""
+        set_ = self.uniforms.set
+        horizon = tuple(srgb_to_linear(options.horizon_color))
+        for prog in (self.floor_prog, self.terrain_prog, self.overlay_prog):
+            set_(prog, "u_horizon_color", horizon)
+            set_(prog, "u_focus", (float(centre[0]), float(centre[2])))
+            set_(prog, "u_fog_range", (radius * fog[0], radius * fog[1]))
+        for prog in (self.floor_prog, self.terrain_prog):
+            set_(prog, "u_ground_color", tuple(srgb_to_linear(options.ground_color)))
+            set_(prog, "u_line_color", tuple(srgb_to_linear(options.line_color)))
+            set_(prog, "u_grid_offset", (0.0, float(ground.offset)))
+            set_(prog, "u_grid_spacing", float(options.grid_spacing))
+            set_(prog, "u_grid_on", 1.0 if options.grid else 0.0)
+
+    def draw_floor(self, scene: SceneInstances, centre: np.ndarray, reach: float, shadow_texel: float,
+                   radius: float, options: RenderOptions) -> None:
+        """The flat floor (a disc fading into the horizon) and the creatures' shadow on it."""
+        ctx, set_ = self.ctx, self.uniforms.set
+        g = self.floor_prog
+        set_(g, "u_center", (float(centre[0]), float(centre[2])))
+        set_(g, "u_half_size", (reach, reach))
+        set_(g, "u_lift", 0.0)
+        floor_ambient, floor_sun = floor_light(options)
+        set_(g, "u_floor_light", tuple(floor_ambient + floor_sun))
+        self.floor_vao.render(moderngl.TRIANGLE_FAN)
+        if options.shadow:
+            # The shadow on the floor, over its footprint only, lifted a hair above the floor.
+            lo, hi = shadow_footprint(scene, shadow_texel)
+            gs = self.shadow_prog
+            set_(gs, "u_center", tuple(0.5 * (lo + hi)))
+            set_(gs, "u_half_size", tuple(0.5 * (hi - lo)))
+            set_(gs, "u_lift", 1e-3 * radius)
+            set_(gs, "u_shadowed_ratio", tuple(floor_ambient / (floor_ambient + floor_sun)))
+            ctx.enable(moderngl.BLEND)
+            ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO
+            self.shadow_vao.render(moderngl.TRIANGLE_STRIP)
+            ctx.disable(moderngl.BLEND)
+            ctx.blend_func = moderngl.DEFAULT_BLENDING
+
+    def draw_terrain(self, terrain: Terrain, centre: np.ndarray, reach: float, options: RenderOptions) -> None:
+        """The terrain as a lit mesh over a patch around the creatures. The patch snaps to
+        whole cells of a grid fixed in the world, and is rebuilt only when it moves."""
+        self.uniforms.set(self.terrain_prog, "u_contour", 0.5 * float(options.grid_spacing) if options.grid else 0.0)
+        cell = 2.0 * reach / TERRAIN_CELLS
+        decade = 10.0 ** math.floor(math.log10(cell))
+        cell = float(decade * min((1.0, 2.0, 2.5, 5.0, 10.0), key=lambda m: abs(m - cell / decade)))
+        lo = (math.floor((centre[0] - reach) / cell) * cell, math.floor((centre[2] - reach) / cell) * cell)
+        size = (TERRAIN_CELLS + 2) * cell
+        key = (id(terrain), lo, cell)
+        if key != self._terrain_key:
+            for obj in self._terrain_objects:
+                obj.release()
+            positions, normals, indices = terrain.surface(lo, (lo[0] + size, lo[1] + size), cell)
+            vbo = self.ctx.buffer(np.concatenate([positions, normals], axis=1).astype("f4").tobytes())
+            ibo = self.ctx.buffer(indices.astype("u4").tobytes())
+            self._terrain_vao = self.ctx.vertex_array(self.terrain_prog, [(vbo, "3f 3f", "in_position", "in_normal")],
+                                                      index_buffer=ibo, index_element_size=4)
+            self._terrain_objects = [self._terrain_vao, vbo, ibo]
+            self._terrain_key = key
+        assert self._terrain_vao is not None
+        self._terrain_vao.render(moderngl.TRIANGLES)
+
+    def draw_path(self, ground: GroundView, reach: float, radius: float, options: RenderOptions) -> None:
+        """The body's path as a thin ribbon draped over the ground, around the body."""
+        assert ground.path is not None
+        terrain = ground.terrain
+        width = 0.012 * radius + 0.004
+        pts, tangents = ground.path.sample(np.arange(ground.travel - reach, ground.travel + reach, reach / 120.0))
+        side = left_of(tangents) * width
+        # Draped over the ground: each point as high as the ground around it, so the ribbon
+        # never dips under a step between two points.
+        step = tangents * (reach / 120.0)
+        y = np.maximum.reduce([terrain.height(pts + k * step) for k in (-1.0, 0.0, 1.0)]) + 0.004 * radius + 0.002
+        left, right = pts + side, pts - side
+        strip = np.empty((2 * len(pts), 3), dtype="f4")
+        strip[0::2] = np.column_stack([left[:, 0], y, left[:, 1]])
+        strip[1::2] = np.column_stack([right[:, 0], y, right[:, 1]])
+        if ground.offset:
+            strip[:, 2] -= ground.offset
+        self.uniforms.set(self.overlay_prog, "u_color", tuple(srgb_to_linear(options.path_color)))
+        self.path.draw(strip)
+
+    def draw_overlays(self, overlays: Overlays, terrain: Terrain, options: RenderOptions) -> None:
+        """Footprints, touchdown targets and the support polygon, on the ground."""
+        markers = overlays.markers(srgb_to_linear(options.ground_color), terrain)
+        strip = overlays.outline(terrain)
+        if strip is not None:
+            self.uniforms.set(self.overlay_prog, "u_color", tuple(SUPPORT_COLOR))
+            self.outline.draw(strip)
+        if len(markers):
+            self.markers.upload(markers)
+            self.ctx.enable(moderngl.CULL_FACE)
+            self.markers.draw(depth_only=False)
+            self.ctx.disable(moderngl.CULL_FACE)
+
+    def draw_sky(self, camera: Camera, aspect: float, centre: np.ndarray, reach: float, ground_level: float,
+                 options: RenderOptions) -> None:
+        """The sky band above the floor's far edge (nothing when no sky is in view)."""
+        band = sky_band(camera, aspect, centre, reach, ground_level)
+        if band is None:
+            return
+        self.ctx.depth_func = "<="  # the sky sits exactly on the far plane
+        self.sky_vbo.write(band.tobytes())
+        self.uniforms.set(self.sky_prog, "u_top_color", tuple(srgb_to_linear(options.sky_color)))
+        self.uniforms.set(self.sky_prog, "u_horizon_color", tuple(srgb_to_linear(options.horizon_color)))
+        self.sky_vao.render(moderngl.TRIANGLE_STRIP)
+        self.ctx.depth_func = "<"
+
+    def release(self) -> None:
+        for obj in (*self._terrain_objects, self.floor_vao, self.shadow_vao, self.floor_vbo, self.quad_vbo,
+                    self.sky_vao, self.sky_vbo):
+            obj.release()
+        self.path.release()
+        self.outline.release()
+        self.markers.release()

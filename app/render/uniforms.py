@@ -1,0 +1,34 @@
+"""Setting uniforms only when they change (a software renderer validates programs on
+every change, so unchanged values are skipped)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import moderngl
+from pyglm import glm
+
+
+class Uniforms:
+    """Remembers every program's uniform names and last values; :meth:`set` writes a
+    value only when the program has that uniform and the value changed."""
+
+    def __init__(self) -> None:
+        self._members: dict[int, set[str]] = {}
+        self._values: dict[tuple[int, str], Any] = {}
+
+    def set(self, prog: moderngl.Program, name: str, value: Any) -> None:
+        members = self._members.get(prog.glo)
+        if members is None:
+            members = self._members[prog.glo] = {m for m in prog if isinstance(prog[m], moderngl.Uniform)}
+        if name not in members:
+            return
+        key = (prog.glo, name)
+        if self._values.get(key) == value:
+            return
+        self._values[key] = value
+        uniform = prog[name]
+        if isinstance(value, glm.mat4):
+            uniform.write(value)  # type: ignore[union-attr]
+        else:
+            uniform.value = value  # type: ignore[union-attr]

@@ -1,0 +1,160 @@
+"""Scene files: a terrain, named paths and one or more creatures (``scenes/*.toml``)."""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from pathlib import Path as FilePath
+from typing import Any
+
+from ..errors import did_you_mean, shown
+from ..kinematics.herd import MAX_HERD
+from ..kinematics.terrain import Terrain
+from ..kinematics.world import World, WorldError
+from ..tomlfile import TomlProblem, read_toml
+from .text import parse_path, parse_terrain
+
+
+@dataclass(frozen=True)
+class SceneCreature:
+    """One creature in a scene: a preset name or creature file, its gait, its path (a
+    World), an optional speed (m/s) and creature-file overrides."""
+
+    creature: str
+    world: World
+    gait: str | None = None
+    speed: float | None = None
+    overrides: dict[str, Any] = field(default_factory=dict)
+    herd: int = 1  # animals in all: this creature and herd - 1 more of its kind following it
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A scene file: terrain, named paths and one or more creatures."""
+
+    name: str
+    terrain: Terrain
+    creatures: tuple[SceneCreature, ...]
+    source: str = ""
+
+
+SCENE_KEYS = ("name", "description", "terrain", "paths", "creatures")
+CREATURE_KEYS = ("creature", "gait", "path", "speed", "set", "herd")
+
+
+def _text_or_table(value: Any, key: str, where: str) -> str:
+    """A path/terrain given as text or as a table {kind = ..., KEY = VALUE}."""
+    if isinstance(value, str):
+        return value
+    if isinstance(value, Mapping):
+        if "kind" not in value:
+            raise WorldError(f"{where}: {key} needs kind = \"...\"")
+        parts = []
+        for k, v in value.items():
+            if k == "kind":
+                continue
+            if k == "points" and isinstance(v, list):
+                parts += [f"{c:g}" if isinstance(c, (int, float)) else str(c) for pt in v for c in
+                          (pt if isinstance(pt, list) else [pt])]
+            elif k == "closed":
+                if not isinstance(v, bool):
+                    raise WorldError(f"{where}: {key}.closed = {shown(v)}: expected true or false")
+                if v:
+                    parts.append("closed")
+            else:
+                parts.append(f"{k}={v}")
+        return f"{value['kind']}" + (":" + ",".join(parts) if parts else "")
+    raise WorldError(f"{where}: {key} = {shown(value)}: expected a text like \"circle:r=3\" or a table with kind")
+
+
+MAX_SCENE_CREATURES = 256
+
+
+def load_scene(file: str | os.PathLike[str]) -> Scene:
+    """Read and check a scene TOML file (see ``scenes/`` for examples)."""
+    path = FilePath(file)
+    if not path.is_file():
+        raise WorldError(f"{path}: no such scene file")
+    try:
+        data = read_toml(path)
+    except TomlProblem as exc:
+        raise WorldError(f"{path}: {exc}") from None
+    where = str(path)
+    for key in data:
+        if key not in SCENE_KEYS:
+            raise WorldError(f"{where}: unknown key {shown(key)}{did_you_mean(key, SCENE_KEYS)}; a scene has "
+                             f"{', '.join(SCENE_KEYS)}")
+    base = path.parent
+
+    def wrap(fn: Callable[[], Any], key: str) -> Any:
+        try:
+            return fn()
+        except WorldError as exc:
+            text = str(exc)
+            raise WorldError(text if text.startswith(where) else f"{where}: {key}: {text}") from None
+
+    terrain = wrap(lambda: parse_terrain(_text_or_table(data.get("terrain", "flat"), "terrain", where), base),
+                   "terrain")
+    paths_t = data.get("paths", {})
+    if not isinstance(paths_t, Mapping):
+        raise WorldError(f"{where}: paths must be a table of named paths ([paths.NAME])")
+    paths = {name: wrap(lambda v=value, n=name: parse_path(_text_or_table(v, f"paths.{n}", where)), f"paths.{name}")
+             for name, value in paths_t.items()}
+    creatures_t = data.get("creatures")
+    if not isinstance(creatures_t, list) or not creatures_t:
+        raise WorldError(f"{where}: a scene needs at least one [[creatures]] table with creature = \"dog\" (or a "
+                         ".toml file)")
+    if len(creatures_t) > MAX_SCENE_CREATURES:
+        raise WorldError(f"{where}: {len(creatures_t)} [[creatures]] tables; a scene holds at most "
+                         f"{MAX_SCENE_CREATURES}")
+    creatures = []
+    for i, entry in enumerate(creatures_t):
+        here = f"creatures[{i}]"
+        if not isinstance(entry, Mapping):
+            raise WorldError(f"{where}: {here} must be a table ([[creatures]])")
+        for key in entry:
+            if key not in CREATURE_KEYS:
+                raise WorldError(f"{where}: {here}: unknown key {shown(key)}{did_you_mean(key, CREATURE_KEYS)}; allowed: "
+                                 f"{', '.join(CREATURE_KEYS)}")
+        name = entry.get("creature")
+        if not isinstance(name, str) or not name:
+            raise WorldError(f"{where}: {here}: give creature = \"dog\" (a preset) or a .toml file")
+        if name.endswith(".toml") and not FilePath(name).is_absolute():
+            name = str(base / name)
+        path_value = entry.get("path", "straight")
+        if isinstance(path_value, str) and path_value in paths:
+            body_path = paths[path_value]
+        else:
+            body_path = wrap(lambda v=path_value: parse_path(_text_or_table(v, f"{here}.path", where)),
+                             f"{here}.path")
+        speed = entry.get("speed")
+        if speed is not None and (isinstance(speed, bool) or not isinstance(speed, (int, float))
+                                  or not math.isfinite(speed) or not 0 < speed <= 30):
+            raise WorldError(f"{where}: {here}.speed = {shown(speed)}: expected m/s in (0, 30]")
+        overrides = entry.get("set", {})
+        if not isinstance(overrides, Mapping):
+            raise WorldError(f"{where}: {here}.set must be a table of creature keys, e.g. "
+                             "set = { \"gait.duty_factor\" = 0.6 }")
+        gait = entry.get("gait")
+        if gait is not None and not isinstance(gait, str):
+            raise WorldError(f"{where}: {here}.gait = {shown(gait)}: expected a gait name")
+        herd = entry.get("herd", 1)
+        if isinstance(herd, bool) or not isinstance(herd, int) or not 1 <= herd <= MAX_HERD:
+            raise WorldError(f"{where}: {here}.herd = {shown(herd)}: give 1 to {MAX_HERD} animals (the creature "
+                             "and herd - 1 more following it)")
+        creatures.append(SceneCreature(creature=name, world=World(path=body_path, terrain=terrain), gait=gait,
+                                       speed=None if speed is None else float(speed), overrides=dict(overrides),
+                                       herd=herd))
+    name = data.get("name", path.stem)
+    return Scene(name=str(name), terrain=terrain, creatures=tuple(creatures), source=str(path))
+
+
+def scene_description(file: FilePath) -> str:
+    """A scene file's one-line description (its ``description`` key), or its name."""
+    try:
+        data = read_toml(file)
+    except TomlProblem:
+        return FilePath(file).stem
+    return str(data.get("description", data.get("name", FilePath(file).stem)))

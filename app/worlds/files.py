@@ -1,0 +1,92 @@
+"""Ground from files: greyscale heightmap images and meshes, as height grids."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path as FilePath
+
+import numpy as np
+
+from ..kinematics.terrain import DEFAULT_MAX_SLOPE, HeightGrid
+from ..kinematics.world import WorldError
+
+
+def _check_file(file: FilePath) -> None:
+    if not file.is_file():
+        raise WorldError(f"{file}: no such file")
+
+
+def load_heightmap(file: FilePath, size: float, height: float, max_slope: float = DEFAULT_MAX_SLOPE) -> HeightGrid:
+    """A greyscale image as ground: its width spans ``size`` m (centred on the origin, rows
+    along +Z), black at 0 and white at ``height`` m. 8- and 16-bit images keep their depth."""
+    from PIL import Image, UnidentifiedImageError
+
+    _check_file(file)
+    try:
+        with Image.open(file) as image:
+            image.load()
+            mode = image.mode
+            if mode in ("I;16", "I;16B", "I;16L", "I"):
+                data = np.asarray(image, dtype=np.float64)
+                top = 65535.0 if mode.startswith("I;16") else max(float(data.max()), 1.0)
+            elif mode == "F":
+                data = np.asarray(image, dtype=np.float64)
+                top = max(float(data.max()), 1e-12)
+            else:
+                data = np.asarray(image.convert("L"), dtype=np.float64)
+                top = 255.0
+    except (UnidentifiedImageError, OSError, SyntaxError, ValueError) as exc:
+        raise WorldError(f"{file}: not an image Gaitlab can read as a heightmap ({type(exc).__name__}); "
+                         "give a PNG (8- or 16-bit greyscale)") from None
+    if data.ndim != 2 or min(data.shape) < 2:
+        raise WorldError(f"{file}: a heightmap needs at least 2x2 pixels, got {data.shape[::-1]}")
+    if not np.all(np.isfinite(data)):
+        raise WorldError(f"{file}: the image holds values that are not finite numbers")
+    rows, cols = data.shape
+    depth = size * (rows - 1) / (cols - 1)
+    heights = data / top * height
+    return HeightGrid(heights, (-0.5 * size, -0.5 * depth), (size, depth),
+                      label=f"heightmap:file={file},size={size:g},height={height:g}", max_slope=max_slope)
+
+
+MAX_GRID = 1024
+
+
+def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFAULT_MAX_SLOPE) -> HeightGrid:
+    """A mesh file (anything trimesh reads: OBJ, PLY, STL, glTF/GLB) as a height grid: the
+    highest surface above each grid point, found by casting rays straight down (up is +Y).
+    ``cell`` is the grid spacing in metres (default: the mesh's size / 256)."""
+    import trimesh
+
+    _check_file(file)
+    try:
+        loaded = trimesh.load(str(file), force="mesh")
+    except Exception as exc:  # trimesh raises many kinds for broken files
+        raise WorldError(f"{file}: cannot read the mesh ({type(exc).__name__}: {str(exc)[:80]})") from None
+    faces = getattr(loaded, "faces", None)
+    if faces is None or len(faces) == 0:
+        raise WorldError(f"{file}: the mesh has no faces; a terrain mesh needs triangles")
+    vertices = np.asarray(loaded.vertices, dtype=np.float64)
+    if not np.all(np.isfinite(vertices)):
+        raise WorldError(f"{file}: the mesh has vertices that are not finite numbers")
+    lo, hi = vertices.min(axis=0), vertices.max(axis=0)
+    extent = max(hi[0] - lo[0], hi[2] - lo[2])
+    if extent <= 0:
+        raise WorldError(f"{file}: the mesh has no extent on the ground (x, z)")
+    cell = cell or extent / 256.0
+    cols = int(min(MAX_GRID, math.ceil((hi[0] - lo[0]) / cell) + 1))
+    rows = int(min(MAX_GRID, math.ceil((hi[2] - lo[2]) / cell) + 1))
+    xs = np.linspace(lo[0], hi[0], max(cols, 2))
+    zs = np.linspace(lo[2], hi[2], max(rows, 2))
+    gx, gz = np.meshgrid(xs, zs, indexing="xy")
+    origins = np.column_stack([gx.ravel(), np.full(gx.size, hi[1] + 1.0), gz.ravel()])
+    directions = np.broadcast_to([0.0, -1.0, 0.0], origins.shape)
+    heights = np.full(gx.size, lo[1])
+    locations, index_ray, _ = loaded.ray.intersects_location(origins, directions, multiple_hits=False)
+    if len(index_ray):
+        hit = np.full(gx.size, -np.inf)
+        np.maximum.at(hit, index_ray, locations[:, 1])
+        heights = np.where(np.isfinite(hit), hit, lo[1])  # no surface above a point: the mesh's lowest
+    grid = heights.reshape(len(zs), len(xs))
+    return HeightGrid(grid, (float(lo[0]), float(lo[2])), (float(hi[0] - lo[0]), float(hi[2] - lo[2])),
+                      label=f"mesh:file={file}", max_slope=max_slope)
