@@ -49,8 +49,8 @@ def simulate(creature: CreatureSpec | Rig | str, seconds: float = 4.0, fps: floa
     from .kinematics import Rig
     from .kinematics.motion import simulate as simulate_rig
     from .rigging import build_rig
-    from .worlds import make_world
     from .spec import load_creature
+    from .worlds import make_world
 
     if isinstance(creature, str):
         creature = load_creature(creature)

@@ -8,16 +8,14 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from .errors import GaitlabError
 from .kinematics.clip import clip_motion, frame_at
 from .kinematics.herd import check_herd_size
 from .kinematics.motion import Motion
 from .kinematics.world import World
 from .rigging import build_rig
-from .worlds import Scene, SceneCreature
 from .spec import CreatureSpec
+from .worlds import Scene, SceneCreature
 
 
 @dataclass(frozen=True)

@@ -9,7 +9,7 @@ with status 2; it never shows a traceback for these.
 from __future__ import annotations
 
 import difflib
-from typing import Iterable
+from collections.abc import Iterable
 
 
 class GaitlabError(Exception):

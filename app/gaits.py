@@ -29,8 +29,9 @@ A leaf module: it imports nothing from Gaitlab.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Mapping
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     import numpy as np
@@ -175,7 +176,7 @@ def preset_phases(name: str, feet: tuple[str, ...]) -> np.ndarray:
     """The touchdown phases of gait preset ``name`` for ``feet``, shape (len(feet),)."""
     preset = GAIT_PRESETS[name]
     if preset.symmetric:
-        return phases_from_offsets(float(preset.front_back), float(preset.left_right), feet)
+        return phases_from_offsets(float(preset.front_back or 0.0), float(preset.left_right or 0.0), feet)
     assert preset.phases is not None
     import numpy as np
 

@@ -12,14 +12,13 @@ import math
 
 import numpy as np
 
+from .choices import PLANTIGRADE_BELOW
 from .gaits import gaits_for
 from .kinematics.gait import GaitParams, natural_frequency
 from .kinematics.oscillator import duty_from_bias
 from .kinematics.rig import ArmShape, BodyShape, KeyPoses, Rig, SecondaryMotion, SpeedGaits, leg_lengths
-from .choices import PLANTIGRADE_BELOW
 from .spec import CreatureSpec, GaitSpec, leg_type, resolve_phases
 from .styles import DEFAULT_TIMING_FPS, STYLES, style_heights
-
 
 OUT_KNEE_POLE = np.array([0.6, 1.0])  # sprawled legs' knees bend up, and a little out (leg frame: forward=out, up)
 
@@ -102,7 +101,7 @@ def key_poses(spec: CreatureSpec, hip_height: float) -> KeyPoses:
         given = (poses.contact_height, poses.down_height, poses.pass_height, poses.up_height)
         defaults = style_heights(style.name, hip_height)
         heights = np.array([defaults[i] if v is None else float(v) for i, v in enumerate(given)])
-    pick = lambda value, default: math.radians(default if value is None else value)  # noqa: E731
+    pick = lambda value, default: math.radians(default if value is None else value)
     return KeyPoses(heights=heights, foot_angle=pick(poses.foot_angle, style.foot_angle),
                     arm_swing=pick(poses.arm_swing, style.arm_swing), torso_lean=pick(poses.torso_lean, style.torso_lean))
 
@@ -121,7 +120,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
     """Derive the rig of a (validated) creature spec."""
     girdles = spec.girdles  # front first
     legs = [leg for leg, _ in girdles for _side in (0, 1)]
-    per_leg = lambda attr: np.array([float(getattr(leg, attr)) for leg in legs])  # noqa: E731
+    per_leg = lambda attr: np.array([float(getattr(leg, attr)) for leg in legs])
     femur, tibia, meta = per_leg("femur"), per_leg("tibia"), per_leg("metatarsus")
     lift = np.radians(per_leg("ankle_lift"))
     abduction = np.radians(per_leg("abduction"))

@@ -3,8 +3,8 @@ side, as an animator lays out a walk (``gaitlab poses``).
 
 Each pose is rendered headless from the side, orthographic, all with one camera framing
 the whole cycle so heights compare across the sheet (a dashed line marks the hips' rest
-height), and labelled with its name, the hips' height against rest and its frame at the creature's timing frame rate (24 fps unless the file gives one:
-``gait.timing_fps``).
+height), and labelled with its name, the hips' height against rest and its frame at the
+creature's timing frame rate (24 fps unless the file gives one: ``gait.timing_fps``).
 """
 
 from __future__ import annotations

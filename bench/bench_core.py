@@ -23,12 +23,15 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from timing import median_time  # noqa: E402  (bench/timing.py)
+from timing import median_time
 
-from app import build_rig, load_creature  # noqa: E402
-from app.kinematics.leg import solve_legs  # noqa: E402
-from app.kinematics.leg_scalar import solve_leg  # noqa: E402
-from app import simulate  # noqa: E402
+from app import (
+    build_rig,
+    load_creature,
+    simulate,
+)
+from app.kinematics.leg import solve_legs
+from app.kinematics.leg_scalar import solve_leg
 
 UP = np.array([0.0, 1.0, 0.0])
 FWD = np.array([0.0, 0.0, 1.0])
@@ -74,8 +77,9 @@ def bench_pose(repeats: int) -> list[tuple[str, str]]:
 
 def bench_render(repeats: int) -> list[tuple[str, str]]:
     from app.recording import clip_motion
-    from app.render.clip import ClipRenderer, ViewSettings, clip_camera
-    from app.render.renderer import RenderOptions
+    from app.render.clip import ClipRenderer
+    from app.render.framing import clip_camera
+    from app.render.options import RenderOptions, ViewSettings
 
     rows = []
     size = (640, 480)

@@ -16,11 +16,12 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from app import build_rig, load_creature  # noqa: E402
-from app.export import write_bvh, write_glb  # noqa: E402
-from app.kinematics.clip import clip_motion  # noqa: E402
-from app.kinematics.skeleton import skeleton_clip  # noqa: E402
-from timing import median_time  # noqa: E402  (bench/timing.py)
+from timing import median_time
+
+from app import build_rig, load_creature
+from app.export import write_bvh, write_glb
+from app.kinematics.clip import clip_motion
+from app.kinematics.skeleton import skeleton_clip
 
 
 def main() -> None:
@@ -30,8 +31,8 @@ def main() -> None:
         for creature in ("dog", "horse", "spider", "centipede"):
             motion, _ = clip_motion(build_rig(load_creature(creature)), 60.0, seconds=10.0)
             bvh, glb = Path(tmp) / f"{creature}.bvh", Path(tmp) / f"{creature}.glb"
-            t_bvh = median_time(lambda: write_bvh(bvh, skeleton_clip(motion)), repeats=5)
-            t_glb = median_time(lambda: write_glb(glb, motion, skeleton_clip(motion)), repeats=5)
+            t_bvh = median_time(lambda b=bvh, m=motion: write_bvh(b, skeleton_clip(m)), repeats=5)
+            t_glb = median_time(lambda g=glb, m=motion: write_glb(g, m, skeleton_clip(m)), repeats=5)
             joints = skeleton_clip(motion).skeleton.count
             print(f"{creature:10}  {joints:6}  {motion.frame_count:6}  {t_bvh:8.3f} s  {bvh.stat().st_size / 2**20:5.1f} MiB"
                   f"  {t_glb:8.3f} s  {glb.stat().st_size / 2**20:5.1f} MiB")

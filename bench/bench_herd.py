@@ -32,9 +32,9 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from app import build_rig, load_creature  # noqa: E402
-from app.kinematics.herd import Herd  # noqa: E402
-from app.render.herd import HerdInstances  # noqa: E402
+from app import build_rig, load_creature
+from app.kinematics.herd import Herd
+from app.render.herd import HerdInstances
 
 SIZES = (1, 10, 100)
 

@@ -22,11 +22,11 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from timing import median_time  # noqa: E402  (bench/timing.py)
+from timing import median_time
 
-from app import build_rig, load_creature  # noqa: E402
-from app.kinematics.motion import simulate  # noqa: E402
-from app.worlds import load_heightmap, make_world, parse_terrain  # noqa: E402
+from app import build_rig, load_creature
+from app.kinematics.motion import simulate
+from app.worlds import load_heightmap, make_world, parse_terrain
 
 
 def bench_travel(repeats: int) -> list[tuple[str, str]]:

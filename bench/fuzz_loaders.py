@@ -23,7 +23,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 
-from fuzz_inputs import TARGETS, run  # noqa: E402
+from fuzz_inputs import TARGETS, run
 
 
 def main() -> int:
@@ -40,7 +40,7 @@ def main() -> int:
     for target in args.target or TARGETS:
         bar = tqdm(total=args.count, desc=target, leave=False, disable=not sys.stderr.isatty())
         t0 = time.perf_counter()
-        result = run(target, args.count, args.seed, progress=lambda n: bar.update(n - bar.n))
+        result = run(target, args.count, args.seed, progress=lambda n, b=bar: b.update(n - b.n))
         bar.close()
         peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
         print(f"{target:9} {result.total:6} inputs in {time.perf_counter() - t0:6.1f} s: {result.loaded:5} loaded, "
@@ -51,7 +51,7 @@ def main() -> int:
             print(f"  first crash, input starts {data[:120]!r}\n{tb}")
         for data, seconds in result.hangs[:1]:
             print(f"  first hang ({seconds:.1f} s), input starts {data[:120]!r}")
-        for data, message in result.bad_messages[:1]:
+        for _data, message in result.bad_messages[:1]:
             print(f"  first messy message: {message[:300]}")
         failed |= bool(result.crashes or result.hangs)
     return 1 if failed else 0

@@ -19,13 +19,15 @@ from PIL import Image
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "tests")]
 
-from app import build_rig, load_creature  # noqa: E402
-from app.export import write_glb  # noqa: E402
-from app.kinematics.clip import clip_motion  # noqa: E402
-from app.kinematics.skeleton import skeleton_clip  # noqa: E402
-from app.render.clip import ClipRenderer, ViewSettings, clip_cameras  # noqa: E402
-from app.render.renderer import RenderOptions  # noqa: E402
-from test_export import glb_world_positions  # noqa: E402  (tests/test_export.py: reads the .glb alone)
+from test_export import glb_world_positions
+
+from app import build_rig, load_creature
+from app.export import write_glb
+from app.kinematics.clip import clip_motion
+from app.kinematics.skeleton import skeleton_clip
+from app.render.clip import ClipRenderer
+from app.render.framing import clip_cameras
+from app.render.options import RenderOptions, ViewSettings
 
 
 def main() -> None:

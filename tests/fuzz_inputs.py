@@ -20,9 +20,9 @@ import signal
 import tempfile
 import time
 import traceback
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
@@ -60,7 +60,7 @@ def _csv_seed() -> str:
     rows = ["time,LH_x,LH_y,LH_z,RH_x,RH_y,RH_z,LF_x,LF_y,LF_z,RF_x,RF_y,RF_z,body_x,body_y,body_z"]
     for ti in t:
         values = [f"{ti:.4f}"]
-        for k, (x, z, phase) in enumerate(((-0.3, 0.1, 0.0), (-0.3, -0.1, 0.5), (0.3, 0.1, 0.5), (0.3, -0.1, 0.0))):
+        for x, z, phase in ((-0.3, 0.1, 0.0), (-0.3, -0.1, 0.5), (0.3, 0.1, 0.5), (0.3, -0.1, 0.0)):
             p = (2.0 * ti + phase) % 1.0
             lift = max(0.0, np.sin(2 * np.pi * (p - 0.6) / 0.8)) * 0.06 if p > 0.6 else 0.0
             values += [f"{x + 1.0 * ti:.4f}", f"{lift:.4f}", f"{z:.4f}"]
@@ -253,7 +253,7 @@ def run(target: str, count: int, seed: int = 0, progress: Callable[[int], None] 
                     message = str(exc)
                     if "\n" in message or len(message) > 600 or not message.strip():
                         result.bad_messages.append((data, message[:2000]))
-                except BaseException as exc:  # noqa: BLE001 - that is what we are looking for
+                except BaseException as exc:
                     if isinstance(exc, KeyboardInterrupt):
                         raise
                     result.crashes.append((data, traceback.format_exc(limit=6)))

@@ -3,20 +3,15 @@
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_runner import gaitlab
 from PIL import Image
 
 DATA = Path(__file__).parent / "data"
 DOG_WALK = DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"
-
-
-from cli_runner import gaitlab
 
 
 def test_table_for_a_creature(tmp_path: Path) -> None:

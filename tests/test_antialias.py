@@ -10,9 +10,10 @@ from app import build_rig, load_creature
 from app.kinematics.clip import clip_motion
 from app.kinematics.world import IN_PLACE
 from app.render.camera import Camera
-from app.render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
+from app.render.clip import ClipRenderer
+from app.render.framing import clip_camera, loop_grid_spacing
 from app.render.fxaa import TILE, screen_region, screen_tiles, sphere_boxes
-from app.render.renderer import RenderOptions
+from app.render.options import RenderOptions, ViewSettings
 from app.render.scene import motion_instances
 
 SIZE = (240, 180)
@@ -25,7 +26,7 @@ def test_screen_region_covers_the_projected_box() -> None:
     # Centred and symmetric, well inside the image, and larger for a larger box.
     assert abs((x + w / 2) - SIZE[0] / 2) <= 1 and abs((y + h / 2) - SIZE[1] / 2) <= 1
     assert 0 < w < SIZE[0] and 0 < h < SIZE[1]
-    x2, y2, w2, h2 = screen_region(2 * lo, 2 * hi, camera, SIZE, pad=0)
+    _x2, _y2, w2, h2 = screen_region(2 * lo, 2 * hi, camera, SIZE, pad=0)
     assert w2 > w and h2 > h
     assert screen_region(lo, hi, camera, SIZE, pad=3)[2] == w + 6
 
@@ -64,7 +65,7 @@ def test_screen_tiles_cover_every_shape_and_little_else() -> None:
     for x0, y0, x1, y1 in np.clip(boxes, 0, [SIZE[0] - 1, SIZE[1] - 1] * 2).astype(int):
         assert mask[SIZE[1] - 1 - y1:SIZE[1] - y0, x0:x1 + 1].all()
     # Much less than the creature's whole screen rectangle.
-    x, y, w, h = screen_region(*scene.box(), camera, SIZE)
+    _x, _y, w, h = screen_region(*scene.box(), camera, SIZE)
     assert mask.sum() < 0.75 * w * h
 
 

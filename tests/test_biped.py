@@ -5,13 +5,11 @@ mirror symmetry, heights, and the CLI's files and exit codes."""
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_runner import gaitlab
 from PIL import Image
 
 from app import build_rig, load_creature
@@ -29,9 +27,6 @@ from app.spec import SpecError
 
 ROOT = Path(__file__).parents[1]
 MIRROR = np.array([-1.0, 1.0, 1.0])
-
-
-from cli_runner import gaitlab
 
 
 @pytest.fixture(scope="module")
@@ -109,7 +104,7 @@ def test_no_planted_point_slips(human, world) -> None:
 
 
 def test_arms_swing_opposite_to_the_legs(walk_report) -> None:
-    rig, motion, report = walk_report
+    _rig, motion, report = walk_report
     # Left hand farthest forward with the right foot's touchdown (half a cycle after the left's).
     assert cyclic_distance(report.arm_phase["L"], 0.5) < 0.06
     assert cyclic_distance(report.arm_phase["R"], 0.0) < 0.06
@@ -160,7 +155,7 @@ def test_down_pose_moves_the_lowest_point_by_its_edit_and_nothing_else(human) ->
     rig, motion = _cycle(human)
     lowest = motion.spine[:, 0, 1].min()
     deeper = human.with_overrides({"poses.down_height": float(rig.poses.heights[1]) - 0.03})
-    rig2, motion2 = _cycle(deeper)
+    _rig2, motion2 = _cycle(deeper)
     assert motion2.spine[:, 0, 1].min() == pytest.approx(lowest - 0.03, abs=1e-3)
     # The other key poses stay where they were: contact, pass and up frames, both steps.
     frames = np.rint(key_pose_phases(True)[[0, 2, 3]] * motion.frame_count).astype(int)
@@ -180,7 +175,7 @@ def test_pose_curve_passes_through_the_keys_smoothly() -> None:
 
 
 def test_second_step_is_the_first_mirrored(human) -> None:
-    rig, motion = _cycle(human, fps=48.0)
+    _rig, motion = _cycle(human, fps=48.0)
     half = motion.frame_count // 2
     a, b = slice(half, motion.frame_count), slice(0, half)
     assert np.abs(motion.joints[a, 0] - motion.joints[b, 1] * MIRROR).max() < 1e-9
@@ -469,13 +464,13 @@ def key_pose_ghosts_now(state):
 
 def test_a_png_s_arcs_are_the_cycle_up_to_its_frame(human, tmp_path) -> None:
     from app.recording import Recording, RecordRequest
-    from app.render.clip import ViewSettings
+    from app.render.options import ViewSettings
 
     request = RecordRequest.of(human, output=tmp_path / "a.png", fps=24.0, start=2.0, arcs=("hip",),
                             view=ViewSettings(size=(64, 48), antialias="off"))
     recording = Recording(request)
     try:
-        source, points, per_cycle, whole = recording._arcs
+        _source, points, per_cycle, whole = recording._arcs
         assert whole and per_cycle == 24
         hip_now = recording.motion.joints[0, :, 0]
         assert np.allclose(points["hip"][-1], hip_now, atol=1e-9)  # the trail ends where the creature is

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import shutil
 import subprocess
 import sys
@@ -10,14 +9,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_runner import gaitlab, gaitlab_process
 from PIL import Image
 
 from app.output import gif_durations
 
 DOG = Path(__file__).parents[1] / "creatures" / "dog.toml"
-
-
-from cli_runner import gaitlab, gaitlab_process
 
 
 def test_console_script_is_installed() -> None:
@@ -117,7 +114,8 @@ def write_dog(tmp_path: Path, old: str, new: str) -> str:
 
 
 BAD_INPUTS = {
-    "unknown creature": (["render", "dgo", "-o", "x.gif"], "presets are: ant, bear, bird, cat, centipede, deer, dog, horse, human, spider, theropod"),
+    "unknown creature": (["render", "dgo", "-o", "x.gif"],
+                         "presets are: ant, bear, bird, cat, centipede, deer, dog, horse, human, spider, theropod"),
     "unknown gait": (["render", "dog", "--gait", "trto", "-o", "x.gif"], "did you mean 'trot'"),
     "set unknown key": (["render", "dog", "--set", "legs.hind.femr=0.3", "-o", "x.gif"],
                         "did you mean 'legs.hind.femur'"),

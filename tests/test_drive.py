@@ -94,7 +94,7 @@ def test_holding_w_moves_the_creature_by_its_speed_times_time() -> None:
 
 def test_a_turns_left_and_d_right_within_the_limits() -> None:
     for steer, sign in ((1.0, 1.0), (-1.0, -1.0)):
-        driver, frames, speeds, _, curvatures = drive("dog", 3.0, lambda t: 0.0, lambda t, s=steer: s)
+        driver, _frames, speeds, _, curvatures = drive("dog", 3.0, lambda t: 0.0, lambda t, s=steer: s)
         _, tangent = driver.path.sample(np.array([driver.live.travel]))
         heading = math.atan2(tangent[0, 0], tangent[0, 1])
         assert sign * heading > math.radians(60)  # left is +X, heading grows
@@ -115,7 +115,7 @@ def test_driven_feet_stay_planted_through_speed_and_turns(creature: str) -> None
     def steer(t):
         return 1.0 if 1.0 < t < 2.5 else (-1.0 if 4.0 < t < 6.0 else 0.0)
 
-    driver, frames, speeds, gaits, _ = drive(creature, 7.0, throttle, steer)
+    driver, frames, _speeds, gaits, _ = drive(creature, 7.0, throttle, steer)
     assert {"walk", "trot"} <= set(gaits)
     motion = solve_motion(driver.live.rig, driver.live.world, stack_inputs(frames))
     ball = motion.joints[:, :, 3]

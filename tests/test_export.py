@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_runner import gaitlab
 
 from app import build_rig, load_creature
 from app.analysis import analyze_tracks, tracks_from_motion
@@ -17,7 +18,6 @@ from app.export import write_bvh
 from app.kinematics.clip import clip_motion
 from app.kinematics.skeleton import skeleton_clip
 from app.worlds import make_world
-from cli_runner import gaitlab
 
 PRESETS = ("ant", "bear", "cat", "centipede", "deer", "dog", "horse", "spider")
 
@@ -229,7 +229,7 @@ def test_a_looped_export_ends_where_it_began(tmp_path: Path, in_place: bool) -> 
 
 @pytest.mark.parametrize("creature, suffix", [("dog", "usda"), ("spider", "usdc")])
 def test_usd_skeleton_animation_reads_back(tmp_path: Path, creature: str, suffix: str) -> None:
-    pxr = pytest.importorskip("pxr", reason="usd-core (Pixar's USD) is optional")  # noqa: F841
+    pytest.importorskip("pxr", reason="usd-core (Pixar's USD) is optional")
     from pxr import Usd, UsdGeom, UsdSkel
 
     from app.export import write_usd

@@ -7,7 +7,6 @@ import os
 import warnings
 
 import pytest
-
 from fuzz_inputs import TARGETS, run
 
 COUNT = int(os.environ.get("GAITLAB_FUZZ", "300"))

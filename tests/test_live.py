@@ -59,7 +59,7 @@ def test_clock_integrates_frequency() -> None:
     assert live.clock - last == pytest.approx(2 * f * DT)  # ...and the new one after the blend
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def dog_steady_max_step(gait: str) -> float:
     return steady_max_step(load_creature("dog").with_overrides({"gait.preset": gait}))
 

@@ -5,8 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app.kinematics.oscillator import (bias_from_duty, duty_from_bias, foot_wave, peak_wave, slope_wave,
-                                       touchdown_angle)
+from app.kinematics.oscillator import bias_from_duty, duty_from_bias, foot_wave, peak_wave, slope_wave, touchdown_angle
 
 
 def measured_duty(bias: float, samples: int = 400_000) -> float:

@@ -15,7 +15,7 @@ import pytest
 from PIL import Image
 
 from app.errors import OutputError
-from app.output import (AtomicPath, GifWriter, Mp4Writer, gif_durations, remove_stale_partials, stale_partials)
+from app.output import AtomicPath, GifWriter, Mp4Writer, gif_durations, remove_stale_partials, stale_partials
 from app.output import files as files_module
 from app.output import gif as gif_module
 

@@ -8,12 +8,19 @@ import pytest
 from app import build_rig, load_creature
 from app.kinematics.clip import clip_motion
 from app.kinematics.live import LiveMotion
-from app.kinematics.overlays import (FootprintTrail, inside_polygon, planted_points, support_polygon,
-                                     touchdown_targets, trunk_centre)
+from app.kinematics.overlays import (
+    FootprintTrail,
+    inside_polygon,
+    planted_points,
+    support_polygon,
+    touchdown_targets,
+    trunk_centre,
+)
 from app.kinematics.world import IN_PLACE
 from app.render.camera import frame_points
+from app.render.options import GroundView, RenderOptions
 from app.render.overlays import TARGET_COLOR, Overlays
-from app.render.renderer import GroundView, RenderOptions, SceneRenderer
+from app.render.renderer import SceneRenderer
 from app.render.scene import motion_bounds, motion_instances
 from app.render.target import OffscreenTarget
 

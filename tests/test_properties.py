@@ -10,8 +10,8 @@ from app import build_rig
 from app.errors import SpecError
 from app.gaits import GAIT_PRESETS, gaits_for
 from app.kinematics.clip import clip_motion
-from app.styles import WALK_STYLES
 from app.spec import creature_from_dict
+from app.styles import WALK_STYLES
 
 length = st.floats(0.03, 1.2)
 
@@ -65,8 +65,8 @@ def assert_bones_exact(motion, rig) -> None:
     assert rel.max() < 1e-9, (np.unravel_index(rel.argmax(), rel.shape), bones.reshape(-1, 4)[:2], expected)
 
 
-SETTINGS = settings(max_examples=int(__import__("os").environ.get("GAITLAB_EXAMPLES", "60")), deadline=None, suppress_health_check=[HealthCheck.filter_too_much,
-                                                                            HealthCheck.too_slow])
+SETTINGS = settings(max_examples=int(__import__("os").environ.get("GAITLAB_EXAMPLES", "60")), deadline=None,
+                    suppress_health_check=[HealthCheck.filter_too_much, HealthCheck.too_slow])
 
 
 @SETTINGS

@@ -6,14 +6,14 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from app import load_creature
+from app import build_rig, load_creature
 from app.gaits import gaits_for
-from app.kinematics.world import IN_PLACE
-from app import build_rig
 from app.kinematics.clip import clip_motion
+from app.kinematics.world import IN_PLACE
 from app.render.camera import frame_points
-from app.render.clip import ClipRenderer, ViewSettings, clip_camera, loop_grid_spacing
-from app.render.renderer import RenderOptions
+from app.render.clip import ClipRenderer
+from app.render.framing import clip_camera, loop_grid_spacing
+from app.render.options import RenderOptions, ViewSettings
 from app.render.scene import motion_bounds, srgb_to_linear
 
 pytestmark = pytest.mark.gl
@@ -97,7 +97,8 @@ def test_camera_presets_keep_the_creature_in_frame(camera: str) -> None:
 @pytest.mark.parametrize("camera", ["follow", "chase", "side"])
 def test_travelling_cameras_keep_the_creature_in_frame_and_chase_stays_behind(camera: str) -> None:
     from app.kinematics.world import World
-    from app.render.clip import ViewSettings, clip_cameras
+    from app.render.framing import clip_cameras
+    from app.render.options import ViewSettings
     from app.render.scene import creature_points
     from app.worlds import parse_path
 
@@ -137,7 +138,7 @@ def test_legs_have_volume_and_feet_by_leg_type() -> None:
         caps = scene.capsules.astype(float)
         hoofs = np.all(np.abs(caps[:, 8:11] - _HOOF_COLOR) < 1e-6, axis=1)
         toes = pose.joints[:, 4]
-        near_toe = lambda centres: np.linalg.norm(centres[:, None] - toes[None], axis=-1).min(axis=0)  # noqa: E731
+        near_toe = lambda centres, toes=toes: np.linalg.norm(centres[:, None] - toes[None], axis=-1).min(axis=0)
         if name == "horse":  # a dark hoof at every toe
             assert hoofs.sum() == rig.leg_count
             assert near_toe(caps[hoofs, 3:6]).max() < 1e-6

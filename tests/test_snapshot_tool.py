@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
+import conftest
 import numpy as np
 import pytest
-
-import conftest
 from conftest import Snapshot
 
 

@@ -213,7 +213,7 @@ def test_the_file_field_loads_where_no_dialog_opens(display: str, tmp_path: Path
     with running_viewer(display, tmp_path, "--size", "1024x700") as (proc, dump, window):
         # Fold the tall panels that are open at the start, so the File panel is on screen.
         for title in ("Creature", "Gait"):
-            state = read_state(dump, until=lambda s: f"panel.{title}" in s["widgets"])
+            state = read_state(dump, until=lambda s, t=title: f"panel.{t}" in s["widgets"])
             x, y = centre(state["widgets"][f"panel.{title}"])
             xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
             time.sleep(0.5)
@@ -502,13 +502,13 @@ def test_a_click_on_a_scene_creature_puts_it_in_the_panels(display: str, tmp_pat
         assert state["creature"]["name"] == "ant"
         # The camera follows the ant: wait until the centipede is in view, then pause so
         # it stays where the dump says.
-        in_view = lambda s: 420 < s["screen"][1][0] < 990 and 40 < s["screen"][1][1] < 680  # noqa: E731
+        in_view = lambda s: 420 < s["screen"][1][0] < 990 and 40 < s["screen"][1][1] < 680
         xdotool(display, "mousemove", "700", "700")
         for _ in range(5):
             read_state(dump, until=in_view)
             xdotool(display, "key", "space")
             paused = read_state(dump, until=lambda s: not s["playing"])
-            paused = read_state(dump, until=lambda s: s["frame"] > paused["frame"])
+            paused = read_state(dump, until=lambda s, p=paused: s["frame"] > p["frame"])
             if in_view(paused):
                 break
             xdotool(display, "key", "space")  # it walked out before the pause: play on, try again

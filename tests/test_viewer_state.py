@@ -148,7 +148,7 @@ def test_save_never_overwrites_a_preset_or_a_file_unasked(state: ViewerState, tm
     assert not state.save(str(preset)) and "preset creatures" in state.error
     assert preset.read_bytes() == before
     state.set("gait.duty_factor", 0.6000000238418579)  # what a float32 slider hands over...
-    from app.ui.panels import shown
+    from app.ui.panels.widgets import shown
 
     state.set("gait.duty_factor", shown(0.6000000238418579, "%.3f  (b = 1.0)"))  # ...as the panel rounds it
     assert state.save() and (tmp_path / f"{state.spec.name}.toml").exists()
@@ -233,7 +233,7 @@ def test_a_copy_of_the_preset_folder_is_protected_too(tmp_path: Path) -> None:
     import shutil
 
     from app.resources import creatures_dir
-    from app.ui.state import is_shipped
+    from app.ui.files import is_shipped
 
     copy = tmp_path / "creatures"
     shutil.copytree(creatures_dir(), copy)

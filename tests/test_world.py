@@ -17,9 +17,9 @@ from app import build_rig, load_creature, simulate
 from app.analysis import analyze_tracks, tracks_from_motion
 from app.analysis.metrics import cyclic_distance, path_error, wave_lag
 from app.kinematics.clip import clip_motion
-from app.kinematics.roll import bearing_points
 from app.kinematics.live import LiveMotion
 from app.kinematics.motion import simulate as simulate_rig
+from app.kinematics.roll import bearing_points
 from app.kinematics.terrain import StairsTerrain
 from app.resources import preset_creature_names
 from app.worlds import make_world
@@ -161,7 +161,7 @@ def test_the_ant_tripods_touch_down_together() -> None:
 
 @pytest.mark.parametrize("creature, lag", [("spider", 0.25), ("centipede", 0.12)])
 def test_metachronal_waves_have_the_requested_lag(creature: str, lag: float) -> None:
-    rig, report = _measured(creature)
+    _rig, report = _measured(creature)
     assert float(load_creature(creature).gait.front_back) == lag
     measured = wave_lag({f.name: f.phase for f in report.feet})
     assert measured is not None and cyclic_distance(measured, lag) <= 0.02

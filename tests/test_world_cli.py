@@ -4,13 +4,11 @@ bad input (one line, exit 2, nothing written), and the Python API."""
 from __future__ import annotations
 
 import math
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_runner import gaitlab
 from PIL import Image
 
 from app import simulate
@@ -20,9 +18,6 @@ from app.kinematics.world import WorldError
 from app.worlds import load_heightmap, load_mesh_terrain, load_scene, parse_path, parse_terrain
 
 ROOT = Path(__file__).parents[1]
-
-
-from cli_runner import gaitlab
 
 
 def test_path_text_forms() -> None:
@@ -36,7 +31,7 @@ def test_path_text_forms() -> None:
     for path in (circle, parse_path("figure-eight:r=2"), waypoints):
         s = np.linspace(0.0, min(path.length, 6.0), 3001)
         points, tangents = path.sample(s)
-        assert np.allclose(points[0], 0.0, atol=1e-9) and np.allclose(tangents[0], [0, 1], atol=1e-6) \
+        assert (np.allclose(points[0], 0.0, atol=1e-9) and np.allclose(tangents[0], [0, 1], atol=1e-6)) \
             or isinstance(path, WaypointPath)
         steps = np.linalg.norm(np.diff(points, axis=0), axis=1)
         assert np.allclose(steps, np.diff(s), rtol=1e-3)
@@ -201,8 +196,8 @@ def test_every_scene_creature_is_checked(tmp_path: Path) -> None:
 
 def test_the_viewer_pauses_where_the_ground_offers_no_foothold() -> None:
     from app import load_creature
-    from app.worlds import make_world
     from app.ui.state import ViewerState
+    from app.worlds import make_world
 
     state = ViewerState(load_creature("dog"), world=make_world("straight", "hills:amp=0.28,seed=5"))
     for _ in range(600):

@@ -148,57 +148,42 @@ class _Tokens:
 def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
     """Parse a BVH file. Raises :class:`InputError` naming the file and line."""
     path = os.fspath(path)
+    lines = _read_lines(path)
+    try:
+        motion_at = next(i for i, line in enumerate(lines) if line.strip().upper() == "MOTION")
+    except StopIteration:
+        raise InputError(f"{path}:{len(lines)}: truncated BVH: no MOTION section") from None
+    joints = _hierarchy(_Tokens(path, lines[:motion_at]))
+    channel_count = sum(len(j.channels) for j in joints)
+    frames, frame_time = _motion(path, lines, motion_at, channel_count)
+    return BvhClip(path=path, joints=joints, frames=frames, frame_time=frame_time)
+
+
+def _read_lines(path: str) -> list[str]:
+    """The file's lines, read whole up to the size limit."""
     try:
         with open(path, "rb") as fh:
             raw = fh.read(MAX_FILE_BYTES + 1)  # not stat(): pipes and /proc files say 0
         if len(raw) > MAX_FILE_BYTES:
             raise InputError(f"{path}: the file is over {MAX_FILE_BYTES // 2**20} MiB; BVH files up to that "
                              "size are read")
-        text = raw.decode("utf-8", errors="replace")
+        return raw.decode("utf-8", errors="replace").splitlines()
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
-    lines = text.splitlines()
-    try:
-        motion_at = next(i for i, line in enumerate(lines) if line.strip().upper() == "MOTION")
-    except StopIteration:
-        raise InputError(f"{path}:{len(lines)}: truncated BVH: no MOTION section") from None
-    tokens = _Tokens(path, lines[:motion_at])
+
+
+def _hierarchy(tokens: _Tokens) -> list[BvhJoint]:
+    """The joints of the HIERARCHY section, in file order (a stack, no recursion: any depth)."""
     tokens.expect("HIERARCHY")
     joints: list[BvhJoint] = []
-    channel_count = 0
-
-    def parse_joint(parent: int) -> int:
-        """The joint header (name, OFFSET, CHANNELS) after a ROOT/JOINT keyword; its index."""
-        nonlocal channel_count
-        name, _ = tokens.next("a joint name")
-        tokens.expect("{")
-        tokens.expect("OFFSET")
-        offset = np.array([tokens.number("OFFSET x"), tokens.number("OFFSET y"), tokens.number("OFFSET z")])
-        tokens.expect("CHANNELS")
-        count_tok, count_line = tokens.next("the channel count")
-        if not _WHOLE.fullmatch(count_tok) or int(count_tok) > MAX_CHANNELS_PER_JOINT:
-            raise tokens.error(f"channel count {_shown(count_tok)}: expected a whole number from 0 to "
-                               f"{MAX_CHANNELS_PER_JOINT}", count_line)
-        channels = []
-        for _ in range(int(count_tok)):
-            ch, ch_line = tokens.next("a channel name")
-            if len(ch) < 2 or ch[0].upper() not in _AXES or ch[1:].lower() not in ("position", "rotation"):
-                raise tokens.error(f"unknown channel {_shown(ch)} (expected Xposition ... Zrotation)", ch_line)
-            channels.append(ch)
-        if len(joints) >= MAX_JOINTS:
-            raise tokens.error(f"more than {MAX_JOINTS} joints")
-        joints.append(BvhJoint(name, parent, offset, channels, channel_count))
-        channel_count += len(channels)
-        return len(joints) - 1
-
     tok, line = tokens.next("ROOT")
     if tok.upper() != "ROOT":
         raise tokens.error(f"expected ROOT, found {_shown(tok)}", line)
-    stack = [parse_joint(-1)]  # the open joints, innermost last (no recursion: any depth)
+    stack = [_joint(tokens, joints, -1)]  # the open joints, innermost last
     while stack:
         tok, line = tokens.next("JOINT, End Site or '}'")
         if tok.upper() == "JOINT":
-            stack.append(parse_joint(stack[-1]))
+            stack.append(_joint(tokens, joints, stack[-1]))
         elif tok.upper() == "END":
             tokens.expect("Site")
             tokens.expect("{")
@@ -213,7 +198,36 @@ def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
     if tokens.pos < len(tokens.items):
         tok, line = tokens.items[tokens.pos]
         raise tokens.error(f"unexpected {_shown(tok)} after the hierarchy", line)
+    return joints
 
+
+def _joint(tokens: _Tokens, joints: list[BvhJoint], parent: int) -> int:
+    """The joint header (name, OFFSET, CHANNELS) after a ROOT/JOINT keyword, appended to
+    ``joints``; its index."""
+    name, _ = tokens.next("a joint name")
+    tokens.expect("{")
+    tokens.expect("OFFSET")
+    offset = np.array([tokens.number("OFFSET x"), tokens.number("OFFSET y"), tokens.number("OFFSET z")])
+    tokens.expect("CHANNELS")
+    count_tok, count_line = tokens.next("the channel count")
+    if not _WHOLE.fullmatch(count_tok) or int(count_tok) > MAX_CHANNELS_PER_JOINT:
+        raise tokens.error(f"channel count {_shown(count_tok)}: expected a whole number from 0 to "
+                           f"{MAX_CHANNELS_PER_JOINT}", count_line)
+    channels = []
+    for _ in range(int(count_tok)):
+        ch, ch_line = tokens.next("a channel name")
+        if len(ch) < 2 or ch[0].upper() not in _AXES or ch[1:].lower() not in ("position", "rotation"):
+            raise tokens.error(f"unknown channel {_shown(ch)} (expected Xposition ... Zrotation)", ch_line)
+        channels.append(ch)
+    if len(joints) >= MAX_JOINTS:
+        raise tokens.error(f"more than {MAX_JOINTS} joints")
+    first_channel = joints[-1].first_channel + len(joints[-1].channels) if joints else 0
+    joints.append(BvhJoint(name, parent, offset, channels, first_channel))
+    return len(joints) - 1
+
+
+def _motion(path: str, lines: list[str], motion_at: int, channel_count: int) -> tuple[NDArray[np.float64], float]:
+    """The MOTION section: frames (T, channels) and the frame time (s)."""
     header = [(n, lines[n].strip()) for n in range(motion_at + 1, min(motion_at + 3, len(lines)))]
     if len(header) < 2:
         raise InputError(f"{path}:{len(lines)}: truncated BVH: the MOTION section has no Frames / Frame Time lines")
@@ -240,21 +254,29 @@ def read_bvh(path: str | os.PathLike[str]) -> BvhClip:
     try:
         values = np.array(" ".join(line for _, line in data_lines).split(), dtype=np.float64)
     except ValueError:
-        values = None
-    if values is None or values.size != frame_count * channel_count:
-        for number, line in data_lines:  # find the first bad line, for the message
-            parts = line.split()
-            if len(parts) != channel_count:
-                raise InputError(f"{path}:{number}: malformed BVH: frame has {len(parts)} values, the hierarchy "
-                                 f"has {channel_count} channels")
-            for k, part in enumerate(parts):
-                try:
-                    float(part)
-                except ValueError:
-                    raise InputError(f"{path}:{number}: malformed BVH: value {k + 1} ({_shown(part)}) is not a "
-                                     "number") from None
+        values = np.zeros(0)
+    if values.size != frame_count * channel_count:
+        _first_bad_line(path, data_lines, channel_count)
     frames = values.reshape(frame_count, channel_count)
     if not np.isfinite(frames).all():
         bad = int(np.nonzero(~np.isfinite(frames).all(axis=1))[0][0])
         raise InputError(f"{path}:{data_lines[bad][0]}: malformed BVH: frame holds a NaN or infinite value")
-    return BvhClip(path=path, joints=joints, frames=frames, frame_time=frame_time)
+    return frames, frame_time
+
+
+def _first_bad_line(path: str, data_lines: list[tuple[int, str]], channel_count: int) -> None:
+    """Raise :class:`InputError` for the first frame line with the wrong count of values
+    or a value that is not a number."""
+    for line_number, text in data_lines:
+        parts = text.split()
+        if len(parts) != channel_count:
+            raise InputError(f"{path}:{line_number}: malformed BVH: frame has {len(parts)} values, the hierarchy "
+                             f"has {channel_count} channels")
+        for k, part in enumerate(parts):
+            try:
+                float(part)
+            except ValueError:
+                raise InputError(f"{path}:{line_number}: malformed BVH: value {k + 1} ({_shown(part)}) is not a "
+                                 "number") from None
+    raise InputError(f"{path}: malformed BVH: the frames hold {sum(len(t.split()) for _, t in data_lines)} values "
+                     f"for {len(data_lines)} frames of {channel_count} channels")

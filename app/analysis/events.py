@@ -244,7 +244,7 @@ def _plateau_centres(score: NDArray, peaks: NDArray[np.intp], spread: float, tol
         hit = inside & (values > limit[:, None])
         has = hit.any(axis=1)
         edge = np.where(has, peaks + step * np.argmax(hit, axis=1), n - 1 if step > 0 else 0)
-        long_run = ~has & (((peaks + window < n - 1) if step > 0 else (peaks - window > 0)))
+        long_run = ~has & ((peaks + window < n - 1) if step > 0 else (peaks - window > 0))
         ends.append((edge, long_run))
     (hi, long_hi), (lo, long_lo) = ends
     centre = (lo + hi) // 2
@@ -264,19 +264,30 @@ def _one_per_contact(steps: list[Step], score: NDArray) -> list[Step]:
     return sorted(unique.values(), key=lambda s: s.stance)
 
 
-def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootEvents]:
-    """Steps of every foot of ``tracks``; ``period`` (s) defaults to :func:`clip_period`."""
-    period = clip_period(tracks) if period is None else period
-    fps = tracks.fps
-    frames = max(3, int(round(period * fps)))
-    if tracks.frame_count < 1.2 * frames:
-        raise AnalysisError(f"the clip is {tracks.duration:.2f} s long but one stride takes {period:.2f} s; "
-                            "give at least one full stride (about two steps)")
-    smooth = _odd(min(frames * 0.06, frames // 3))
+@dataclass(frozen=True)
+class _Signals:
+    """What every foot's events are found from, smoothed over ``smooth`` frames: each
+    point's height above its rolling ground with its first and second derivatives,
+    its horizontal and vertical speed, (T, L) each by part ("heel", "toe"); the heel's
+    forward speed relative to the body (T, L); the speed below which a point stands."""
+
+    smooth: int
+    above: dict[str, NDArray[np.float64]]
+    slope: dict[str, NDArray[np.float64]]
+    bend: dict[str, NDArray[np.float64]]
+    speeds: dict[str, NDArray[np.float64]]
+    rising: dict[str, NDArray[np.float64]]
+    rel: NDArray[np.float64]
+    static_speed: float
+
+
+def _signals(tracks: FootTracks, frames: int) -> _Signals:
+    smooth = _odd(int(min(frames * 0.06, frames // 3)))
     heights = {"heel": tracks.heel[..., 1], "toe": tracks.toe[..., 1]}
-    ground_window = _odd(min(1.5 * frames, tracks.frame_count))
+    ground_window = _odd(int(min(1.5 * frames, tracks.frame_count)))
     rel = tracks.forward_velocity(tracks.heel) - tracks.forward_velocity(tracks.body[:, None, :])[:, :1]
     rel = savgol_filter(rel, smooth, 2, axis=0, mode="interp")
+
     def horizontal_speed(points: NDArray) -> NDArray:
         velocity = np.gradient(points, tracks.times, axis=0)
         return savgol_filter(np.hypot(velocity[..., 0], velocity[..., 2]), smooth, 2, axis=0, mode="interp")
@@ -288,76 +299,97 @@ def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootE
                                          mode="interp")) for part, p in (("heel", tracks.heel), ("toe", tracks.toe))}
     body_velocity = np.gradient(tracks.body, tracks.times, axis=0)
     static_speed = max(STATIC_SPEED * float(np.median(np.hypot(body_velocity[:, 0], body_velocity[:, 2]))), 0.02)
-    # Every foot's smoothed height above its rolling ground and its derivatives, (T, L) each.
     above, slope, bend = {}, {}, {}
     for part, h in heights.items():
         hs = savgol_filter(h, smooth, 3, axis=0, mode="interp")
         above[part] = hs - percentile_filter(hs, 10, size=(ground_window, 1), mode="nearest")
         slope[part] = savgol_filter(h, smooth, 3, deriv=1, axis=0, mode="interp")
         bend[part] = savgol_filter(h, smooth, 3, deriv=2, axis=0, mode="interp")
-    result = []
-    for f, name in enumerate(tracks.names):
-        curves = {}
-        for part in heights:
-            # The ground band: the heights this point takes while it stands still (a rolling
-            # paw's toe rises a little before the foot lifts).
-            lifted = above[part][:, f]
-            static = np.hypot(speeds[part][:, f], rising[part][:, f] if tracks.exact else 0.0) < static_speed
-            band = float(np.percentile(lifted[static], 75)) if static.sum() > 3 else 0.0
-            a = lifted - max(band, 0.0)
-            d1, d2 = slope[part][:, f], bend[part][:, f]
-            top = max(float(np.percentile(a, 99)), 1e-9)
-            curves[part] = (a, d1, d2, top, _crossings(a, LIFT_LEVEL * top))
-        # A curve counts as a contact point only if that point is slow when the curve is
-        # near its ground (a digitigrade "ankle" joint can be lowest in mid-swing).
-        contact = {}
-        for part, c in curves.items():
-            down = c[0] < LIFT_LEVEL * c[3]
-            speed_p = speeds[part][:, f]
-            contact[part] = bool(down.any()) and float(np.median(speed_p[down])) < \
-                CONTACT_SPEED * max(float(np.median(speed_p)), 1e-9)
-        if not any(contact.values()):
-            contact = {"heel": True, "toe": True}
-        if not contact["heel"]:
-            curves["heel"] = curves["toe"]
-        elif not contact["toe"]:
-            curves["toe"] = curves["heel"]
-        foot_speed = np.minimum(speeds["heel"][:, f] if contact["heel"] else np.inf,
-                                speeds["toe"][:, f] if contact["toe"] else np.inf)
-        a_heel, a_toe = curves["heel"][0], curves["toe"][0]
-        speed_n = foot_speed / max(float(np.percentile(foot_speed, 95)), 1e-9)
-        score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
-        score = savgol_filter(score, smooth, 2, mode="interp")
-        low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
-        # Candidate stance frames at least a third of a stride apart (cadence may change
-        # over the clip); two minima in one long stance are merged below.
-        peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
-        spread = float(np.ptp(score))
-        peaks = np.asarray([p for p in peaks if low[p] < 0.25], dtype=np.intp)
-        stances = _plateau_centres(score, peaks, spread) if peaks.size else peaks
-        rel_f = np.ascontiguousarray(rel[:, f])
-        floor = 0.1 * float(np.percentile(np.abs(rel_f), 95))
-        thresholds = SPEED_CHANGE * np.maximum(np.abs(rel_f[stances]), floor)
-        # Every stance's events at once: lift and touchdown on both curves, speed checks.
-        ups, downs, found = [], [], np.ones(len(stances), dtype=bool)
-        for part in ("heel", "toe"):
-            a, d1, d2, _, crossings = curves[part]
-            up, ok_up = _curve_events(a, d1, d2, stances, crossings, +1, 4 * frames)
-            down, ok_down = _curve_events(a, d1, d2, stances, crossings, -1, 4 * frames)
-            ups.append(up)
-            downs.append(down)
-            found &= ok_up & ok_down
-        lift, liftoff = np.minimum(*ups), np.maximum(*ups)
-        strike, landing = np.minimum(*downs), np.maximum(*downs)
-        z_up = _speed_checks(rel_f, stances, thresholds, +1, frames)
-        z_down = _speed_checks(rel_f, stances, thresholds, -1, frames)
-        lift = np.where((z_up >= 0) & (z_up < lift), np.maximum(z_up, stances), lift)
-        landing = np.where((z_down >= 0) & (z_down > landing), np.minimum(z_down, stances), landing)
-        steps = [Step(strike=int(strike[i]), landing=int(landing[i]), stance=int(stances[i]), lift=int(lift[i]),
-                      liftoff=int(liftoff[i]), complete=bool(found[i])) for i in range(len(stances))]
-        steps = _one_per_contact(steps, score)
-        result.append(FootEvents(name=name, steps=tuple(steps), heel_height=a_heel, toe_height=a_toe))
+    return _Signals(smooth, above, slope, bend, speeds, rising, rel, static_speed)
+
+
+def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootEvents]:
+    """Steps of every foot of ``tracks``; ``period`` (s) defaults to :func:`clip_period`."""
+    period = clip_period(tracks) if period is None else period
+    frames = max(3, int(round(period * tracks.fps)))
+    if tracks.frame_count < 1.2 * frames:
+        raise AnalysisError(f"the clip is {tracks.duration:.2f} s long but one stride takes {period:.2f} s; "
+                            "give at least one full stride (about two steps)")
+    signals = _signals(tracks, frames)
+    result = [_foot_events(tracks, signals, f, frames) for f in range(len(tracks.names))]
     if not any(len(fe.steps) >= 2 for fe in result):
         raise AnalysisError(f"fewer than two steps found for every foot in {tracks.duration:.2f} s; "
                             "give a longer clip (at least one full stride)")
     return result
+
+
+def _contact_curves(tracks: FootTracks, sig: _Signals, f: int) -> tuple[dict[str, tuple], dict[str, bool]]:
+    """Foot ``f``'s heel and toe curves (height above the ground band, its derivatives,
+    the curve's top and its crossings of the lift level), and which of them touch down."""
+    curves = {}
+    for part in ("heel", "toe"):
+        # The ground band: the heights this point takes while it stands still (a rolling
+        # paw's toe rises a little before the foot lifts).
+        lifted = sig.above[part][:, f]
+        static = np.hypot(sig.speeds[part][:, f], sig.rising[part][:, f] if tracks.exact else 0.0) < sig.static_speed
+        band = float(np.percentile(lifted[static], 75)) if static.sum() > 3 else 0.0
+        a = lifted - max(band, 0.0)
+        top = max(float(np.percentile(a, 99)), 1e-9)
+        curves[part] = (a, sig.slope[part][:, f], sig.bend[part][:, f], top, _crossings(a, LIFT_LEVEL * top))
+    # A curve counts as a contact point only if that point is slow when the curve is
+    # near its ground (a digitigrade "ankle" joint can be lowest in mid-swing).
+    contact = {}
+    for part, c in curves.items():
+        down = c[0] < LIFT_LEVEL * c[3]
+        speed_p = sig.speeds[part][:, f]
+        contact[part] = bool(down.any()) and float(np.median(speed_p[down])) < \
+            CONTACT_SPEED * max(float(np.median(speed_p)), 1e-9)
+    if not any(contact.values()):
+        contact = {"heel": True, "toe": True}
+    if not contact["heel"]:
+        curves["heel"] = curves["toe"]
+    elif not contact["toe"]:
+        curves["toe"] = curves["heel"]
+    return curves, contact
+
+
+def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> FootEvents:
+    """One foot's steps: stance centres where heel and toe are low and slow, then each
+    stance's lift, liftoff, strike and landing on both curves, checked by speed."""
+    curves, contact = _contact_curves(tracks, sig, f)
+    smooth = sig.smooth
+    foot_speed = np.minimum(sig.speeds["heel"][:, f] if contact["heel"] else np.inf,
+                            sig.speeds["toe"][:, f] if contact["toe"] else np.inf)
+    a_heel, a_toe = curves["heel"][0], curves["toe"][0]
+    speed_n = foot_speed / max(float(np.percentile(foot_speed, 95)), 1e-9)
+    score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
+    score = savgol_filter(score, smooth, 2, mode="interp")
+    low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
+    # Candidate stance frames at least a third of a stride apart (cadence may change
+    # over the clip); two minima in one long stance are merged below.
+    peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
+    spread = float(np.ptp(score))
+    peaks = np.asarray([p for p in peaks if low[p] < 0.25], dtype=np.intp)
+    stances = _plateau_centres(score, peaks, spread) if peaks.size else peaks
+    rel_f = np.ascontiguousarray(sig.rel[:, f])
+    floor = 0.1 * float(np.percentile(np.abs(rel_f), 95))
+    thresholds = SPEED_CHANGE * np.maximum(np.abs(rel_f[stances]), floor)
+    # Every stance's events at once: lift and touchdown on both curves, speed checks.
+    ups, downs, found = [], [], np.ones(len(stances), dtype=bool)
+    for part in ("heel", "toe"):
+        a, d1, d2, _, crossings = curves[part]
+        up, ok_up = _curve_events(a, d1, d2, stances, crossings, +1, 4 * frames)
+        down, ok_down = _curve_events(a, d1, d2, stances, crossings, -1, 4 * frames)
+        ups.append(up)
+        downs.append(down)
+        found &= ok_up & ok_down
+    lift, liftoff = np.minimum(*ups), np.maximum(*ups)
+    strike, landing = np.minimum(*downs), np.maximum(*downs)
+    z_up = _speed_checks(rel_f, stances, thresholds, +1, frames)
+    z_down = _speed_checks(rel_f, stances, thresholds, -1, frames)
+    lift = np.where((z_up >= 0) & (z_up < lift), np.maximum(z_up, stances), lift)
+    landing = np.where((z_down >= 0) & (z_down > landing), np.minimum(z_down, stances), landing)
+    steps = [Step(strike=int(strike[i]), landing=int(landing[i]), stance=int(stances[i]), lift=int(lift[i]),
+                  liftoff=int(liftoff[i]), complete=bool(found[i])) for i in range(len(stances))]
+    return FootEvents(name=tracks.names[f], steps=tuple(_one_per_contact(steps, score)), heel_height=a_heel,
+                      toe_height=a_toe)

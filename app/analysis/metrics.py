@@ -11,7 +11,7 @@ import numpy as np
 
 from ..gaits import GAIT_PRESETS, TETRAPOD_FEET, foot_names, phases_from_offsets, preset_phases
 from ..kinematics.motion import Motion
-from .events import AnalysisError, FootEvents, detect_events, clip_period
+from .events import AnalysisError, FootEvents, clip_period, detect_events
 from .tracks import FootTracks
 
 # Biped gaits, for two-footed clips: left/right phase and a typical duty factor.
@@ -211,23 +211,23 @@ def gait_distance(phases: dict[str, float], duty: float) -> tuple[str, float]:
     if {"L", "R"} <= feet:
         lr = phases["R"] - phases["L"]
         scores = {g: cyclic_distance(lr, p) + abs(duty - d) for g, (p, d) in BIPED_GAITS.items()}
-        best = min(scores, key=scores.get)
-        return best, scores[best]
+        biped = min(scores, key=lambda g: scores[g])
+        return biped, scores[biped]
     pairs = len(feet) // 2
     names = foot_names(pairs)
     if pairs >= 3 and feet >= set(names):
-        best, best_d = "", math.inf
+        chosen, best_d = "", math.inf
         lag = wave_lag(phases)
         for name, preset in GAIT_PRESETS.items():
             if not preset.fits(pairs):
                 continue
-            fb = lag if name == "metachronal" and lag is not None else float(preset.front_back)
-            expected = phases_from_offsets(fb, float(preset.left_right), names)
+            fb = lag if name == "metachronal" and lag is not None else float(preset.front_back or 0.0)
+            expected = phases_from_offsets(fb, float(preset.left_right or 0.0), names)
             d = float(np.mean([cyclic_distance(phases[n], e) for n, e in zip(names, expected)]))
             d += abs(duty - preset.duty_factor) * (0.25 if name == "metachronal" else 1.0)
             if d < best_d:
-                best, best_d = name, d
-        return best, best_d
+                chosen, best_d = name, d
+        return chosen, best_d
     return "unknown", math.inf
 
 

@@ -6,7 +6,6 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-
 from .metrics import GaitReport
 
 _EVENT_STYLE = {"strike": ("v", "#d62728"), "landing": ("s", "#ff7f0e"), "stance": ("o", "#2ca02c"),

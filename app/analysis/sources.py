@@ -5,13 +5,13 @@ from __future__ import annotations
 
 import csv
 import io
-import math
 import os
 import re
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..errors import did_you_mean
 from .bvh import InputError, read_bvh
@@ -142,9 +142,11 @@ def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis,
     hip = float(np.median(body[:, 1] - heel[..., 1].min(axis=1)))
     notes = []
     if units == "auto":
-        units, reason = detect_units(abs(hip))
-        notes.append(f"units {units} ({reason}; --units to override)")
-    scale = UNIT_SCALE[units]
+        detected, reason = detect_units(abs(hip))
+        notes.append(f"units {detected} ({reason}; --units to override)")
+        scale = UNIT_SCALE[detected]
+    else:
+        scale = UNIT_SCALE[units]
     if up == "auto":
         notes.append(f"up axis {up_axis.upper()}")
     if skip:
@@ -161,8 +163,8 @@ def tracks_from_bvh(path: str, feet: dict[str, tuple[str, str | None]] | None = 
     heel proxy; without a toe joint the ankle stands for both."""
     clip = read_bvh(path)
     mapping = FootMap(feet, "given with --feet") if feet else find_feet(clip.names, path)
-    for foot, (ankle, toe) in mapping.feet.items():
-        for joint in (ankle, toe):
+    for foot, (ankle, toe_joint) in mapping.feet.items():
+        for joint in (ankle, toe_joint):
             if joint is not None and joint not in clip.names:
                 raise InputError(f"{path}: --feet {foot}: no joint {joint!r}{did_you_mean(joint, clip.names)}; "
                                  f"joints are {', '.join(clip.names[:20])}{' ...' if len(clip.names) > 20 else ''}")
@@ -171,7 +173,7 @@ def tracks_from_bvh(path: str, feet: dict[str, tuple[str, str | None]] | None = 
     toes = [mapping.feet[n][1] or mapping.feet[n][0] for n in names]
     pos = clip.positions(ankles + toes + [clip.joints[0].name])
     heel, toe, body = pos[:, :len(names)], pos[:, len(names):2 * len(names)], pos[:, -1]
-    hands = None
+    hands: NDArray[np.float64] | None = None
     if names == ["L", "R"]:  # a biped's hands, when the skeleton names them: the arms' phase
         for prefix in ("", "mixamorig:"):
             if f"{prefix}LeftHand" in clip.names and f"{prefix}RightHand" in clip.names:

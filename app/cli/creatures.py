@@ -24,8 +24,8 @@ def run(args: argparse.Namespace) -> int:
     from ..gaits import GAIT_PRESETS, gaits_for
     from ..resources import preset_creature_names, scenes_dir
     from ..rigging import build_rig
-    from ..worlds import scene_description
     from ..spec import leg_type, load_creature
+    from ..worlds import scene_description
 
     print("Creatures (gaitlab render NAME):")
     found = []

@@ -17,8 +17,8 @@ from ..choices import MAX_CRF, MAX_HERD, MAX_SIZE, OVERLAYS
 from ..gaits import GAIT_PRESETS
 from ..limits import MAX_FPS, MAX_SECONDS, MAX_SPEED
 from ..numbers import NumberProblem, Range
-from ..worlds.kinds import PATH_KINDS, TERRAIN_KINDS, path_usage, terrain_usage
 from ..styles import WALK_STYLES
+from ..worlds.kinds import PATH_KINDS, TERRAIN_KINDS, path_usage, terrain_usage
 
 EXIT_BAD_INPUT = 2
 

@@ -6,10 +6,30 @@ import argparse
 import sys
 from pathlib import Path
 
-from ..choices import (ANTIALIAS_MODES, ARC_JOINTS, CAMERA_CHOICES, DEFAULT_ANTIALIAS, DEFAULT_CAMERA, DEFAULT_CRF,
-                       DEFAULT_GIF_QUALITY, GIF_QUALITIES, MAX_CRF)
+from ..choices import (
+    ANTIALIAS_MODES,
+    ARC_JOINTS,
+    CAMERA_CHOICES,
+    DEFAULT_ANTIALIAS,
+    DEFAULT_CAMERA,
+    DEFAULT_CRF,
+    DEFAULT_GIF_QUALITY,
+    GIF_QUALITIES,
+    MAX_CRF,
+)
 from ..errors import GaitlabError
-from .options import add_clip, add_creature, add_speed, add_world, crf, herd, samples, seconds_from_zero, size, world_help
+from .options import (
+    add_clip,
+    add_creature,
+    add_speed,
+    add_world,
+    crf,
+    herd,
+    samples,
+    seconds_from_zero,
+    size,
+    world_help,
+)
 
 EPILOG = """\
 examples:
@@ -130,7 +150,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.quiet:
         size_kib = result.path.stat().st_size / 1024
         w, h = args.size
-        names = " and ".join(dict.fromkeys(a.spec.name for a in cast)) if len(cast) > 1 else lead.spec.name
+        names = _and([a.spec.name for a in cast])
         if fmt == "png":
             print(f"wrote {result.path} ({w}x{h}, {names} {lead.spec.gait.preset} at t = {args.time:g} s, "
                   f"{size_kib:.0f} KiB)")
@@ -140,6 +160,11 @@ def run(args: argparse.Namespace) -> int:
             print(f"wrote {result.path}: {result.frames} frames, {result.seconds:.2f} s at {fps:g} fps "
                   f"({result.cycles:.2f} cycles of {what}), {w}x{h}, {size_kib:.0f} KiB")
     return 0
+
+
+def _and(names: list[str]) -> str:
+    """``horse, dog and cat``."""
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
 
 def _record_with_progress(request, output: Path, show: bool):

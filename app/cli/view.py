@@ -5,9 +5,9 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
+from ..choices import OVERLAYS
 from ..errors import GaitlabError
 from .options import add_creature, add_world, herd, overlays, samples, size
-from ..choices import OVERLAYS
 
 EPILOG = """\
 examples:

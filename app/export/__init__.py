@@ -27,7 +27,8 @@ if TYPE_CHECKING:
 _HOMES = {"bvh_text": "bvh", "write_bvh": "bvh", "ExportResult": "clip", "export_clip": "clip", "export_cast": "clip",
           "gltf_document": "gltf", "write_glb": "gltf", "write_usd": "usd"}
 
-__all__ = ["EXPORT_FORMATS", "ExportResult", "bvh_text", "export_cast", "export_clip", "export_format", "gltf_document", "write_bvh",
+__all__ = ["EXPORT_FORMATS", "ExportResult", "bvh_text", "export_cast", "export_clip", "export_format", "gltf_document",
+           "write_bvh",
            "write_glb", "write_usd"]
 
 

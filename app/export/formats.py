@@ -8,7 +8,6 @@ from ..choices import EXPORT_FORMATS, ExportFormat
 from ..output.files import format_by_suffix
 
 
-
 def export_format(path: str | os.PathLike[str]) -> ExportFormat:
     """The export format of ``path`` from its suffix; :class:`OutputError` if unsupported."""
     allowed = ", ".join("." + f for f in EXPORT_FORMATS)

@@ -19,11 +19,12 @@ import pygltflib as gl
 from numpy.typing import NDArray
 from scipy.spatial.transform import Rotation
 
+from ..errors import OutputError
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import SkeletonClip
-from ..errors import OutputError
 from ..output import AtomicPath
 from .mesh import creature_mesh
+
 
 def continuous_quaternions(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
     """(T, 3, 3) -> (T, 4) xyzw, signs kept continuous over time (no 360-degree spins)."""
@@ -170,7 +171,7 @@ def gltf_document(motion: Motion | list[Motion], clip: SkeletonClip | list[Skele
     for c, prefix in zip(clips, prefixes):
         skeletons.append(_skeleton(c, prefix, blob, doc))
         roots.append(skeletons[-1][0])
-    for (first, skin), mesh, m in zip(skeletons, meshes, motions):
+    for (_, skin), mesh, m in zip(skeletons, meshes, motions):
         doc.nodes.append(gl.Node(name=m.rig.name if len(clips) > 1 else "creature", mesh=mesh, skin=skin))
         roots.append(len(doc.nodes) - 1)
     if ground:

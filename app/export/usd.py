@@ -56,7 +56,7 @@ def write_usd(path: str | os.PathLike[str], motion: Motion | list[Motion], clip:
     """Write the clip as a UsdSkel stage (.usda or .usdc by suffix), atomically: one
     creature at ``/Creature``, or several (a scene's), each its own SkelRoot
     ``/Scene/NAME``."""
-    Gf, Sdf, Usd, UsdGeom, UsdSkel, Vt = _pxr()
+    _Gf, _Sdf, Usd, UsdGeom, _UsdSkel, _Vt = _pxr()
     motions = motion if isinstance(motion, list) else [motion]
     clips = clip if isinstance(clip, list) else [clip]
     out = AtomicPath(path)
@@ -100,7 +100,7 @@ def _prim_name(name: str) -> str:
 
 def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
     """One creature's SkelRoot at ``where``: skeleton, animation and skinned mesh."""
-    Gf, Sdf, Usd, UsdGeom, UsdSkel, Vt = _pxr()
+    Gf, Sdf, _Usd, UsdGeom, UsdSkel, Vt = _pxr()
     root = UsdSkel.Root.Define(stage, where)
     skeleton = UsdSkel.Skeleton.Define(stage, f"{where}/Skeleton")
     paths = joint_paths(clip)

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from ..choices import ARC_JOINTS, ArcJoint  # noqa: F401 (re-exported)
+from ..choices import ARC_JOINTS
 from ..errors import did_you_mean
 from .motion import Motion
 from .poses import key_pose_phases, reference_foot

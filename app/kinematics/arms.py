@@ -12,9 +12,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from .frames import UP
 from .rig import ArmShape
 
-from .frames import UP
 FORWARD_BEND = 0.6  # extra elbow bend per radian of forward swing
 WRIST_FLEX = 0.15  # rad the hand turns further than the forearm
 ARM_SPREAD = 0.06  # rad the arms hang out from the body

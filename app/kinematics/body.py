@@ -15,18 +15,18 @@ Steps, each vectorised over frames (T) and girdles (G) or legs (L):
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Mapping
 
 import numpy as np
 from numpy.typing import NDArray
 
+from .frames import UP
 from .path import left_of
 from .rig import MIN_CROUCH, Rig
 from .spine import bezier, bezier_tangent
 from .world import World
 
-from .frames import UP
 TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension

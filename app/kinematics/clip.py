@@ -46,10 +46,10 @@ def clip_motion(rig: Rig, fps: float, seconds: float | None = None, cycles: floa
     if seconds is None:
         cycles = DEFAULT_CYCLES if cycles is None else cycles
         frames = max(1, int(round(cycles * fps / f)))
-        clock = start_clock + cycles * np.arange(frames + int(closed)) / frames
+        clock = start_clock + cycles * np.arange(frames + int(closed), dtype=np.float64) / frames
     else:
         frames = frame_count(seconds, fps)
-        clock = start_clock + f * np.arange(frames) / fps
+        clock = start_clock + f * np.arange(frames, dtype=np.float64) / fps
         cycles = None
     times = start + np.arange(len(clock)) / fps
     motion = solve_motion(rig, world, constant_gait_inputs(rig, world, clock, times), fps=fps)

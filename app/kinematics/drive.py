@@ -82,7 +82,7 @@ class DrivenPath(Path):
         if s == self._s[-1]:
             self._k[-1] = curvature
             return
-        (point,), (tangent,) = _arc(self._s[-1:], self._x[-1:], self._z[-1:], self._heading[-1:], self._k[-1:],
+        (point,), (_tangent,) = _arc(self._s[-1:], self._x[-1:], self._z[-1:], self._heading[-1:], self._k[-1:],
                                     np.array([s]))
         heading = float(self._heading[-1] + self._k[-1] * (s - self._s[-1]))
         keep = slice(-(MAX_ARCS - 1), None) if len(self._s) >= MAX_ARCS else slice(None)

@@ -21,8 +21,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .footholds import EDGE_MARGIN, Footholds, place_feet
+from ..choices import WaveShape
 from .easing import smootherstep
+from .footholds import EDGE_MARGIN, Footholds, place_feet
 from .oscillator import foot_wave
 from .path import left_of
 from .rig import Rig
@@ -59,7 +60,7 @@ class FootPlan:
     end_dir: NDArray[np.float64]
 
 
-def swing_ease(swing: NDArray[np.float64], wave: str) -> NDArray[np.float64]:
+def swing_ease(swing: NDArray[np.float64], wave: WaveShape) -> NDArray[np.float64]:
     """Progress (0..1) along the chord between footholds at swing progress ``swing``: a
     smootherstep for the planted wave, a sine ease for the seed's skewed waves. Both start
     and end at rest, so a foot leaves and meets the ground without a jolt."""
@@ -147,7 +148,7 @@ def swing_support(rig: Rig, world: World, legs: NDArray[np.int64], start: NDArra
 
 def swing_apex(rig: Rig, world: World, start: NDArray[np.float64], end: NDArray[np.float64],
                legs: NDArray[np.int64], step_height: NDArray[np.float64], duty: NDArray[np.float64],
-               wave: str, lift_at: NDArray[np.float64], land_at: NDArray[np.float64]) -> NDArray[np.float64]:
+               wave: WaveShape, lift_at: NDArray[np.float64], land_at: NDArray[np.float64]) -> NDArray[np.float64]:
     """The apex height (m) of swings from ``start`` to ``end`` (N, 3): the step height, or
     more where the ground along the way (under the ball and the toe tip) would otherwise
     come within CLEARANCE of the foot. step_height (N,) in metres; duty (N,); the body
@@ -243,7 +244,7 @@ def landing_points(rig: Rig, world: World, legs: NDArray[np.int64], start: NDArr
     return point
 
 
-def foot_targets(plan: FootPlan, lift_shape: NDArray[np.float64], wave: str, rig: Rig, world: World,
+def foot_targets(plan: FootPlan, lift_shape: NDArray[np.float64], wave: WaveShape, rig: Rig, world: World,
                  travel: NDArray[np.float64]) -> FootTargets:
     """Ball targets from a plan; ``lift_shape`` (T, L) is the oscillator's lift (0..1) and
     ``travel`` (T,) the body's arc length now.

@@ -8,17 +8,16 @@ from dataclasses import replace
 import numpy as np
 from numpy.typing import NDArray
 
-from .motion import Motion, Pose, constant_gait_inputs, solve_motion, travel_per_cycle
+from .motion import POINT_FIELDS, Motion, Pose, constant_gait_inputs, solve_motion, travel_per_cycle
 from .poses import key_pose_phases
 from .rig import Rig
 from .world import World
 
-_MOVING = ("joints", "heel", "arms", "spine", "neck", "head", "tail")  # the fields that are points
 
 
 def shift_pose(pose: Pose, offset: NDArray[np.float64]) -> Pose:
     """The pose moved by ``offset`` (3,) metres (its root too)."""
-    moved = {name: getattr(pose, name) + offset for name in _MOVING}
+    moved = {name: getattr(pose, name) + offset for name in POINT_FIELDS}
     root = pose.root.copy()
     root[:3, 3] += offset
     return replace(pose, root=root, **moved)

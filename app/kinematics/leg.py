@@ -193,7 +193,7 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
     if np.any(fix):
         idx = np.nonzero(fix)
         bshape = fix.shape
-        pick = lambda a: np.broadcast_to(a, bshape)[idx]  # noqa: E731
+        pick = lambda a: np.broadcast_to(a, bshape)[idx]
         cos_t = np.clip(np.clip(cos_phi[idx], pick(cos_edge_far), pick(cos_edge_near)), -1.0, 1.0)
         rf, ru, rl = _reach_rotation(wf[idx], wu[idx], wl[idx], hf[idx], hu[idx], hl[idx], length[idx], cos_t)
         wf, wu, wl = wf.copy(), wu.copy(), wl.copy()

@@ -30,9 +30,17 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..choices import WaveShape
 from .easing import smoothstep
-from .footfalls import (FootPlan, landing_points, neutral_points, plan_constant_gait, plan_footholds,
-                        stance_directions, swing_apex)
+from .footfalls import (
+    FootPlan,
+    landing_points,
+    neutral_points,
+    plan_constant_gait,
+    plan_footholds,
+    stance_directions,
+    swing_apex,
+)
 from .gait import ground_speed
 from .motion import MotionInputs, Pose, check_world, oscillators, solve_motion
 from .oscillator import FootWave
@@ -134,7 +142,7 @@ class LiveMotion:
         w = float(smoothstep(self._blend))
         return self._bob_from + (self._bob_to - self._bob_from) * w
 
-    def _wave_now(self) -> str:
+    def _wave_now(self) -> WaveShape:
         return self._wave_to if smoothstep(self._blend) >= 0.5 else self._wave_from
 
     def target_offsets(self) -> NDArray[np.float64]:
@@ -160,7 +168,7 @@ class LiveMotion:
 
     # -- swing speeds -----------------------------------------------------------------
 
-    def _swing_terms(self, duty, travel_m, step_height, wave: str):
+    def _swing_terms(self, duty, travel_m, step_height, wave: WaveShape):
         """Per foot and swing sample (L, 41): fore-aft speed relative to the hip and vertical
         speed (m/s) per unit of phase speed (cycles/s), for swings covering ``travel_m``
         metres relative to the hip."""
@@ -169,7 +177,7 @@ class LiveMotion:
         b = _DLIFT * (np.asarray(step_height)[..., None] * self.rig.l_rest[:, None]) / (1.0 - duty)
         return a, b
 
-    def _swing_speed(self, phase_speed, duty, travel_m, step_height, ground_speed, wave: str) -> NDArray[np.float64]:
+    def _swing_speed(self, phase_speed, duty, travel_m, step_height, ground_speed, wave: WaveShape) -> NDArray[np.float64]:
         """Peak speed over the ground (m/s) of each foot's swing at ``phase_speed``, the body
         moving at ``ground_speed`` (m/s)."""
         a, b = self._swing_terms(np.broadcast_to(duty, (self.rig.leg_count,)), travel_m, step_height, wave)
@@ -197,7 +205,7 @@ class LiveMotion:
         at = np.concatenate([self.lift_at, self.land_at, np.full(len(legs), self.travel)])
         point, tangent = neutral_points(self.rig, self.world, at, np.tile(legs, 3))
         point, tangent = point.reshape(3, -1, 2), tangent.reshape(3, -1, 2)
-        along = lambda p, i: np.sum((p[:, [0, 2]] - point[i]) * tangent[i], axis=-1)  # noqa: E731
+        along = lambda p, i: np.sum((p[:, [0, 2]] - point[i]) * tangent[i], axis=-1)
         now = along(self.end, 1) - along(self.start, 0)
         lift_next = along(self.start, 2) - (self.duty - phase) * per_cycle  # where it will leave the ground
         landing_next = 0.5 * self.rig.gait.stride * self.rig.leg_scale

@@ -16,10 +16,12 @@ it, so planted feet keep still relative to the ground.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from ..choices import WaveShape
 from .arms import arm_chains, arm_swing
 from .body import place_girdles, root_frames, spine_through
 from .footfalls import FootPlan, foot_directions, foot_targets, plan_constant_gait
@@ -37,43 +39,60 @@ TIGHTEST_TURN = 0.2  # body lengths: the smallest turning radius a path may ask 
 REACH_TOLERANCE = 0.01  # m a planted foot may miss its foothold before the ground counts as out of reach
 
 
+_POINTS = {"points": True}  # a field holding world positions (they move with the creature, or the ground)
+_PER_CLIP = {"per_clip": True}  # a field that is the same for every frame of a clip (no time axis in a Motion)
+
+
 @dataclass(frozen=True)
-class Pose:
-    """One frame. Shapes: L legs, S body segments, K tail segments; metres.
+class _BodyParts:
+    """The fields a :class:`Pose` and a :class:`Motion` share, declared once: a Motion
+    has each with a leading time axis T (except the per-clip ones).
 
     joints (L, 5, 3) hip, knee, ankle, ball, toe tip; contact (L,) planted; phase (L,)
     foot phase since touchdown; spine (S, 3) segment centres, spine_tangent (S, 3),
     spine_radius (S,); neck (2, 3) base and top; head (2, 3) back of skull and nose;
-    tail (K+1, 3) chain; root (4, 4) body transform; ground_offset: how far (m) the
-    ground has moved backwards (-Z) since time 0 (in place; 0 when travelling);
-    travel: the body's arc length along its path (m); heel (L, 3) where each foot's heel
+    tail (K+1, 3) chain; root (4, 4) body transform; heel (L, 3) where each foot's heel
     touches (the ball for feet that do not roll or stand on their toes); arms (A, 4, 3)
-    shoulder, elbow, wrist and hand tip of each arm (A = 0 or 2, left first); ear_lag
-    (rad) how far the ears are turned back by their follow-through (up when < 0).
+    shoulder, elbow, wrist and hand tip of each arm (A = 0 or 2, left first).
     """
 
-    joints: NDArray[np.float64]
+    joints: NDArray[np.float64] = field(metadata=_POINTS)
     contact: NDArray[np.bool_]
     phase: NDArray[np.float64]
-    spine: NDArray[np.float64]
+    spine: NDArray[np.float64] = field(metadata=_POINTS)
     spine_tangent: NDArray[np.float64]
-    spine_radius: NDArray[np.float64]
-    neck: NDArray[np.float64]
-    head: NDArray[np.float64]
-    tail: NDArray[np.float64]
+    spine_radius: NDArray[np.float64] = field(metadata=_PER_CLIP)
+    neck: NDArray[np.float64] = field(metadata=_POINTS)
+    head: NDArray[np.float64] = field(metadata=_POINTS)
+    tail: NDArray[np.float64] = field(metadata=_POINTS)
     root: NDArray[np.float64]
+    leg_names: tuple[str, ...] = field(metadata=_PER_CLIP)
+    heel: NDArray[np.float64] = field(metadata=_POINTS)
+    arms: NDArray[np.float64] = field(metadata=_POINTS)
+
+
+POINT_FIELDS: tuple[str, ...] = tuple(f.name for f in fields(_BodyParts) if f.metadata.get("points"))
+PER_CLIP_FIELDS: tuple[str, ...] = tuple(f.name for f in fields(_BodyParts) if f.metadata.get("per_clip"))
+
+
+@dataclass(frozen=True)
+class Pose(_BodyParts):
+    """One frame. Shapes: L legs, S body segments, K tail segments; metres (the shared
+    fields: see :class:`_BodyParts`). ground_offset: how far (m) the ground has moved
+    backwards (-Z) since time 0 (in place; 0 when travelling); travel: the body's arc
+    length along its path (m); ear_lag (rad) how far the ears are turned back by their
+    follow-through (up when < 0).
+    """
+
     ground_offset: float
     travel: float
-    leg_names: tuple[str, ...]
-    heel: NDArray[np.float64]
-    arms: NDArray[np.float64]
     ear_lag: float
 
 
 @dataclass(frozen=True)
-class Motion:
-    """A clip: every :class:`Pose` field with a leading time axis T, plus the clock, the
-    rig and the world it walked in.
+class Motion(_BodyParts):
+    """A clip: every :class:`Pose` field with a leading time axis T (but the per-clip
+    ones), plus the clock, the rig and the world it walked in.
 
     times (T,) seconds; clock (T,) cycles since the start; fps frames per second;
     ``path`` and ``terrain`` are the world's.
@@ -81,24 +100,11 @@ class Motion:
 
     times: NDArray[np.float64]
     clock: NDArray[np.float64]
-    joints: NDArray[np.float64]
-    contact: NDArray[np.bool_]
-    phase: NDArray[np.float64]
-    spine: NDArray[np.float64]
-    spine_tangent: NDArray[np.float64]
-    spine_radius: NDArray[np.float64]
-    neck: NDArray[np.float64]
-    head: NDArray[np.float64]
-    tail: NDArray[np.float64]
-    root: NDArray[np.float64]
-    ground_offset: NDArray[np.float64]
+    ground_offset: NDArray[np.float64]  # (T,): a Pose's number, per frame
     travel: NDArray[np.float64]
-    leg_names: tuple[str, ...]
+    ear_lag: NDArray[np.float64]  # (T,) rad
     fps: float
     rig: Rig
-    heel: NDArray[np.float64]  # (T, L, 3)
-    arms: NDArray[np.float64]  # (T, A, 4, 3)
-    ear_lag: NDArray[np.float64]  # (T,) rad the ears turn back following through
     world: World = field(default_factory=World)
     gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
     reach_error: NDArray[np.float64] | None = None  # (T, L) m between each ball and its target
@@ -119,10 +125,9 @@ class Motion:
     def in_place(self) -> bool:
         return self.world.in_place
 
-    def frames(self, first: int) -> "Motion":
+    def frames(self, first: int) -> Motion:
         """The clip from frame ``first`` on."""
-        per_frame = {"times", "clock", "joints", "contact", "phase", "spine", "spine_tangent", "neck", "head", "tail",
-                     "root", "ground_offset", "travel", "heel", "arms", "ear_lag"}
+        per_frame = [f.name for f in fields(Pose) if f.name not in PER_CLIP_FIELDS] + ["times", "clock"]
         values = {name: getattr(self, name)[first:] for name in per_frame}
         if self.reach_error is not None:
             values["reach_error"] = self.reach_error[first:]
@@ -132,14 +137,12 @@ class Motion:
 
     def pose(self, index: int) -> Pose:
         """Frame ``index`` as a :class:`Pose`."""
-        static = {"spine_radius", "leg_names"}
-        values = {}
+        values: dict[str, Any] = {}
         for f in fields(Pose):
             value = getattr(self, f.name)
-            values[f.name] = value if f.name in static else value[index]
-        values["ground_offset"] = float(self.ground_offset[index])
-        values["travel"] = float(self.travel[index])
-        values["ear_lag"] = float(self.ear_lag[index])
+            values[f.name] = value if f.name in PER_CLIP_FIELDS else value[index]
+        for name in ("ground_offset", "travel", "ear_lag"):  # numbers in a pose
+            values[name] = float(values[name])
         return Pose(**values)
 
 
@@ -160,7 +163,7 @@ class MotionInputs:
     travel: NDArray[np.float64]
     stride: NDArray[np.float64]
     bob: NDArray[np.float64]
-    wave: str
+    wave: WaveShape
     waves: tuple[FootWave, FootWave] | None = None
     trunk: NDArray[np.float64] | None = None
 
@@ -186,11 +189,11 @@ def trunk_motion(rig: Rig, phase: NDArray[np.float64], wave: FootWave, trunk: ND
     return flex, pitch
 
 
-def oscillators(rig: Rig, plan: FootPlan, wave: str) -> tuple[FootWave, FootWave]:
+def oscillators(rig: Rig, plan: FootPlan, wave: WaveShape) -> tuple[FootWave, FootWave]:
     """Each foot's oscillator at its phase, and the one sampled for the body bob (shifted
     by the bob phase)."""
-    return (foot_wave(plan.phase, plan.duty, wave),  # type: ignore[arg-type]
-            foot_wave(plan.phase - rig.motion.bob_phase, plan.duty, wave))  # type: ignore[arg-type]
+    return (foot_wave(plan.phase, plan.duty, wave),
+            foot_wave(plan.phase - rig.motion.bob_phase, plan.duty, wave))
 
 
 def _leg_frames(rig: Rig, heading: NDArray[np.float64], normal: NDArray[np.float64]):
@@ -264,7 +267,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     hips = girdles.centre[:, rig.girdle] + (rig.hip_side * rig.hip_offset)[None, :, None] * \
         girdles.lateral[:, rig.girdle]
     forward, up = _leg_frames(rig, girdles.heading[:, rig.girdle], feet.normal)
-    ground = 0.0
+    ground: float | NDArray[np.float64] = 0.0
     if not world.terrain.flat:  # the ground under the ball and under the toe tip, whichever is higher
         toe_tip = ball[..., [0, 2]] + np.broadcast_to(forward, ball.shape)[..., [0, 2]] * rig.toe[:, None]
         ground = np.maximum(world.terrain.height(ball[..., [0, 2]]), world.terrain.height(toe_tip))
@@ -296,6 +299,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     if rig.arms is not None:
         ref = reference_foot(rig)
         angle = arm_swing(rig.poses.arm_swing, rig.overlap.arms, plan.phase[:, [ref + 1, ref]])
+        assert spine.shoulder is not None and spine.shoulder_lateral is not None  # a trunk with arms has shoulders
         arms = arm_chains(rig.arms, spine.shoulder, spine.shoulder_lateral, angle)
     else:
         arms = np.zeros((frames, 0, 4, 3))

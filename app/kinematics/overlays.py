@@ -21,29 +21,19 @@ BALL = 3  # joint index of the foot's ball: what stands on the ground
 
 
 def support_polygon(points: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The convex hull of ground points (N, 2, as (x, z)) as (K, 2) vertices ordered by
-    angle about their centre (positive signed area in the (x, z) plane); fewer than three
-    points, or collinear ones, give the points or the segment's two ends.
+    """The convex hull of ground points (N, 2, as (x, z)) as (K, 2) vertices ordered
+    counter-clockwise in the (x, z) plane (positive signed area); fewer than three
+    points give the points, collinear ones the segment's two ends (scipy's Qhull)."""
+    from scipy.spatial import ConvexHull, QhullError
 
-    All-pairs test, vectorised: point i is on the hull when for some j no point lies to
-    the right of the line i -> j. N is a creature's planted feet (a few to a few dozen),
-    so the N^3 test is small.
-    """
     pts = np.unique(np.asarray(points, dtype=np.float64).reshape(-1, 2), axis=0)
-    n = len(pts)
-    if n < 3:
+    if len(pts) < 3:
         return pts
-    d = pts[None, :, :] - pts[:, None, :]  # (i, j): j - i
-    rel = pts[None, None, :, :] - pts[:, None, None, :]  # (i, ., k): k - i
-    cross = d[:, :, None, 0] * rel[..., 1] - d[:, :, None, 1] * rel[..., 0]  # (i, j, k)
-    tol = 1e-12 * float(np.abs(d).max()) ** 2
-    on_hull = (np.all(cross >= -tol, axis=2) & ~np.eye(n, dtype=bool)).any(axis=1)
-    if np.all(np.abs(cross) <= tol):  # all collinear: the segment's two ends
+    try:
+        return pts[ConvexHull(pts).vertices]  # counter-clockwise for 2-D input
+    except QhullError:  # all on one line: the segment's two ends
         order = np.argsort((pts - pts[0]) @ (pts[-1] - pts[0]))
         return pts[order[[0, -1]]]
-    hull = pts[on_hull]
-    centre = hull.mean(axis=0)
-    return hull[np.argsort(np.arctan2(hull[:, 1] - centre[1], hull[:, 0] - centre[0]))]
 
 
 def inside_polygon(point: NDArray[np.float64], hull: NDArray[np.float64]) -> bool:

@@ -199,6 +199,12 @@ class WaypointPath(Path):
     def length(self) -> float:
         return float(self._table.s[-1])
 
+    def point_arc_lengths(self, first: int, count: int) -> NDArray[np.float64]:
+        """Arc lengths (m, (count,)) at which the path passes its points ``first`` to
+        ``first + count - 1``."""
+        knots = np.arange(first, first + count) * self.SAMPLES_PER_SEGMENT
+        return self._table.s[knots]
+
     @staticmethod
     def _build(pts: NDArray[np.float64], closed: bool) -> _Table:
         if closed:
@@ -276,6 +282,7 @@ class SplicedPath(Path):
     def __init__(self, base: Path, s0: float, then: Path) -> None:
         super().__init__()
         s0 = float(s0)
+        self.root: Path
         if isinstance(base, SplicedPath):
             self.root = base.root
             kept = [(s, route) for s, route in base.routes if s < s0]

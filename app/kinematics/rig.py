@@ -13,7 +13,6 @@ the hip and the foot's rest position, so the knee stands up and out.
 from __future__ import annotations
 
 import functools
-
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -268,5 +267,5 @@ class Rig:
         ahead = np.where(self.roll_amount > 0, self.heel_length, 0.0)
         return np.stack([lateral, reach * np.sin(self.splay) + ahead], axis=-1)
 
-    def with_gait(self, gait: GaitParams) -> "Rig":
+    def with_gait(self, gait: GaitParams) -> Rig:
         return replace(self, gait=gait)

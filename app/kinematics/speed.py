@@ -27,7 +27,8 @@ from .rig import Rig, SpeedGaits
 from .world import World
 
 # Duty factor against sqrt(Froude) within each gait: (intercept, slope, low, high).
-_DUTY = {"walk": (0.75, 0.28, 0.52, 0.80), "run": (0.45, 0.08, 0.22, 0.42), "trot": (0.50, 0.11, 0.30, 0.48), "gallop": (0.38, 0.065, 0.18, 0.33)}
+_DUTY = {"walk": (0.75, 0.28, 0.52, 0.80), "run": (0.45, 0.08, 0.22, 0.42), "trot": (0.50, 0.11, 0.30, 0.48),
+         "gallop": (0.38, 0.065, 0.18, 0.33)}
 
 
 def froude(speed: float, hip_height: float) -> float:

@@ -80,7 +80,7 @@ class Terrain(ABC):
 def _grid_axis(lo: float, hi: float, cell: float) -> NDArray[np.float64]:
     start = math.floor(lo / cell) * cell
     count = max(2, int(math.ceil((hi - start) / cell)) + 1)
-    return start + cell * np.arange(count)
+    return start + cell * np.arange(count, dtype=np.float64)
 
 
 def grid_triangles(rows: int, cols: int) -> NDArray[np.uint32]:
@@ -221,9 +221,11 @@ class StairsTerrain(Terrain):
         cuts = self.run * np.arange(self.steps)  # risers at u = k * run
         inside = cuts[(cuts > u0) & (cuts < u1)]
         bounds = np.concatenate([[u0], inside, [u1]])
-        positions, normals, indices = [], [], []
+        positions: list[NDArray[np.float64]] = []
+        normals: list[NDArray[np.float64]] = []
+        indices: list[NDArray[np.int64]] = []
 
-        def quad(p, n):
+        def quad(p: NDArray[np.float64], n: NDArray[np.float64]) -> None:
             base = sum(len(q) for q in positions)
             positions.append(p)
             normals.append(np.broadcast_to(n, (4, 3)))
@@ -266,7 +268,7 @@ class HeightGrid(Terrain):
         self.size = (float(size[0]), float(size[1]))
         self.cell = (self.size[0] / (cols - 1), self.size[1] / (rows - 1))
         self.label = label
-        gz, gx = np.gradient(self.heights, self.cell[1], self.cell[0])
+        gz, gx = (np.asarray(g, dtype=np.float64) for g in np.gradient(self.heights, self.cell[1], self.cell[0]))
         self._normals = _normal_from_gradient(gx, gz)  # (rows, cols, 3)
 
     def _locate(self, xz):

@@ -16,7 +16,6 @@ import tempfile
 from pathlib import Path
 from typing import Literal
 
-from ..choices import MAX_SIZE
 from ..errors import OutputError
 
 OutputFormat = Literal["png", "gif", "mp4"]
@@ -147,7 +146,7 @@ class AtomicPath:
         except OSError:
             pass
 
-    def __enter__(self) -> "AtomicPath":
+    def __enter__(self) -> AtomicPath:
         return self
 
     def __exit__(self, exc_type, exc, tb) -> None:

@@ -132,7 +132,7 @@ class GifWriter:
         chunk = _Chunk(AtomicPath(self.final))
         with self._lock:
             self._chunks.append(chunk)
-        self._file = open(chunk.raw.tmp, "wb")
+        self._file = open(chunk.raw.tmp, "wb")  # noqa: SIM115  (open across add() calls; closed by the chunk)
         self._in_chunk = 0
         self._previous = None  # every chunk opens with a whole frame (it is a GIF of its own)
 
@@ -285,7 +285,7 @@ class _Chunk:
     def optimise(self, exe: str, lossy: int) -> None:
         self.waiting = False
         self.optimised = AtomicPath(self.raw.final)
-        self._log = tempfile.TemporaryFile()
+        self._log = tempfile.TemporaryFile()  # noqa: SIM115  (gifsicle writes to it until it ends)
         command = [exe, "--no-warnings", "-O2"] + ([f"--lossy={lossy}"] if lossy else [])
         self.process = subprocess.Popen([*command, str(self.raw.tmp), "-o", str(self.optimised.tmp)],
                                         stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=self._log,

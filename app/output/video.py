@@ -52,7 +52,7 @@ class Mp4Writer:
         crf = check_crf(crf)
         self.size = (int(w), int(h))
         self._atomic = AtomicPath(path)
-        self._log = tempfile.TemporaryFile()
+        self._log = tempfile.TemporaryFile()  # noqa: SIM115  (ffmpeg writes to it until it ends)
         command = [imageio_ffmpeg.get_ffmpeg_exe(), "-y", "-nostdin", "-loglevel", "error",
                    "-f", "rawvideo", "-pix_fmt", "rgb24", "-s", f"{w}x{h}", "-r", f"{fps:.6g}", "-i", "pipe:0",
                    "-an", "-c:v", "libx264", "-preset", X264_PRESET, "-threads", str(encoder_threads()),
@@ -68,7 +68,7 @@ class Mp4Writer:
 
     def _write(self, frame: NDArray[np.uint8]) -> None:
         assert self._process.stdin is not None
-        self._process.stdin.write(memoryview(np.ascontiguousarray(frame)).cast("B"))
+        self._process.stdin.write(np.ascontiguousarray(frame).tobytes())
 
     def add(self, frame: NDArray[np.uint8]) -> None:
         h, w = frame.shape[:2]

@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field, replace
+from collections.abc import Callable
+from dataclasses import replace
 from pathlib import Path
-from typing import Callable
 
 import moderngl
 import numpy as np
@@ -23,7 +22,6 @@ from ..render.herd import HerdInstances
 from ..render.scene import SceneInstances, creature_points
 from ..rigging import build_rig
 from .request import RecordRequest, RecordResult
-
 
 Progress = Callable[[int, int], None]
 
@@ -263,7 +261,7 @@ def _first_frame(track: HerdTrack) -> HerdTrack:
 
 def _herd_box(motion: Motion, herd: HerdParts, frames: int) -> np.ndarray:
     """Corners of each animal's box (T, 8 N, 3) over a herd's track, for the camera."""
-    animals, track, _ = herd
+    _animals, track, _ = herd
     rig = motion.rig
     top = float(rig.hip_height + rig.body.head_radius)
     reach = 0.75 * float(rig.body_length + rig.body.head_length) * 1.1  # nose and tail of the largest

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from typing import cast
 
-from pyglm import glm
 import numpy as np
 from numpy.typing import NDArray
+from pyglm import glm
 
-from ..choices import CAMERA_CHOICES, CAMERA_PRESETS, DEFAULT_CAMERA, CameraChoice, CameraPreset  # noqa: F401
+from ..choices import CAMERA_PRESETS, DEFAULT_CAMERA, CameraPreset
+
 CHASE_LOOK_AHEAD = 1.2  # body lengths of ground ahead that the chase camera keeps in view
 
 
@@ -35,6 +37,12 @@ _PRESET_ANGLES: dict[str, tuple[float, float]] = {
     "three-quarter": (38.0, 20.0),
     "chase": (-90.0, 20.0),  # behind (camera on -Z), a little above, looking ahead
 }
+
+
+def point3(values: object) -> tuple[float, float, float]:
+    """Three numbers (an array or a sequence) as a point tuple of floats."""
+    x, y, z = (float(v) for v in values)  # type: ignore[attr-defined]
+    return x, y, z
 
 
 @dataclass(frozen=True)
@@ -79,24 +87,24 @@ class Camera:
         return glm.perspective(math.radians(self.fov), aspect, near, far)
 
     def view_proj(self, aspect: float) -> glm.mat4:
-        return self.projection(aspect) * self.view()
+        return cast(glm.mat4, self.projection(aspect) * self.view())  # pyglm's stubs type mat4 * mat4 loosely
 
-    def orbit(self, d_azimuth: float, d_elevation: float) -> "Camera":
+    def orbit(self, d_azimuth: float, d_elevation: float) -> Camera:
         return replace(self, azimuth=self.azimuth + d_azimuth,
                        elevation=float(np.clip(self.elevation + d_elevation, -5.0, 89.0)), top_down=False)
 
-    def zoom(self, factor: float) -> "Camera":
+    def zoom(self, factor: float) -> Camera:
         return replace(self, distance=float(np.clip(self.distance * factor, 0.05, 500.0)))
 
-    def pan(self, dx: float, dy: float) -> "Camera":
+    def pan(self, dx: float, dy: float) -> Camera:
         """Move the target by (dx, dy) fractions of the view height, in screen directions."""
         forward = -self.direction
         right = np.cross(forward, self.up)
-        right /= max(np.linalg.norm(right), 1e-9)
+        right = right / max(float(np.linalg.norm(right)), 1e-9)
         up = np.cross(right, forward)
         scale = 2.0 * self.distance * math.tan(math.radians(self.fov) / 2.0)
         target = np.asarray(self.target) + scale * (-dx * right + dy * up)
-        return replace(self, target=tuple(float(v) for v in target))
+        return replace(self, target=point3(target))
 
 
 def frame_points(points: NDArray[np.float64], preset: CameraPreset | str = DEFAULT_CAMERA,
@@ -114,7 +122,7 @@ def frame_points(points: NDArray[np.float64], preset: CameraPreset | str = DEFAU
     azimuth, elevation = _PRESET_ANGLES[preset]
     lo, hi = points.min(axis=0), points.max(axis=0)
     centre = 0.5 * (lo + hi)
-    cam = Camera(target=tuple(float(v) for v in centre), azimuth=azimuth, elevation=elevation, fov=fov,
+    cam = Camera(target=point3(centre), azimuth=azimuth, elevation=elevation, fov=fov,
                  ortho=ortho, top_down=(preset == "top"), distance=1.0)
     back = cam.direction
     right = np.cross(-back, cam.up)

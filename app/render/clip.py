@@ -16,9 +16,8 @@ from ..choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS, Antialias
 from ..kinematics.motion import Motion
 from .camera import Camera
 from .context import shared_headless_context
-from .framing import clip_camera, clip_cameras, loop_grid_spacing  # noqa: F401  (re-exported)
 from .fxaa import screen_tiles
-from .options import GroundView, RenderOptions, ViewSettings  # noqa: F401  (re-exported)
+from .options import GroundView, RenderOptions
 from .renderer import SceneRenderer
 from .scene import SceneInstances, frame_instances, motion_instances
 from .target import OffscreenTarget
@@ -26,7 +25,7 @@ from .target import OffscreenTarget
 
 class ClipRenderer:
     """Headless renderer of clips, in the given context or the process's shared EGL one
-    (never released here). ``antialias`` and ``samples`` as in :class:`ViewSettings`."""
+    (never released here). ``antialias`` and ``samples`` as in :class:`~app.render.options.ViewSettings`."""
 
     def __init__(self, size: tuple[int, int], antialias: Antialias = DEFAULT_ANTIALIAS, samples: int = 4,
                  ctx: moderngl.Context | None = None) -> None:

@@ -38,9 +38,11 @@ def create_headless_context() -> moderngl.Context:
 
     Raises :class:`GLContextError` with the package to install when it cannot be made.
     """
-    backend = {"backend": "egl"} if sys.platform.startswith("linux") else {}
     try:
-        ctx = moderngl.create_standalone_context(require=REQUIRED_GL, **backend)
+        if sys.platform.startswith("linux"):
+            ctx = moderngl.create_standalone_context(require=REQUIRED_GL, backend="egl")  # type: ignore[arg-type]
+        else:
+            ctx = moderngl.create_standalone_context(require=REQUIRED_GL)
     except Exception as exc:  # moderngl/glcontext raise bare Exceptions with library messages
         detail = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise GLContextError(f"cannot create a headless OpenGL context through EGL ({detail}); "

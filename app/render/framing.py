@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..kinematics.motion import Motion
-from .camera import Camera, clear_elevations, frame_points, look_ahead, preset_for
+from .camera import Camera, clear_elevations, frame_points, look_ahead, point3, preset_for
 from .options import ViewSettings, nice_grid_spacing
 from .scene import box_corners, creature_points, motion_bounds
 
@@ -70,7 +70,7 @@ def clip_cameras(motion: Motion, view: ViewSettings, extra: NDArray[np.float64] 
         window = max(1, int(round(FOLLOW_SMOOTHING * motion.fps)))
         elevations = np.maximum(uniform_filter1d(maximum_filter1d(need, 2 * window + 1, mode="nearest"), window,
                                                  mode="nearest"), base.elevation)
-    return [replace(base, target=tuple(float(v) for v in targets[i]), azimuth=float(azimuths[i]),
+    return [replace(base, target=point3(targets[i]), azimuth=float(azimuths[i]),
                     elevation=float(elevations[i])) for i in range(motion.frame_count)]
 
 

@@ -20,6 +20,7 @@ from numpy.typing import NDArray
 from .camera import Camera
 from .scene import SceneInstances, box_corners
 from .shaders import ShaderLibrary
+from .uniforms import uniform
 
 Region = tuple[int, int, int, int]  # x, y (from the bottom left), width, height in pixels
 
@@ -59,8 +60,8 @@ class FxaaPass:
         target.viewport = (0, 0, *source.size)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
         source.use(location=0)
-        self.program["u_image"].value = 0
-        self.program["u_texel"].value = (1.0 / source.size[0], 1.0 / source.size[1])
+        uniform(self.program, "u_image").value = 0
+        uniform(self.program, "u_texel").value = (1.0 / source.size[0], 1.0 / source.size[1])
         self.vao.render(moderngl.TRIANGLES, vertices=6 * len(boxes))
 
     def release(self) -> None:

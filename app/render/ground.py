@@ -122,7 +122,7 @@ class GroundPass:
             ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO
             self.shadow_vao.render(moderngl.TRIANGLE_STRIP)
             ctx.disable(moderngl.BLEND)
-            ctx.blend_func = moderngl.DEFAULT_BLENDING
+            ctx.blend_func = moderngl.DEFAULT_BLENDING  # type: ignore[assignment]  # (a pair of factors in the stub)
 
     def draw_terrain(self, terrain: Terrain, centre: np.ndarray, reach: float, options: RenderOptions) -> None:
         """The terrain as a lit mesh over a patch around the creatures. The patch snaps to

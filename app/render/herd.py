@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..kinematics.herd import Herd
+from ..kinematics.motion import Motion
 from .scene import SceneInstances, motion_instances
 
 
@@ -21,7 +22,7 @@ class HerdInstances:
 
     def __init__(self, herd: Herd, show_joints: bool = True) -> None:
         self.show_joints = show_joints
-        self._cycle = None
+        self._cycle: Motion | None = None
         self._rows: SceneInstances | None = None
         self._update(herd)
 

@@ -5,6 +5,8 @@ light and the sky's band on screen. The passes in :mod:`.renderer` and
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 from pyglm import glm
 
@@ -54,7 +56,7 @@ def light_view_proj(scene: SceneInstances, ground: float | None = None) -> tuple
     reach = drop / max(-LIGHT_DIR[1], 1e-3) + 0.01
     near, far = -hi[2] - 0.01, -lo[2] + reach
     proj = glm.ortho(float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1]), float(near), float(far))
-    return proj * view, float(max(hi[0] - lo[0], hi[1] - lo[1]) / SHADOW_MAP_SIZE)
+    return cast(glm.mat4, proj * view), float(max(hi[0] - lo[0], hi[1] - lo[1]) / SHADOW_MAP_SIZE)
 
 
 def shadow_footprint(scene: SceneInstances, texel: float) -> tuple[np.ndarray, np.ndarray]:

@@ -37,7 +37,7 @@ class GroundView:
     """The ground under a frame: the terrain, how far the ground has moved back (in place),
     and the path to draw around the body's arc length ``travel`` (m) along it."""
 
-    terrain: Terrain = FlatTerrain()
+    terrain: Terrain = field(default_factory=FlatTerrain)
     offset: float = 0.0
     path: Path | None = None
     travel: float = 0.0

@@ -41,8 +41,10 @@ class Overlays:
     centre: NDArray[np.float64] | None = None  # (2,) the trunk's centre on the ground (x, z)
     stable: bool = False  # the centre lies inside the support polygon
 
-    def markers(self, ground_color: NDArray[np.float64], terrain: Terrain = FlatTerrain()) -> NDArray[np.float32]:
-        """Flat ellipsoid rows (M, 18) for footprints, targets and the centre dot."""
+    def markers(self, ground_color: NDArray[np.float64], terrain: Terrain | None = None) -> NDArray[np.float32]:
+        """Flat ellipsoid rows (M, 18) for footprints, targets and the centre dot, on
+        ``terrain`` (default: flat ground)."""
+        terrain = terrain or FlatTerrain()
         s = self.size
         fade = self.footprint_age[:, None]
         rows = [_discs(self.footprints, terrain, 0.45 * s, 0.015 * s,
@@ -58,9 +60,10 @@ class Overlays:
             rows.append(_discs(c, terrain, 0.35 * s, 0.04 * s, STABLE_COLOR if self.stable else UNSTABLE_COLOR))
         return np.concatenate(rows).astype(np.float32)
 
-    def outline(self, terrain: Terrain = FlatTerrain()) -> NDArray[np.float32] | None:
+    def outline(self, terrain: Terrain | None = None) -> NDArray[np.float32] | None:
         """The support polygon as a closed ribbon (a triangle strip of (x, y, z) points)
         draped over the ground; two feet give their segment; None for fewer."""
+        terrain = terrain or FlatTerrain()
         if self.support is None or len(self.support) < 2:
             return None
         corners = np.asarray(self.support, dtype=np.float64)

@@ -22,11 +22,11 @@ from .ground import ELLIPSOID_LAYOUT, GroundPass
 from .instanced import InstancedMesh
 from .lighting import LIGHT_DIR, SHADOW_MAP_SIZE, creature_bounds, light_view_proj
 from .meshes import unit_capsule, unit_sphere
-from .options import GroundView, RenderOptions, ViewSettings, nice_grid_spacing  # noqa: F401  (re-exported)
+from .options import GroundView, RenderOptions
 from .overlays import Overlays
 from .scene import CAPSULE_FLOATS, Cap, Ell, SceneInstances, pose_instances, srgb_to_linear
 from .shaders import ShaderLibrary
-from .uniforms import Uniforms
+from .uniforms import Uniforms, uniform
 
 GL_MULTISAMPLE = 0x809D  # glEnable/glDisable capability (moderngl's enable_direct)
 THIN_CAPSULE = 0.35  # capsules thinner than this fraction of the thickest use the coarse mesh
@@ -69,7 +69,7 @@ class CreaturePass:
     def draw_depth(self, light_vp: glm.mat4) -> None:
         """Into the shadow map (small spheres cast no shadow)."""
         for mesh in (self.capsules, self.thin_capsules, self.ellipsoids):
-            mesh.vao_depth.program["u_view_proj"].write(light_vp)  # type: ignore[union-attr]
+            uniform(mesh.vao_depth.program, "u_view_proj").write(light_vp)
             mesh.draw(depth_only=True)
 
     def draw(self) -> None:
@@ -180,7 +180,8 @@ class SceneRenderer:
         target.use()
         target.viewport = viewport
         sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
-        target.clear(*np.sqrt(horizon), 1.0, depth=1.0, viewport=viewport)  # beyond the floor: horizon
+        r, g, b = (float(c) for c in np.sqrt(horizon))
+        target.clear(r, g, b, 1.0, depth=1.0, viewport=viewport)  # beyond the floor: horizon
         view_proj = camera.view_proj(aspect)
         self.shadow_map.use(location=0)
         set_ = self.uniforms.set

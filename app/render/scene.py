@@ -18,6 +18,7 @@ from ..kinematics.frames import UP
 from ..kinematics.motion import Motion, Pose
 from ..kinematics.rig import Rig
 
+
 class Cap:
     """The columns of a capsule row: end points a and b, their radii, the colour."""
 
@@ -50,8 +51,8 @@ _UP = UP
 
 @lru_cache(maxsize=256)
 def _srgb_to_linear(hex_color: str) -> tuple[float, float, float]:
-    c = np.array([int(hex_color[i:i + 2], 16) for i in (1, 3, 5)]) / 255.0
-    return tuple(float(v) for v in c * c)
+    r, g, b = (int(hex_color[i:i + 2], 16) / 255.0 for i in (1, 3, 5))
+    return r * r, g * g, b * b
 
 
 def srgb_to_linear(hex_color: str) -> NDArray[np.float64]:
@@ -76,11 +77,11 @@ class SceneInstances:
     ellipsoids: NDArray[np.float32]
     ellipsoid_casters: int = 1
 
-    def frame(self, index: int) -> "SceneInstances":
+    def frame(self, index: int) -> SceneInstances:
         """One frame of a clip's instances."""
         return SceneInstances(self.capsules[index], self.ellipsoids[index], self.ellipsoid_casters)
 
-    def __add__(self, other: "SceneInstances") -> "SceneInstances":
+    def __add__(self, other: SceneInstances) -> SceneInstances:
         """Both sets of shapes in one (one frame each); the shadow casters stay first."""
         a, b = self.ellipsoid_casters, other.ellipsoid_casters
         ells = np.concatenate([self.ellipsoids[:a], other.ellipsoids[:b], self.ellipsoids[a:], other.ellipsoids[b:]])

@@ -27,8 +27,15 @@ class Uniforms:
         if self._values.get(key) == value:
             return
         self._values[key] = value
-        uniform = prog[name]
+        member = uniform(prog, name)
         if isinstance(value, glm.mat4):
-            uniform.write(value)  # type: ignore[union-attr]
+            member.write(value)
         else:
-            uniform.value = value  # type: ignore[union-attr]
+            member.value = value
+
+
+def uniform(prog: moderngl.Program, name: str) -> moderngl.Uniform:
+    """``prog[name]`` as the uniform it is (moderngl types the lookup as any member)."""
+    member = prog[name]
+    assert isinstance(member, moderngl.Uniform), f"{name} is not a uniform of the program"
+    return member

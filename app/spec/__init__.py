@@ -16,10 +16,19 @@ from __future__ import annotations
 from ..choices import LegType, leg_type
 from ..errors import SpecError, did_you_mean
 from .load import creature_from_dict, load_creature
-from .model import (ArmsSpec, BodySpec, CreatureSpec, GaitSpec, LegSpec, LookSpec, MotionSpec, OverlapSpec, PosesSpec,
-                    SpeedSpec)
-from .overrides import (override_keys, parse_override, resolve_phases, rule_for, spec_value,
-                        without_adjustment)
+from .model import (
+                    ArmsSpec,
+                    BodySpec,
+                    CreatureSpec,
+                    GaitSpec,
+                    LegSpec,
+                    LookSpec,
+                    MotionSpec,
+                    OverlapSpec,
+                    PosesSpec,
+                    SpeedSpec,
+)
+from .overrides import override_keys, parse_override, resolve_phases, rule_for, spec_value, without_adjustment
 from .schema import LEG_TYPE_SHAPES, TABLES, Rule, check_value
 
 __all__ = ["LEG_TYPE_SHAPES", "TABLES", "ArmsSpec", "BodySpec", "CreatureSpec", "GaitSpec", "LegSpec", "LegType",

@@ -5,8 +5,9 @@ and what is allowed."""
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
 
@@ -16,10 +17,36 @@ from ..kinematics.rig import leg_lengths
 from ..resources import creatures_dir, preset_creature_names
 from ..styles import DEFAULT_TIMING_FPS
 from ..tomlfile import TomlProblem, read_toml
-from .model import (ArmsSpec, BodySpec, CreatureSpec, GaitSpec, LegSpec, LookSpec, MotionSpec, OverlapSpec, PosesSpec,
-                    SpeedSpec)
-from .schema import (ARMS_RULES, BODY_RULES, DUTY_RANGE, GAIT_RULES, LEG_RULES, LOOK_RULES, MOTION_RULES,
-                     OVERLAP_RULES, POSES_RULES, SPEED_RULES, TETRAPOD_PAIRS, TOP_RULES, Rule, at, check_value, show)
+from .model import (
+    ArmsSpec,
+    BodySpec,
+    CreatureSpec,
+    GaitSpec,
+    LegSpec,
+    LookSpec,
+    MotionSpec,
+    OverlapSpec,
+    PosesSpec,
+    SpeedSpec,
+)
+from .schema import (
+    ARMS_RULES,
+    BODY_RULES,
+    DUTY_RANGE,
+    GAIT_RULES,
+    LEG_RULES,
+    LOOK_RULES,
+    MOTION_RULES,
+    OVERLAP_RULES,
+    POSES_RULES,
+    SPEED_RULES,
+    TETRAPOD_PAIRS,
+    TOP_RULES,
+    Rule,
+    at,
+    check_value,
+    show,
+)
 
 
 def load_creature(name_or_path: str | os.PathLike[str]) -> CreatureSpec:
@@ -174,7 +201,7 @@ def _read_gait(table: Mapping[str, Any], feet: tuple[str, ...], where: str) -> G
                         f"{gait.frequency:g}, frames_per_cycle = {gait.frames_per_cycle:g})")
     if gait.frames_per_cycle is not None:
         fps = gait.timing_fps or DEFAULT_TIMING_FPS
-        top = GAIT_RULES["frequency"].hi
+        top = float(GAIT_RULES["frequency"].hi or 0.0)
         if fps / gait.frames_per_cycle > top:
             raise SpecError(f"{at(where)}gait.frames_per_cycle = {gait.frames_per_cycle:g} at {fps:g} fps is "
                             f"{fps / gait.frames_per_cycle:.3g} Hz; strides are at most {top:g} Hz: give at least "

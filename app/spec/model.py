@@ -9,9 +9,10 @@ them live in :mod:`app.kinematics.rig`.
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Mapping
+from typing import TYPE_CHECKING, Any
 
 from ..choices import KneeDirection, Posture, WaveShape
 from ..gaits import GAIT_PRESETS, foot_names
@@ -169,10 +170,10 @@ class CreatureSpec:
     gait: GaitSpec = GaitSpec()
     motion: MotionSpec = MotionSpec()
     speed: SpeedSpec = SpeedSpec()
-    look: LookSpec = LookSpec()
+    look: LookSpec = field(default_factory=LookSpec)
     arms: ArmsSpec | None = None
     poses: PosesSpec = PosesSpec()
-    overlap: OverlapSpec = OverlapSpec()
+    overlap: OverlapSpec = field(default_factory=OverlapSpec)
     description: str = ""
     source: str = field(default="", compare=False)
 
@@ -250,7 +251,7 @@ _LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0, "roll": 0.0}  # lef
 
 
 def _leg_table(leg: LegSpec) -> dict[str, Any]:
-    table = {k: v for k, v in _table(leg, skip=("name",)).items() if _LEG_DEFAULTS.get(k, None) != v}
+    table = {k: v for k, v in _table(leg, skip=("name",)).items() if _LEG_DEFAULTS.get(k) != v}
     if leg.count > 1:
         table.pop("position", None)  # repeated pairs are placed by their span
     return table

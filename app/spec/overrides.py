@@ -4,7 +4,8 @@ key's value; each foot's phase."""
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from collections.abc import Mapping
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -147,5 +148,5 @@ def resolve_phases(gait: GaitSpec, feet: tuple[str, ...]) -> NDArray[np.float64]
     if preset.symmetric:
         fb = preset.front_back if gait.front_back is None else gait.front_back
         lr = preset.left_right if gait.left_right is None else gait.left_right
-        return phases_from_offsets(float(fb), float(lr), feet)
+        return phases_from_offsets(float(fb or 0.0), float(lr or 0.0), feet)
     return preset_phases(gait.preset, feet)

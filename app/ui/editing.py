@@ -75,7 +75,7 @@ class EditingMixin(StateBase):
             try:
                 mine, styled = build_rig(self.spec), build_rig(apply_style(self.spec, style))
                 a, b = mine.poses, styled.poses
-                edited = (a.heights is None or not np.allclose(a.heights, b.heights, atol=1e-4)
+                edited = (a.heights is None or b.heights is None or not np.allclose(a.heights, b.heights, atol=1e-4)
                           or not np.allclose([a.foot_angle, a.arm_swing, a.torso_lean, mine.gait.stride],
                                              [b.foot_angle, b.arm_swing, b.torso_lean, styled.gait.stride], atol=1e-4))
             except GaitlabError:

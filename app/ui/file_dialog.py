@@ -5,7 +5,7 @@ on a bare Xvfb display)."""
 from __future__ import annotations
 
 import shutil
-from typing import Literal
+from typing import Any, Literal
 
 DialogKind = Literal["open", "save"]
 _TOOLS = ("zenity", "kdialog", "qarma", "matedialog")  # what portable-file-dialogs drives on Linux
@@ -23,7 +23,7 @@ class FileDialog:
     """At most one dialog at a time, polled once per frame (the dialog runs on its own)."""
 
     def __init__(self) -> None:
-        self._dialog = None
+        self._dialog: Any = None  # a portable_file_dialogs open_file or save_file while one is open
         self.kind: DialogKind | None = None
 
     @property

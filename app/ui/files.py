@@ -9,8 +9,16 @@ from typing import Literal
 
 import numpy as np
 
-from ..choices import (DEFAULT_ANTIALIAS, DEFAULT_CAMERA, DEFAULT_CRF, DEFAULT_GIF_QUALITY, MAX_CRF, Antialias,
-                       ExportFormat, GifQuality)
+from ..choices import (
+    DEFAULT_ANTIALIAS,
+    DEFAULT_CAMERA,
+    DEFAULT_CRF,
+    DEFAULT_GIF_QUALITY,
+    MAX_CRF,
+    Antialias,
+    ExportFormat,
+    GifQuality,
+)
 from ..errors import GaitlabError
 from ..recording.request import RecordRequest
 from ..render.options import RenderOptions, ViewSettings

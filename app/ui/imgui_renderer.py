@@ -15,6 +15,7 @@ import numpy as np
 from imgui_bundle import imgui
 
 from ..render.shaders import ShaderLibrary
+from ..render.uniforms import uniform
 
 _VERTEX_FORMAT = "2f 2f 4f1"  # ImDrawVert: pos, uv, col (RGBA8, normalised)
 
@@ -65,9 +66,9 @@ class ImguiRenderer:
                 texture.write(block.tobytes(), viewport=(r.x, r.y, r.w, r.h))
             tex.status = imgui.ImTextureStatus.ok
         elif status == imgui.ImTextureStatus.want_destroy:
-            texture = self._textures.pop(tex.tex_id, None)
-            if texture is not None:
-                texture.release()
+            gone = self._textures.pop(tex.tex_id, None)
+            if gone is not None:
+                gone.release()
             tex.set_tex_id(0)
             tex.status = imgui.ImTextureStatus.destroyed
 
@@ -85,14 +86,15 @@ class ImguiRenderer:
         target.use()
         target.viewport = (0, 0, fb_w, fb_h)
         ctx.enable(moderngl.BLEND)
-        ctx.blend_func = (moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA, moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA)
+        ctx.blend_func = (moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA,  # type: ignore[assignment]  # (moderngl's
+                          moderngl.ONE, moderngl.ONE_MINUS_SRC_ALPHA)  # stub knows only the two-factor form)
         ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         x0, y0 = draw_data.display_pos.x, draw_data.display_pos.y
         w, h = draw_data.display_size.x, draw_data.display_size.y
         proj = np.array([[2.0 / w, 0, 0, 0], [0, -2.0 / h, 0, 0], [0, 0, -1, 0],
                          [-(2 * x0 + w) / w, (2 * y0 + h) / h, 0, 1]], dtype="f4")
-        self.program["u_proj"].write(proj.tobytes())
-        self.program["u_texture"].value = 0
+        uniform(self.program, "u_proj").write(proj.tobytes())
+        uniform(self.program, "u_texture").value = 0
         for commands in draw_data.cmd_lists:
             vtx_bytes = commands.vtx_buffer.size() * imgui.VERTEX_SIZE
             idx_bytes = commands.idx_buffer.size() * imgui.INDEX_SIZE
@@ -109,9 +111,9 @@ class ImguiRenderer:
                     texture.use(0)
                 target.scissor = (int(left), int(fb_h - bottom), int(right - left), int(bottom - top))
                 self._vao.render(moderngl.TRIANGLES, vertices=cmd.elem_count, first=cmd.idx_offset)
-        target.scissor = None
+        target.scissor = None  # type: ignore[assignment]  # (None turns the scissor off; the stub omits it)
         ctx.disable(moderngl.BLEND)
-        ctx.blend_func = moderngl.DEFAULT_BLENDING
+        ctx.blend_func = moderngl.DEFAULT_BLENDING  # type: ignore[assignment]  # (a pair of factors in the stub)
 
     @staticmethod
     def _upload(buffer: moderngl.Buffer, data: bytes) -> None:

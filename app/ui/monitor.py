@@ -10,8 +10,8 @@ the same work synchronously (tests, state dumps).
 from __future__ import annotations
 
 import multiprocessing
-from collections import deque
 import signal
+from collections import deque
 from concurrent.futures import Future, ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
 
@@ -24,6 +24,7 @@ from ..kinematics.live import stack_inputs
 from ..kinematics.motion import Motion, Pose, solve_motion
 from ..kinematics.rig import Rig
 from ..kinematics.world import World
+
 
 def _ignore_interrupts() -> None:
     """In the measuring process: Ctrl-C is the viewer's to handle (it stops the worker)."""

@@ -45,9 +45,8 @@ class SceneMixin(StateBase):
         """What the view shows, as a recording or an export films it: every creature as
         edited, on its world, with its herd (the selected one first: the camera follows it)."""
         order = [self.selected] + [i for i in range(len(self.sessions)) if i != self.selected]
-        return tuple(Actor(self.sessions[i].spec, self.sessions[i].world,
-                           herd=1 if self.sessions[i].herd is None else self.sessions[i].herd.count + 1)
-                     for i in order)
+        return tuple(Actor(s.spec, s.world, herd=1 if s.herd is None else s.herd.count + 1)
+                     for s in (self.sessions[i] for i in order))
 
     def select(self, index: int) -> bool:
         """Put scene creature ``index`` (file order) in the panels; the one there walks on."""

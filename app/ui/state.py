@@ -35,8 +35,8 @@ from ..render.camera import Camera
 from ..render.options import RenderOptions
 from ..spec import CreatureSpec
 from .editing import EditingMixin
-from .files import FilesMixin, RecordSettings, is_shipped  # noqa: F401  (re-exported)
-from .playback import FRAME_DT, SAMPLE_RATE, PlaybackMixin  # noqa: F401  (re-exported)
+from .files import FilesMixin, RecordSettings
+from .playback import PlaybackMixin
 from .scene import SceneMixin
 from .session import CreatureSession, PerCreature
 from .view import ViewMixin
@@ -52,7 +52,7 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
     live = PerCreature[LiveMotion]("live")
     world = PerCreature[World]("world")
     file_path = PerCreature[str]("file_path")
-    herd = PerCreature["Herd | None"]("herd")
+    herd = PerCreature[Herd | None]("herd")
     waypoints = PerCreature[list]("waypoints")
     path_kind = PerCreature[str]("path_kind")
     _undo = PerCreature[list]("undo")
@@ -122,5 +122,5 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
             if value:
                 super().__setattr__("message", ("error" if name == "error" else "ok", str(value),
                                                 time.strftime("%H:%M:%S")))
-            elif name == "error" and getattr(self, "message", None) and self.message[0] == "error":
+            elif name == "error" and (message := getattr(self, "message", None)) and message[0] == "error":
                 super().__setattr__("message", None)

@@ -7,14 +7,14 @@ from dataclasses import replace
 
 import numpy as np
 
+from ..choices import CAMERA_PRESETS, DEFAULT_CAMERA
 from ..errors import GaitlabError
 from ..kinematics.ghosts import key_pose_ghosts, shift_pose
 from ..kinematics.motion import Pose
 from ..kinematics.overlays import inside_polygon, planted_points, support_polygon, touchdown_targets, trunk_centre
 from ..kinematics.poses import reference_foot
 from ..kinematics.world import World
-from ..choices import CAMERA_PRESETS, DEFAULT_CAMERA
-from ..render.camera import CHASE_LOOK_AHEAD, clear_elevations, frame_points, look_ahead
+from ..render.camera import CHASE_LOOK_AHEAD, clear_elevations, frame_points, look_ahead, point3
 from ..render.options import GroundView, nice_grid_spacing
 from ..render.overlays import Overlays
 from ..render.scene import leg_colors
@@ -82,7 +82,7 @@ class ViewMixin(StateBase):
         if point is None:
             root = self.pose().root[:3, 3]
             point = (float(root[0]), float(root[1]), float(root[2]))
-        self.camera = replace(self.camera, target=tuple(float(v) for v in point))
+        self.camera = replace(self.camera, target=point3(point))
 
     def follow_creature(self, pose: Pose | None = None) -> None:
         """Keep the camera on the creature: the target over its root, its height eased
@@ -95,7 +95,7 @@ class ViewMixin(StateBase):
         self._heading = heading
         if not self.follow:
             return
-        tx, ty, tz = self.camera.target
+        _tx, ty, _tz = self.camera.target
         offset = self._follow_height
         if offset is None:
             offset = self._follow_height = ty - float(root[1])

@@ -13,28 +13,28 @@ import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
-from .window import GlfwWindow  # noqa: I001  (imports glfw before imgui_bundle)
-
+import imgui_bundle
 import moderngl
 import numpy as np
 from imgui_bundle import imgui, implot
 
+from ..cast import Cast
 from ..errors import GaitlabError
+from ..kinematics.motion import Pose
 from ..output import atomic_write_text, write_png
 from ..recording import Recording
 from ..render.arcs import arc_instances
-from ..render.camera import eye_ray, ground_point
+from ..render.camera import eye_ray, ground_point, point3
 from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
 from ..render.scene import KEY_POSE_COLORS, SceneInstances, frame_instances, ghost_instances, pose_instances
-from ..cast import Cast
-from .imgui_renderer import ImguiRenderer
 from .file_dialog import FileDialog, dialogs_available
+from .imgui_renderer import ImguiRenderer
 from .monitor import GaitMonitor
 from .panels import SIDEBAR_COLOR, SIDEBAR_WIDTH, PanelContext, draw_ui
-from .state import FRAME_DT, ViewerState
-
-import imgui_bundle  # noqa: E402
+from .playback import FRAME_DT
+from .state import ViewerState
+from .window import GlfwWindow
 
 _ASSETS = Path(imgui_bundle.__file__).resolve().parent / "assets" / "fonts"
 
@@ -130,7 +130,8 @@ class Viewer:
         self.state.selected = 0
         self._herd_instances: dict[int, HerdInstances] = {}
         if options.overlays:
-            self.state.options = replace(self.state.options, **{name: True for name in options.overlays})
+            self.state.options = replace(self.state.options, footprints="footprints" in options.overlays,
+                                         targets="targets" in options.overlays, support="support" in options.overlays)
         _, _, vw, vh = self._scene_viewport()
         if vw > 0 and vh > 0:  # frame the creature for the part of the window the scene gets
             self.state.aspect = vw / vh
@@ -151,7 +152,7 @@ class Viewer:
         state, io = self.state, imgui.get_io()
         if io.want_text_input:
             return
-        pressed = lambda key, repeat=False: imgui.is_key_pressed(key, repeat)  # noqa: E731
+        pressed = lambda key, repeat=False: imgui.is_key_pressed(key, repeat)
         if pressed(imgui.Key.space):
             state.toggle_play()
         down = imgui.is_key_down
@@ -331,9 +332,9 @@ class Viewer:
         ndc = np.array([2 * (x - vx) / vw - 1, 2 * (y - vy) / vh - 1, 2 * depth - 1, 1.0])
         inverse = np.linalg.inv(np.array(self.state.camera.view_proj(vw / vh), dtype=np.float64))
         world = inverse @ ndc
-        self.state.focus(tuple(float(v) for v in world[:3] / world[3]))
+        self.state.focus(point3(world[:3] / world[3]))
 
-    def _instances(self, pose) -> SceneInstances:
+    def _instances(self, pose: Pose) -> SceneInstances:
         """What the 3-D view draws this frame: every creature of the scene, their herds,
         the selected one's key-pose ghosts and arcs (one set, as recordings draw)."""
         state = self.state
@@ -444,92 +445,113 @@ class Viewer:
     # -- loop -------------------------------------------------------------------------
 
     def run(self) -> int:
-        opts, state, window = self.options, self.state, self.window
+        """The window's loop until it closes (or, scripted, for ``frames`` frames)."""
+        frames = self.options.frames
         frame = 0
-        scripted = opts.frames is not None
-        clock = time.perf_counter
-        while not window.should_close:
-            if scripted and frame >= opts.frames:
-                break
-            start = clock()
-            dt = window.begin_frame(FRAME_DT if scripted else None)
-            fb_w, fb_h = window.framebuffer_size
-            minimized = fb_w <= 0 or fb_h <= 0
-            imgui.new_frame()
-            self._shortcuts()
-            viewport = self._scene_viewport()
-            self._mouse(max(viewport[3], 1))
-
-            # --report-fps: every 8th frame waits for the GPU after each stage to time it;
-            # the other frames run freely and give the frame rate.
-            sync = opts.report_fps and frame % 8 == 0
-            t0 = clock()
-            # Sample the motion at a fixed rate while the Plots panel measures it (it asked
-            # last frame), once per frame otherwise.
-            state.fine_sampling = self.monitor.wanted or opts.dump_state is not None
-            state.advance(dt)
-            sampled = self.monitor.record_samples(state.live.rig, state.world, state.take_samples(),
-                                                  state.live.frequency)
-            # The last sample is this frame's pose (unless two wave shapes are cross-fading).
-            use_sample = sampled is not None and not state.live.cross_fading
-            pose = sampled.pose(sampled.frame_count - 1) if use_sample else state.pose()
-            state.follow_creature(pose)
-            state.note_pose(pose)
-            if opts.dump_state is not None:
-                self.monitor.measure(state.live.time)  # in step with the dumped state
-            elif self.monitor.wanted:
-                self.monitor.update(state.live.time)  # in a worker process: never stalls a frame
-            self.monitor.wanted = False
-            t1 = clock()
-            if not minimized and viewport[2] > 0:
-                state.aspect = viewport[2] / max(viewport[3], 1)
-                self.ctx.screen.use()
-                if viewport[0] > 0:  # the sidebar's background (the panels draw none)
-                    self.ctx.screen.clear(*SIDEBAR_COLOR, 1.0, viewport=(0, 0, viewport[0], fb_h))
-                self.scene.draw_instances(self._instances(pose),
-                                          state.ground(pose), state.camera, self.ctx.screen, state.options, viewport,
-                                          multisampled=self.options.samples > 0, overlays=state.overlays(pose))
-                self._resolve_pick(viewport)
-                if state.screenshot_requested and not state.screenshot_with_ui:
-                    self._screenshot(viewport=viewport)  # the 3-D view alone, before the UI
-                if sync:
-                    self.ctx.finish()
-            t2 = clock()
-            draw_ui(state, self.panel, self.extra_panels)
-            imgui.render()
-            if not minimized:
-                self.ui.render(imgui.get_draw_data(), self.ctx.screen)
-                if sync:
-                    self.ctx.finish()
-            t3 = clock()
-            if state.screenshot_requested and not minimized:
-                self._screenshot()
-            last = scripted and frame == opts.frames - 1
-            if last and opts.screenshot is not None and not minimized:
-                self._screenshot(opts.screenshot)
-            self._record_step()
-            if opts.dump_state is not None and (frame % 20 == 0 or last):
-                self._dump(opts.dump_state, frame)
-            if minimized:
-                time.sleep(0.05)  # nothing to draw: do not spin
-            else:
-                window.swap()
-            end = clock()
-            self.frame_times.append((t1 - t0, t2 - t1, t3 - t2, end - start, sync))
-            s = self.panel.stats
-            s.frame_ms = _ema(s.frame_ms, (end - start) * 1000)
-            s.fps = 1000.0 / max(s.frame_ms, 1e-3)
-            s.simulate_ms = _ema(s.simulate_ms, (t1 - t0) * 1000)
-            s.scene_ms = _ema(s.scene_ms, (t2 - t1) * 1000)
-            s.ui_ms = _ema(s.ui_ms, (t3 - t2) * 1000)
+        while not self.window.should_close and (frames is None or frame < frames):
+            self._frame(frame, last=frames is not None and frame == frames - 1)
             frame += 1
-        if opts.dump_state is not None:
-            self._dump(opts.dump_state, frame)
+        if self.options.dump_state is not None:
+            self._dump(self.options.dump_state, frame)
         if self.recording is not None:
             self.recording.cancel()
-        if opts.report_fps:
+        if self.options.report_fps:
             self.report()
         return 0
+
+    def _frame(self, frame: int, last: bool) -> None:
+        """One frame: input, simulation, the 3-D view, the UI, outputs, swap; timed.
+        With ``--report-fps`` every 8th frame waits for the GL after each stage to time
+        it; the other frames run freely and give the frame rate."""
+        opts, state, window, clock = self.options, self.state, self.window, time.perf_counter
+        start = clock()
+        dt = window.begin_frame(FRAME_DT if opts.frames is not None else None)
+        fb_w, fb_h = window.framebuffer_size
+        minimized = fb_w <= 0 or fb_h <= 0
+        imgui.new_frame()
+        self._shortcuts()
+        viewport = self._scene_viewport()
+        self._mouse(max(viewport[3], 1))
+        sync = opts.report_fps and frame % 8 == 0
+        t0 = clock()
+        pose = self._simulate(dt)
+        t1 = clock()
+        if not minimized and viewport[2] > 0:
+            self._draw_view(pose, viewport, sync)
+        t2 = clock()
+        draw_ui(state, self.panel, self.extra_panels)
+        imgui.render()
+        if not minimized:
+            self.ui.render(imgui.get_draw_data(), self.ctx.screen)
+            if sync:
+                self.ctx.finish()
+        t3 = clock()
+        self._outputs(frame, last, minimized)
+        if minimized:
+            time.sleep(0.05)  # nothing to draw: do not spin
+        else:
+            window.swap()
+        self._time(start, t0, t1, t2, t3, clock(), sync)
+
+    def _simulate(self, dt: float) -> Pose:
+        """Move the scene on by ``dt`` and return the selected creature's pose to draw.
+        The motion is sampled at a fixed rate while the Plots panel measures it (it asked
+        last frame), once per frame otherwise."""
+        state = self.state
+        state.fine_sampling = self.monitor.wanted or self.options.dump_state is not None
+        state.advance(dt)
+        sampled = self.monitor.record_samples(state.live.rig, state.world, state.take_samples(),
+                                              state.live.frequency)
+        # The last sample is this frame's pose (unless two wave shapes are cross-fading).
+        if sampled is not None and not state.live.cross_fading:
+            pose = sampled.pose(sampled.frame_count - 1)
+        else:
+            pose = state.pose()
+        state.follow_creature(pose)
+        state.note_pose(pose)
+        if self.options.dump_state is not None:
+            self.monitor.measure(state.live.time)  # in step with the dumped state
+        elif self.monitor.wanted:
+            self.monitor.update(state.live.time)  # in a worker process: never stalls a frame
+        self.monitor.wanted = False
+        return pose
+
+    def _draw_view(self, pose: Pose, viewport: tuple[int, int, int, int], sync: bool) -> None:
+        """The 3-D view (and the sidebar's background beside it)."""
+        state = self.state
+        state.aspect = viewport[2] / max(viewport[3], 1)
+        self.ctx.screen.use()
+        if viewport[0] > 0:  # the sidebar's background (the panels draw none)
+            r, g, b = SIDEBAR_COLOR
+            self.ctx.screen.clear(r, g, b, 1.0, viewport=(0, 0, viewport[0], self.window.framebuffer_size[1]))
+        self.scene.draw_instances(self._instances(pose), state.ground(pose), state.camera, self.ctx.screen,
+                                  state.options, viewport, multisampled=self.options.samples > 0,
+                                  overlays=state.overlays(pose))
+        self._resolve_pick(viewport)
+        if state.screenshot_requested and not state.screenshot_with_ui:
+            self._screenshot(viewport=viewport)  # the 3-D view alone, before the UI
+        if sync:
+            self.ctx.finish()
+
+    def _outputs(self, frame: int, last: bool, minimized: bool) -> None:
+        """Screenshots, the recording's next frames and the state dump."""
+        if self.state.screenshot_requested and not minimized:
+            self._screenshot()
+        if last and self.options.screenshot is not None and not minimized:
+            self._screenshot(self.options.screenshot)
+        self._record_step()
+        if self.options.dump_state is not None and (frame % 20 == 0 or last):
+            self._dump(self.options.dump_state, frame)
+
+    def _time(self, start: float, t0: float, t1: float, t2: float, t3: float, end: float, sync: bool) -> None:
+        """Keep the frame's timings (for --report-fps) and the HUD's averages."""
+        self.frame_times.append((t1 - t0, t2 - t1, t3 - t2, end - start, sync))
+        s = self.panel.stats
+        s.frame_ms = _ema(s.frame_ms, (end - start) * 1000)
+        s.fps = 1000.0 / max(s.frame_ms, 1e-3)
+        s.simulate_ms = _ema(s.simulate_ms, (t1 - t0) * 1000)
+        s.scene_ms = _ema(s.scene_ms, (t2 - t1) * 1000)
+        s.ui_ms = _ema(s.ui_ms, (t3 - t2) * 1000)
 
     def report(self) -> None:
         """Print the frame rate (median over free-running frames) and the time split

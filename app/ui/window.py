@@ -9,7 +9,7 @@ from __future__ import annotations
 import os
 import sys
 
-import glfw  # noqa: I001  (must come before imgui_bundle)
+import glfw
 from imgui_bundle import imgui
 
 from ..errors import GaitlabError
@@ -18,7 +18,7 @@ NO_DISPLAY_HINT = ("no display to open a window on (DISPLAY is not set); run it 
                    "'xvfb-run gaitlab view', or render headless with 'gaitlab render'")
 
 
-def _key_map() -> dict[int, "imgui.Key"]:
+def _key_map() -> dict[int, imgui.Key]:
     keys: dict[int, imgui.Key] = {}
     for i in range(26):
         keys[glfw.KEY_A + i] = getattr(imgui.Key, chr(ord("a") + i))

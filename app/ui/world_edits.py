@@ -23,18 +23,17 @@ class WorldMixin(StateBase):
     """The Terrain and Path panels."""
 
     def _init_terrain_values(self) -> None:
-        """The Terrain panel's starting values: sized to the creature, then the world's own."""
+        """The Terrain panel's starting values: each kind's keys (the registry's defaults),
+        the sizes sized to the creature, then the world's own."""
         rig = self.live.rig
         h, length = rig.hip_height, rig.body_length
-        self.terrain_values = {
-            "flat": {},
-            "slope": {"angle": 10.0, "dir": 0.0},
-            "hills": {"amp": round(0.12 * h, 3), "wavelength": round(3.0 * length, 2), "seed": 1},
-            "stairs": {"rise": round(0.2 * h, 3), "run": round(max(0.6 * rig.leg_scale, 0.12), 3), "steps": 6,
-                       "start": round(0.8 * length, 2), "dir": 0.0},
-            "heightmap": {"file": "", "size": 20.0, "height": 1.0},
-            "mesh": {"file": "", "cell": 0.0},
-        }
+        self.terrain_values = {name: {key.name: "" if key.name == "file" else key.default for key in kind.keys}
+                               for name, kind in TERRAIN_KINDS.items()}
+        sized = {"hills": {"amp": round(0.12 * h, 3), "wavelength": round(3.0 * length, 2)},
+                 "stairs": {"rise": round(0.2 * h, 3), "run": round(max(0.6 * rig.leg_scale, 0.12), 3), "steps": 6,
+                            "start": round(0.8 * length, 2)}}
+        for name, values in sized.items():
+            self.terrain_values[name].update(values)
         kind, _, rest = self.world.terrain.describe().partition(":")
         kind = {"grid": "heightmap"}.get(kind, kind)
         if kind in self.terrain_values:
@@ -168,7 +167,7 @@ class WorldMixin(StateBase):
         length = self.live.rig.body_length
         forward = np.array([np.sin(heading), np.cos(heading)])
         lead = point + 0.8 * length * forward
-        pts = [tuple(map(float, p)) for p in points]
+        pts = [(float(p[0]), float(p[1])) for p in points]
         while pts and np.all(np.isfinite(pts[0])) and np.linalg.norm(np.asarray(pts[0]) - point) <= 0.5 * length:
             pts.pop(0)  # the next waypoint is under the creature: reached
         turn: list = []
@@ -183,9 +182,10 @@ class WorldMixin(StateBase):
                 turn = [point + length * (1.2 * forward + 1.2 * side * left)]
                 if to_first @ forward < 0:  # behind: round the half loop
                     turn.append(point + length * (0.4 * forward + 2.6 * side * left))
+        route: GroundPath
         try:
             if not pts:
-                route: GroundPath = StraightPath(start=(float(point[0]), float(point[1])), heading=heading)
+                route = StraightPath(start=(float(point[0]), float(point[1])), heading=heading)
             else:
                 if not all(np.all(np.isfinite(p)) and max(abs(p[0]), abs(p[1])) <= 1e4 for p in pts):
                     raise GaitlabError("a waypoint must be within 10 km of the origin")
@@ -198,8 +198,8 @@ class WorldMixin(StateBase):
         self.waypoints = pts
         # Where along the path each waypoint lies (m), to drop those the body has passed.
         first = 1 + len(lead_points) + len(turn)  # the knot of the first waypoint
-        knots = np.arange(first, first + len(pts)) * WaypointPath.SAMPLES_PER_SEGMENT
-        self._waypoint_s = (self.live.travel + route._table.s[knots]).tolist() if pts else []
+        along = route.point_arc_lengths(first, len(pts)) if isinstance(route, WaypointPath) else np.zeros(0)
+        self._waypoint_s = (self.live.travel + along).tolist()
         self.path_kind = "waypoints"
         return True
 

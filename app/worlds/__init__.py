@@ -25,7 +25,8 @@ _HOMES = {"Scene": "file", "SceneCreature": "file", "load_scene": "file", "scene
           "TERRAIN_KINDS": "kinds", "make_world": "text", "parse_path": "text", "parse_terrain": "text",
           "waypoint_path": "text"}
 
-__all__ = sorted(_HOMES)
+__all__ = ["FAR", "PATH_KINDS", "TERRAIN_KINDS", "Scene", "SceneCreature", "load_heightmap", "load_mesh_terrain",
+           "load_scene", "make_world", "parse_path", "parse_terrain", "scene_description", "waypoint_path"]
 
 
 def __getattr__(name: str) -> Any:

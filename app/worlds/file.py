@@ -7,14 +7,17 @@ import os
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path as FilePath
-from typing import Any
+from typing import Any, TypeVar
 
+from ..choices import MAX_HERD
 from ..errors import did_you_mean, shown
-from ..kinematics.herd import MAX_HERD
+from ..kinematics.path import Path
 from ..kinematics.terrain import Terrain
 from ..kinematics.world import World, WorldError
 from ..tomlfile import TomlProblem, read_toml
 from .text import parse_path, parse_terrain
+
+T = TypeVar("T")
 
 
 @dataclass(frozen=True)
@@ -88,20 +91,22 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
                              f"{', '.join(SCENE_KEYS)}")
     base = path.parent
 
-    def wrap(fn: Callable[[], Any], key: str) -> Any:
+    def wrap(fn: Callable[[], T], key: str) -> T:
         try:
             return fn()
         except WorldError as exc:
             text = str(exc)
             raise WorldError(text if text.startswith(where) else f"{where}: {key}: {text}") from None
 
-    terrain = wrap(lambda: parse_terrain(_text_or_table(data.get("terrain", "flat"), "terrain", where), base),
-                   "terrain")
+    terrain: Terrain = wrap(lambda: parse_terrain(_text_or_table(data.get("terrain", "flat"), "terrain", where), base),
+                            "terrain")
     paths_t = data.get("paths", {})
     if not isinstance(paths_t, Mapping):
         raise WorldError(f"{where}: paths must be a table of named paths ([paths.NAME])")
-    paths = {name: wrap(lambda v=value, n=name: parse_path(_text_or_table(v, f"paths.{n}", where)), f"paths.{name}")
-             for name, value in paths_t.items()}
+    def path_named(value: Any, key: str) -> Path:
+        return wrap(lambda: parse_path(_text_or_table(value, key, where)), key)
+
+    paths = {name: path_named(value, f"paths.{name}") for name, value in paths_t.items()}
     creatures_t = data.get("creatures")
     if not isinstance(creatures_t, list) or not creatures_t:
         raise WorldError(f"{where}: a scene needs at least one [[creatures]] table with creature = \"dog\" (or a "
@@ -127,8 +132,7 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
         if isinstance(path_value, str) and path_value in paths:
             body_path = paths[path_value]
         else:
-            body_path = wrap(lambda v=path_value: parse_path(_text_or_table(v, f"{here}.path", where)),
-                             f"{here}.path")
+            body_path = path_named(path_value, f"{here}.path")
         speed = entry.get("speed")
         if speed is not None and (isinstance(speed, bool) or not isinstance(speed, (int, float))
                                   or not math.isfinite(speed) or not 0 < speed <= 30):

@@ -60,7 +60,7 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
 
     _check_file(file)
     try:
-        loaded = trimesh.load(str(file), force="mesh")
+        loaded: trimesh.Trimesh = trimesh.load(str(file), force="mesh")  # type: ignore[assignment]  # force="mesh"
     except Exception as exc:  # trimesh raises many kinds for broken files
         raise WorldError(f"{file}: cannot read the mesh ({type(exc).__name__}: {str(exc)[:80]})") from None
     faces = getattr(loaded, "faces", None)
