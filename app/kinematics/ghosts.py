@@ -14,7 +14,6 @@ from .rig import Rig
 from .world import World
 
 
-
 def shift_pose(pose: Pose, offset: NDArray[np.float64]) -> Pose:
     """The pose moved by ``offset`` (3,) metres (its root too)."""
     moved = {name: getattr(pose, name) + offset for name in POINT_FIELDS}
