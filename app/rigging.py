@@ -72,23 +72,33 @@ def resolve_gait(gait: GaitSpec, feet: tuple[str, ...], hip_height: float, bob: 
     )
 
 
+def speed_ladder(spec: CreatureSpec) -> tuple[tuple[str, float], ...]:
+    """The gaits ``--speed`` climbs, slow to fast, each with the Froude number from which
+    it is used, fitted to the body: a tetrapod walks, trots (``speed.walk_trot``) and
+    gallops (``speed.trot_gallop``, its ``speed.gallop``); a biped that walks or runs
+    walks, then runs (``speed.walk_trot``); a hexapod goes from the tetrapod gait to the
+    tripod (``speed.walk_trot``); other bodies keep their own gait, scaled by speed."""
+    pairs, own, speed = spec.pair_count, spec.gait.preset, spec.speed
+    fits = set(gaits_for(pairs))
+    if pairs == 2 and {"walk", "trot", speed.gallop} <= fits:
+        return (("walk", 0.0), ("trot", speed.walk_trot), (speed.gallop, speed.trot_gallop))
+    if pairs == 1 and own in ("walk", "run"):
+        return (("walk", 0.0), ("run", speed.walk_trot))
+    if pairs == 3 and own in ("tetrapod", "tripod"):
+        return (("tetrapod", 0.0), ("tripod", speed.walk_trot))
+    return ((own, 0.0),)
+
+
 def _speed_gaits(spec: CreatureSpec, hip_height: float) -> SpeedGaits:
-    """The gaits ``--speed`` switches between: walk, trot and the creature's gallop for
-    tetrapods; the creature's own gait (scaled by speed) for other body plans."""
-    feet = spec.foot_names
-    if "trot" in gaits_for(spec.pair_count) and spec.pair_count == 2:
-        order: tuple[str, ...] = ("walk", "trot", spec.speed.gallop)
-    elif spec.pair_count == 1 and spec.gait.preset in ("walk", "run"):
-        order = ("walk", "run")
-    else:
-        order = (spec.gait.preset,)
+    """The gaits of :func:`speed_ladder`, resolved for this creature (its own gait as the
+    file adjusts it when it is the only one)."""
+    ladder = speed_ladder(spec)
     gaits = {}
-    for name in order:
-        own = spec.gait if name == spec.gait.preset and len(order) == 1 else GaitSpec(preset=name, wave=spec.gait.wave)
-        gaits[name] = resolve_gait(own, feet, hip_height, bob=spec.motion.bob,
+    for name, _ in ladder:
+        own = spec.gait if name == spec.gait.preset and len(ladder) == 1 else GaitSpec(preset=name, wave=spec.gait.wave)
+        gaits[name] = resolve_gait(own, spec.foot_names, hip_height, bob=spec.motion.bob,
                                    trunk=trunk_factor(spec, hip_height) if spec.pair_count >= 2 else 0.0)
-    return SpeedGaits(walk_trot=spec.speed.walk_trot, trot_gallop=spec.speed.trot_gallop,
-                      hysteresis=spec.speed.hysteresis, order=order, gaits=gaits)
+    return SpeedGaits(ladder=ladder, hysteresis=spec.speed.hysteresis, gaits=gaits)
 
 
 def key_poses(spec: CreatureSpec, hip_height: float) -> KeyPoses:

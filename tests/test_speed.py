@@ -98,3 +98,22 @@ def test_gait_switches_complete_within_a_cycle_and_a_half() -> None:
     assert len(done) == 2
     cycles = [end - start for (_, start), end in zip(switches, done)]
     assert max(cycles) <= 1.5, cycles
+
+
+def test_the_speed_ladder_fits_the_body() -> None:
+    """Speed gaits are a ladder of (gait, Froude threshold) fitted to the body (issue 13):
+    a tetrapod walks, trots and gallops; a walking biped runs; a hexapod goes from the
+    tetrapod gait to the tripod; a body with no faster gait keeps its own."""
+    from app.rigging import speed_ladder
+
+    assert [g for g, _ in speed_ladder(DOG)] == ["walk", "trot", "gallop"]
+    assert [g for g, _ in speed_ladder(load_creature("human"))] == ["walk", "run"]
+    ant = load_creature("ant")
+    assert speed_ladder(ant) == (("tetrapod", 0.0), ("tripod", ant.speed.walk_trot))
+    assert speed_ladder(load_creature("spider")) == (("metachronal", 0.0),)
+    rig = build_rig(ant)
+    slow, fast = (froude(v, rig.hip_height) for v in (0.05, 1.0))
+    assert gait_at_speed(rig, 0.05).gait.preset == "tetrapod" and slow < ant.speed.walk_trot < fast
+    assert gait_at_speed(rig, 1.0).gait.preset == "tripod"
+    motion, gaits = simulate_speed(rig, np.linspace(0.05, 1.0, 240), 60.0)
+    assert gaits[0] == "tetrapod" and gaits[-1] == "tripod" and motion.frame_count == 240

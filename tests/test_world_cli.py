@@ -222,3 +222,25 @@ def test_gaits_that_do_not_fit_are_refused() -> None:
     assert listing.returncode == 0
     for word in ("ant", "spider", "centipede", "15 leg pairs", "tripod", "metachronal", "for 3 pairs"):
         assert word in listing.stdout
+
+
+def test_the_kinds_registry_is_what_the_parser_help_and_readme_offer() -> None:
+    """One registry of path and terrain kinds (issue 13): every kind and key it declares is
+    accepted by the parser, listed by ``render --help`` and in the README's tables; the
+    viewer's Terrain panel reads the same table."""
+    from app.worlds.kinds import PATH_KINDS, TERRAIN_KINDS
+
+    readme = (ROOT / "README.md").read_text()
+    help_text = gaitlab("render", "--help").stdout
+    for kind in PATH_KINDS.values():
+        assert f"| `{kind.name}` |" in readme and kind.name in help_text
+        for key in kind.keys:
+            assert f"`{key.name}`" in readme.split(f"| `{kind.name}` |")[1].split("\n")[0], (kind.name, key.name)
+    for kind in TERRAIN_KINDS.values():
+        row = readme.split(f"| `{kind.name}` |")[1].split("\n")[0]
+        assert kind.name in help_text
+        for key in kind.keys:
+            assert f"`{key.name}`" in row and f"{key.name}=" in help_text, (kind.name, key.name)
+        if "file" not in kind.required:
+            text = kind.example or kind.name
+            assert parse_terrain(text).describe().startswith(kind.name), text

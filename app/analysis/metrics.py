@@ -184,9 +184,12 @@ def wave_lag(phases: dict[str, float]) -> float | None:
 
 
 def _mirror(phases: dict[str, float]) -> dict[str, float]:
-    """The same gait on the other lead: left and right swapped, left hind back at 0."""
-    swapped = {"LF": phases["RF"], "RF": phases["LF"], "LH": phases["RH"], "RH": phases["LH"]}
-    return {k: (v - swapped["LH"]) % 1.0 for k, v in swapped.items()}
+    """The same gait on the other lead: every left foot swapped with its right partner
+    (``LF``/``RF``, ``L3``/``R3``), the reference foot back at phase 0."""
+    partner = {"L": "R", "R": "L"}
+    swapped = {name: phases[partner[name[0]] + name[1:]] for name in phases}
+    zero = swapped[reference_foot(tuple(phases))]
+    return {k: (v - zero) % 1.0 for k, v in swapped.items()}
 
 
 def match_gait(phases: dict[str, float], duty: float) -> str:

@@ -133,15 +133,20 @@ class Look:
 
 @dataclass(frozen=True)
 class SpeedGaits:
-    """How speed picks the gait: Froude thresholds, their hysteresis, and the gaits (with
-    their phases, step heights and bob resolved for this creature) that speeds switch
-    between. ``order`` lists them slow to fast (one gait: speed only scales it)."""
+    """How speed picks the gait: ``ladder`` lists (gait, the Froude number from which it is
+    used) slow to fast, the first from 0 (one gait: speed only scales it); ``hysteresis``
+    is the fraction above (below) a threshold at which the gait changes up (down);
+    ``gaits`` holds each gait with its phases, step heights and bob resolved for this
+    creature."""
 
-    walk_trot: float
-    trot_gallop: float
+    ladder: tuple[tuple[str, float], ...]
     hysteresis: float
-    order: tuple[str, ...]
     gaits: dict[str, GaitParams] = field(default_factory=dict)
+
+    @property
+    def order(self) -> tuple[str, ...]:
+        """The gaits, slow to fast."""
+        return tuple(name for name, _ in self.ladder)
 
 
 @dataclass(frozen=True)

@@ -42,30 +42,23 @@ def stride_length(speed: float, hip_height: float) -> float:
 
 
 def choose_gait(fr: float, current: str | None, table: SpeedGaits) -> str:
-    """The gait for Froude number ``fr`` from the table's gaits (slow to fast); ``current``
-    (the gait in use) makes the thresholds sticky by the hysteresis fraction."""
-    order = table.order
-    if len(order) == 1:
-        return order[0]
-    up, down = 1.0 + table.hysteresis, 1.0 - table.hysteresis
-    wt, tg = table.walk_trot, table.trot_gallop
-    level = order.index(current) if current in order else None
-    if len(order) == 2:  # a biped's walk and run, at the walk/trot threshold
-        limit = wt if level is None else wt * (up if level == 0 else down)
-        return order[1] if fr >= limit else order[0]
-    if level is None:
-        return order[0] if fr < wt else order[1] if fr < tg else order[2]
-    if level == 0:
-        return order[2] if fr >= tg * up else order[1] if fr >= wt * up else order[0]
-    if level == 1:
-        return order[2] if fr >= tg * up else order[0] if fr < wt * down else order[1]
-    return order[2] if fr >= tg * down else order[0] if fr < wt * down else order[1]
+    """The gait for Froude number ``fr``: the fastest of the table's ladder whose
+    threshold ``fr`` reaches. ``current`` (the gait in use) makes the thresholds sticky:
+    a faster gait needs its threshold times (1 + hysteresis), a slower one is kept down
+    to its threshold times (1 - hysteresis)."""
+    names = table.order
+    level = names.index(current) if current in names else None
+    chosen = 0
+    for index, (_, threshold) in enumerate(table.ladder[1:], start=1):
+        scale = 1.0 if level is None else 1.0 + table.hysteresis if index > level else 1.0 - table.hysteresis
+        if fr >= threshold * scale:
+            chosen = index
+    return names[chosen]
 
 
 def _table(rig: Rig) -> SpeedGaits:
     if rig.speed is None:
-        return SpeedGaits(walk_trot=0.5, trot_gallop=2.5, hysteresis=0.15, order=(rig.gait.preset,),
-                          gaits={rig.gait.preset: rig.gait})
+        return SpeedGaits(ladder=((rig.gait.preset, 0.0),), hysteresis=0.15, gaits={rig.gait.preset: rig.gait})
     return rig.speed
 
 

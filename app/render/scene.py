@@ -136,10 +136,14 @@ def _ellipsoids(centre, axis_z, radii, color) -> NDArray[np.float64]:
                            np.broadcast_to(color, shape + (3,))], axis=-1)
 
 
+def side_colors(rig: Rig) -> NDArray[np.float64]:
+    """The look's left and right colours (2, 3), linear."""
+    return np.stack([srgb_to_linear(rig.look.left_color), srgb_to_linear(rig.look.right_color)])
+
+
 def leg_colors(rig: Rig) -> NDArray[np.float64]:
     """Each leg's colour (L, 3), linear: the look's left or right colour by its side."""
-    side_colors = np.stack([srgb_to_linear(rig.look.left_color), srgb_to_linear(rig.look.right_color)])
-    return side_colors[(rig.hip_side < 0).astype(int)]
+    return side_colors(rig)[(rig.hip_side < 0).astype(int)]
 
 
 _HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
@@ -256,7 +260,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], body_color)
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
-    arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, leg_color[:2])
+    arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, side_colors(rig))
     capsule_parts = [legs, *leg_parts, *arm_caps, trunk, neck_c, muzzle, tail_c]
     if ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \

@@ -165,7 +165,8 @@ MOTION_RULES: dict[str, Rule] = {
 }
 
 SPEED_RULES: dict[str, Rule] = {
-    "walk_trot": _num(0.05, 5.0, doc="Froude number v^2/(g h) at which a speed-driven walk becomes a trot"),
+    "walk_trot": _num(0.05, 5.0, doc="Froude number v^2/(g h) at which a speed-driven walk becomes a trot (a "
+                      "biped's walk a run, a hexapod's tetrapod gait the tripod)"),
     "trot_gallop": _num(0.1, 20.0, doc="Froude number at which a speed-driven trot becomes a gallop"),
     "hysteresis": _num(0.0, 0.5, doc="fraction above (below) a threshold at which the gait changes up (down)"),
     "gallop": Rule("choice", choices=("gallop", "rotary-gallop"), doc="which gallop fast speeds use"),
