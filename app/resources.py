@@ -37,6 +37,11 @@ def scenes_dir() -> Path:
     return _data_dir("scenes")
 
 
+def reference_dir() -> Path:
+    """The folder holding the reference curves (normative gait data, with their README)."""
+    return _data_dir("reference")
+
+
 def preset_creature_names() -> list[str]:
     """Names of the preset creatures, sorted (file stems of ``creatures/*.toml``)."""
     return sorted(p.stem for p in creatures_dir().glob("*.toml"))
