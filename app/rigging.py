@@ -9,6 +9,7 @@ resolved gait, and the gaits that speeds switch between.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -126,6 +127,38 @@ def arm_shape(spec: CreatureSpec) -> ArmShape | None:
                     position=arms.position, elbow=math.radians(arms.elbow))
 
 
+def _natural(spec: CreatureSpec) -> bool:
+    """Whether the creature's key poses default to the natural walk's heights
+    (:mod:`app.kinematics.natural`): the normal style on feet that roll heel to toe."""
+    return (spec.poses.style or "normal") == "normal" and spec.poses.shaped and any(
+        leg.roll > 0 and leg.ankle_lift < PLANTIGRADE_BELOW for leg in spec.legs)
+
+
+def _with_natural_heights(spec: CreatureSpec, rig: Rig) -> Rig:
+    """The rig with the key-pose heights its file leaves open taken from the natural walk."""
+    from .kinematics.natural import natural_heights
+
+    poses = spec.poses
+    given = (poses.contact_height, poses.down_height, poses.pass_height, poses.up_height)
+    if all(v is not None for v in given):
+        return rig
+    natural = natural_heights(rig)
+    heights = np.array([natural[i] if v is None else float(v) for i, v in enumerate(given)])
+    return replace(rig, poses=replace(rig.poses, heights=heights))
+
+
+def style_key_heights(spec: CreatureSpec, name: str) -> tuple[float, float, float, float]:
+    """A style's key-pose heights (m from the rest height) for this creature: the normal
+    style of a heel-to-toe walker is its natural walk; the others are fractions of the
+    hip height."""
+    rig = build_rig(spec)
+    if name == "normal" and _natural(replace(spec, poses=replace(spec.poses, style="normal"))):
+        from .kinematics.natural import natural_heights
+
+        return tuple(float(h) for h in natural_heights(rig))  # type: ignore[return-value]
+    return style_heights(name, rig.hip_height)
+
+
 def build_rig(spec: CreatureSpec) -> Rig:
     """Derive the rig of a (validated) creature spec."""
     girdles = spec.girdles  # front first
@@ -154,7 +187,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
                       tail_length=body.tail_length, tail_angle=math.radians(body.tail_angle),
                       tail_segments=body.tail_segments, upright=body.posture == "upright")
     hip_height = float(rest_height.mean())
-    return Rig(
+    rig = Rig(
         name=spec.name,
         leg_names=spec.foot_names,
         femur=femur,
@@ -182,7 +215,8 @@ def build_rig(spec: CreatureSpec) -> Rig:
         gait=resolve_gait(spec.gait, spec.foot_names, hip_height, bob=spec.motion.bob,
                           trunk=trunk_factor(spec, hip_height) if spec.pair_count >= 2 else 0.0),
         motion=SecondaryMotion(yaw=math.radians(spec.motion.yaw), tail_sway=math.radians(spec.motion.tail_sway),
-                               bob_phase=spec.motion.bob_phase, pelvis_tilt=math.radians(spec.motion.pelvis_tilt)),
+                               bob_phase=spec.motion.bob_phase, pelvis_tilt=math.radians(spec.motion.pelvis_tilt),
+                               sway=spec.motion.sway),
         look=spec.look,
         speed=_speed_gaits(spec, hip_height),
         arms=arm_shape(spec),
@@ -190,6 +224,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
         overlap=spec.overlap,
         roll=per_leg("roll"),
     )
+    return _with_natural_heights(spec, rig) if _natural(spec) else rig
 
 
 
@@ -202,9 +237,11 @@ def apply_style(spec: CreatureSpec, name: str) -> CreatureSpec:
     if name not in STYLES:
         raise SpecError(f"style {name!r}: unknown{did_you_mean(name, STYLES)}; styles are: {', '.join(STYLES)}")
     style = STYLES[name]
-    hip = build_rig(spec).hip_height
     keys = ("contact_height", "down_height", "pass_height", "up_height")
-    overrides: dict[str, object] = {f"poses.{k}": round(h, 4) for k, h in zip(keys, style_heights(name, hip))}
-    overrides.update({"poses.style": name, "poses.foot_angle": style.foot_angle, "poses.arm_swing": style.arm_swing,
-                      "poses.torso_lean": style.torso_lean, "gait.stride": style.stride})
-    return spec.with_overrides(overrides, origin=f"style {name}")
+    styled = spec.with_overrides({"poses.style": name, "poses.foot_angle": style.foot_angle,
+                                  "poses.arm_swing": style.arm_swing, "poses.torso_lean": style.torso_lean,
+                                  "gait.stride": style.stride}, origin=f"style {name}")
+    bare = replace(styled, poses=replace(styled.poses, contact_height=None, down_height=None, pass_height=None,
+                                         up_height=None))
+    heights = style_key_heights(bare, name)
+    return styled.with_overrides({f"poses.{k}": round(h, 4) for k, h in zip(keys, heights)}, origin=f"style {name}")

@@ -20,7 +20,7 @@ from app.kinematics.clip import clip_motion
 from app.kinematics.motion import simulate
 from app.kinematics.path import CirclePath
 from app.kinematics.poses import key_pose_phases, pose_height
-from app.kinematics.roll import HEEL_PART, RISE_PART, contact_points
+from app.kinematics.roll import HEEL_PART, contact_points
 from app.kinematics.world import World
 from app.rigging import apply_style
 from app.spec import SpecError
@@ -53,8 +53,10 @@ def test_human_walk_duty_factor_and_phases(walk_report) -> None:
 
 def test_strike_before_landing_and_lift_before_liftoff_at_the_roll_timing(walk_report) -> None:
     """The analysis of Gaitlab's own rolling feet finds the heel strike at touchdown, the
-    toes down when the roll sets them, the heel rising when the roll starts it, the toes
-    leaving at lift-off: each within one frame at the animator's 24 fps."""
+    toes down when the roll sets them, the toes leaving at lift-off: each within one frame
+    at the animator's 24 fps; and the heel rising in terminal stance, as a walker's does
+    (it turns about the ball as the knee asks, from ~30 % of the cycle: Perry & Burnfield),
+    at least a tenth of a cycle before the toes leave."""
     rig, motion, report = walk_report
     cycle = 1.0 / rig.gait.frequency
     duty = rig.gait.duty_factor
@@ -71,7 +73,7 @@ def test_strike_before_landing_and_lift_before_liftoff_at_the_roll_timing(walk_r
             liftoff = min(t for t in events["liftoff"] if t > lift)
             assert strike < landing < lift < liftoff
             assert landing - strike == pytest.approx(r * HEEL_PART * duty * cycle, abs=frame)
-            assert liftoff - lift == pytest.approx(r * RISE_PART * duty * cycle, abs=frame)
+            assert 0.1 * cycle <= liftoff - lift <= 0.35 * cycle
             assert liftoff - strike == pytest.approx(duty * cycle, abs=frame)
 
 
@@ -151,16 +153,26 @@ def _cycle(spec, fps: float = 96.0):
     return rig, motion
 
 
-def test_down_pose_moves_the_lowest_point_by_its_edit_and_nothing_else(human) -> None:
+KEYS = ("contact", "down", "pass", "up")
+
+
+def test_a_key_pose_edit_moves_its_frames_by_the_edit_and_nothing_else(human) -> None:
+    """Editing a key pose's height moves the body at that key's frames by exactly the
+    edit, both steps, and no other key; the lowest point of the walk is a key pose, so
+    editing the lowest key moves the lowest point by exactly as much."""
     rig, motion = _cycle(human)
-    lowest = motion.spine[:, 0, 1].min()
-    deeper = human.with_overrides({"poses.down_height": float(rig.poses.heights[1]) - 0.03})
-    _rig2, motion2 = _cycle(deeper)
-    assert motion2.spine[:, 0, 1].min() == pytest.approx(lowest - 0.03, abs=1e-3)
-    # The other key poses stay where they were: contact, pass and up frames, both steps.
-    frames = np.rint(key_pose_phases(True)[[0, 2, 3]] * motion.frame_count).astype(int)
-    frames = np.concatenate([frames, frames + motion.frame_count // 2])
-    assert np.allclose(motion2.spine[frames, 0, 1], motion.spine[frames, 0, 1], atol=1e-9)
+    frames = np.rint(key_pose_phases(True)[:4] * motion.frame_count).astype(int)
+    both = np.stack([frames, frames + motion.frame_count // 2])  # (2 steps, 4 keys)
+    lowest_key = int(np.argmin(rig.poses.heights))
+    for key in {1, lowest_key}:  # the down pose, and the lowest (the contact, in the natural walk)
+        name = KEYS[key]
+        edited = human.with_overrides({f"poses.{name}_height": float(rig.poses.heights[key]) - 0.03})
+        _rig2, motion2 = _cycle(edited)
+        moved = motion2.spine[both, 0, 1] - motion.spine[both, 0, 1]
+        assert np.allclose(moved[:, key], -0.03, atol=1e-3), name
+        assert np.allclose(np.delete(moved, key, axis=1), 0.0, atol=1e-9), name
+        if key == lowest_key:
+            assert motion2.spine[:, 0, 1].min() == pytest.approx(motion.spine[:, 0, 1].min() - 0.03, abs=1e-3)
 
 
 def test_pose_curve_passes_through_the_keys_smoothly() -> None:

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.signal import find_peaks
 
 from .angles import SAMPLES, cycle_curves, leg_angles, strikes_from_contact
 
@@ -123,14 +124,17 @@ def walk_measures(motion) -> dict[str, float]:
     # The pelvis: the middle of the hips.
     hips = motion.joints[:, [ref, other], 0]
     pelvis = hips.mean(axis=1)
-    vertical = _mean_cycle(pelvis[:, 1] - root[:, 1] * 0.0, strikes)
+    vertical = _mean_cycle(pelvis[:, 1], strikes)
     out["pelvis vertical cm"] = 100.0 * float(np.ptp(vertical))
-    periodic = np.concatenate([vertical, vertical[1:]])
-    peaks = [i for i in range(1, SAMPLES) if periodic[i] > periodic[i - 1] and periodic[i] >= periodic[i + 1]
-             and periodic[i] > vertical.min() + 0.4 * np.ptp(vertical)]
-    out["pelvis peaks per cycle"] = float(len(peaks))
+    # Crests: maxima standing out by a tenth of the excursion (a millimetre's ripple is none),
+    # counted once around the periodic cycle.
+    periodic = np.concatenate([vertical[-SAMPLES // 4:-1], vertical, vertical[1:SAMPLES // 4]])
+    crests, _ = find_peaks(periodic, prominence=0.1 * np.ptp(vertical))
+    start = SAMPLES // 4 - 1
+    out["pelvis peaks per cycle"] = float(np.count_nonzero((crests >= start) & (crests < start + SAMPLES - 1)))
+    # Sideways: against the pelvis's own mean path (a cycle's running mean), towards the left.
     left = np.cross(np.array([0.0, 1.0, 0.0]), _horizontal(forward))
-    lateral = np.sum((pelvis - root) * left, axis=-1)
+    lateral = np.sum((pelvis - _running_mean(pelvis, int(round(cycle * motion.fps)))) * left, axis=-1)
     out["pelvis lateral cm"] = 100.0 * float(np.ptp(_mean_cycle(lateral, strikes)))
     across = hips[:, 0] - hips[:, 1]
     obliquity = np.degrees(np.arctan2(across[:, 1], np.linalg.norm(across[:, [0, 2]], axis=-1)))
@@ -166,6 +170,16 @@ def walk_measures(motion) -> dict[str, float]:
 
 def _ground(motion, points: NDArray[np.float64]) -> NDArray[np.float64]:
     return motion.terrain.height(points[..., [0, 2]])
+
+
+def _running_mean(points: NDArray[np.float64], window: int) -> NDArray[np.float64]:
+    """Each frame's mean (T, 3) over ``window`` frames centred on it (the ends use what
+    there is)."""
+    window = max(1, window)
+    kernel = np.ones(window)
+    total = np.stack([np.convolve(points[:, k], kernel, mode="same") for k in range(points.shape[1])], axis=-1)
+    count = np.convolve(np.ones(points.shape[0]), kernel, mode="same")
+    return total / count[:, None]
 
 
 def run_measures(motion) -> dict[str, float]:

@@ -63,6 +63,24 @@ def _rest_dorsiflexion(clip: BvhClip, hip: str, knee: str, ankle: str, toe: str)
     return float(a.ankle[0])
 
 
+def foremost_strikes(ankle: NDArray[np.float64], root: NDArray[np.float64], forward: NDArray[np.float64],
+                     events: NDArray[np.intp]) -> NDArray[np.intp]:
+    """Heel strikes (frames) of a clip's foot by Zeni, Richards & Higginson (2008, Gait
+    Posture 27:710): the strike is where the foot is farthest ahead of the body. ankle,
+    root (T, 3); forward (T, 3); ``events`` (K,) the contact events' strikes, which give
+    the cycle length (a touch of the toes late in the swing can pass for a strike there,
+    but not for the foremost point). Falls back to ``events`` with fewer than three."""
+    if len(events) < 3:
+        return events
+    from scipy.signal import find_peaks
+
+    unit = forward / np.maximum(np.linalg.norm(forward, axis=-1, keepdims=True), 1e-12)
+    ahead = np.sum((ankle - root) * unit, axis=-1)
+    cycle = float(np.median(np.diff(events)))
+    peaks, _ = find_peaks(ahead, distance=max(1, int(0.6 * cycle)), prominence=0.3 * float(np.ptp(ahead)))
+    return peaks.astype(np.intp) if len(peaks) >= 2 else events
+
+
 def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -> Legs:
     """Every leg of a BVH clip with its strikes (from ``analyze``'s events)."""
     from . import analyze_tracks
@@ -108,7 +126,8 @@ def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -
         zero = _rest_dorsiflexion(clip, hip, knee, ankle, toe)
         angles[foot] = leg_angles(p[:, 0], p[:, 1], p[:, 2], p[:, 3], forward, ankle_zero=zero)
         events = next((fe for fe in report.foot_events if fe.name == foot), None)
-        strikes[foot] = np.array([s.strike for s in events.steps if s.complete], dtype=np.intp) \
+        found = np.array([s.strike for s in events.steps if s.complete], dtype=np.intp) \
             if events is not None else np.zeros(0, dtype=np.intp)
+        strikes[foot] = foremost_strikes(p[:, 2], root, forward, found)
     note = f"{mapping.rig} joints" + (f"; skipped {skip} leading frames" if skip else "")
     return Legs(angles, strikes, 1.0 / clip.frame_time, path, note)

@@ -59,13 +59,15 @@ class PathError:
 
 
 def path_error(motion: Motion) -> PathError | None:
-    """The path error of a travelling motion (None in place)."""
+    """The path error of a travelling motion (None in place): how far the body strays
+    from its path beyond its own sideways sway (``motion.sway``, m either way)."""
     if motion.in_place:
         return None
     from ..kinematics.path import path_distance
 
     centre = motion.root[:, [0, 2], 3]
     distance, s = path_distance(motion.path, centre, motion.travel, 0.5 * motion.rig.body_length)
+    distance = np.maximum(distance - motion.rig.motion.sway, 0.0)
     _, tangent = motion.path.sample(s)
     facing = motion.root[:, [0, 2], 2]
     facing /= np.maximum(np.linalg.norm(facing, axis=1, keepdims=True), 1e-12)

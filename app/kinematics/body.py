@@ -23,14 +23,13 @@ from numpy.typing import NDArray
 
 from .frames import UP
 from .path import left_of
-from .rig import MIN_CROUCH, Rig
+from .rig import MIN_CROUCH, REACH_LIMIT, Rig
 from .spine import bezier, bezier_tangent
 from .world import World
 
 TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
-REACH_LIMIT = 0.985  # ... and never beyond this one, wherever the ground is
 MAX_ROLL = 0.5  # rad
 ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
 MAX_END_SLOPE = 0.35  # the trunk's ends beyond the girdles pitch at most this much (rise over run)
@@ -97,8 +96,9 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     stride_m (T, L) m; bob (T,) leg rest lengths; bob_lift, forward (T, L): the oscillator's
     lift for the bob and fore-aft offset for the yaw; pose_height (T,) m: the key poses'
     height, which replaces the bob; reach: (point (T, L, 3), length (L,)): how far each
-    hip may be from which point of its foot (default: the ball, L_max; a rolling foot's
-    ankle, femur + tibia, and no nearer than they fold); pitch (T,) rad: the trunk pitches nose up by it (each girdle
+    hip may be from which point of its foot (default: the ball, REACH_LIMIT of L_max; a
+    rolling plantigrade foot's ankle, femur and tibia all but straight, and no nearer
+    than they fold); pitch (T,) rad: the trunk pitches nose up by it (each girdle
     raised or lowered by its distance from the trunk's middle).
     """
     s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
@@ -119,12 +119,24 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
         height = ground + rest + pose_height[:, None]
     if pitch is not None:
         height = height + np.tan(pitch)[:, None] * ((rig.girdle_position - 0.5) * rig.body_length)[None, :]
-    reach_point, l_max = (ball, rig.l_max) if reach is None else reach
+    reach_point, farthest = (ball, REACH_LIMIT * rig.l_max) if reach is None else reach
 
-    # Never higher than lets a planted foot reach its ball: the hip sits beside the centre.
-    hip_xz = point[:, rig.girdle] + left[:, rig.girdle][..., [0, 2]] * (rig.hip_side * rig.hip_offset)[None, :, None]
+    # Roll towards the higher foot; yaw with the feet; sway towards the stance side.
+    across = np.linalg.norm(support[:, 0::2, [0, 2]] - support[:, 1::2, [0, 2]], axis=-1)
+    roll = np.clip(ROLL_FOLLOW * np.arctan2(y_left - y_right, np.maximum(across, 1e-6)), -MAX_ROLL, MAX_ROLL)
+    roll = roll - rig.motion.pelvis_tilt * (bob_lift[:, 0::2] - bob_lift[:, 1::2])  # the swinging side drops
+    yaw = -rig.motion.yaw * (forward[:, 0::2] - forward[:, 1::2])
+    lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
+    sway = rig.motion.sway * (bob_lift[:, 1::2] - bob_lift[:, 0::2])  # (T, G) m to the left
+    point = point + sway[..., None] * left[..., [0, 2]]
+
+    # Never higher than lets a planted foot reach its ball (or a rolling foot's ankle):
+    # each hip sits beside the centre, turned and tilted with the girdle.
+    side = (rig.hip_side * rig.hip_offset)[None, :, None]
+    hip_offset = lateral[:, rig.girdle] * side  # (T, L, 3) from the centre
+    hip_xz = point[:, rig.girdle] + hip_offset[..., [0, 2]]
     far = np.linalg.norm(reach_point[..., [0, 2]] - hip_xz, axis=-1)
-    allowed = reach_point[..., 1] + np.sqrt(np.maximum((REACH_LIMIT * l_max) ** 2 - far ** 2, 0.0))
+    allowed = reach_point[..., 1] + np.sqrt(np.maximum(farthest ** 2 - far ** 2, 0.0)) - hip_offset[..., 1]
     horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
     allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
     # ... nor so low that a planted foot comes nearer than the leg can fold (the uphill foot
@@ -138,13 +150,6 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     lowest = np.maximum(ground + np.maximum(MIN_CROUCH * rest, 1.05 * np.maximum(rig.l_min[0::2], rig.l_min[1::2])),
                         np.maximum(near[:, 0::2], near[:, 1::2]))
     height = np.maximum(np.minimum(height, np.minimum(allowed[:, 0::2], allowed[:, 1::2])), lowest)
-
-    # Roll towards the higher foot; yaw with the feet (secondary motion).
-    across = np.linalg.norm(support[:, 0::2, [0, 2]] - support[:, 1::2, [0, 2]], axis=-1)
-    roll = np.clip(ROLL_FOLLOW * np.arctan2(y_left - y_right, np.maximum(across, 1e-6)), -MAX_ROLL, MAX_ROLL)
-    roll = roll - rig.motion.pelvis_tilt * (bob_lift[:, 0::2] - bob_lift[:, 1::2])  # the swinging side drops
-    yaw = -rig.motion.yaw * (forward[:, 0::2] - forward[:, 1::2])
-    lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
     centre = np.stack([point[..., 0], height, point[..., 1]], axis=-1)
     return Girdles(centre=centre, heading=heading, lateral=lateral, yaw=yaw, s=s_g)
 

@@ -27,6 +27,7 @@ from .footholds import EDGE_MARGIN, Footholds, place_feet
 from .oscillator import foot_wave
 from .path import left_of
 from .rig import Rig
+from .walker import heel_to_toe, walker_ease, walker_lift
 from .world import World, WorldError
 
 SEARCH_RADIUS = 0.3  # of the leg rest length: how far from its ideal spot a foot may land
@@ -142,7 +143,7 @@ def swing_support(rig: Rig, world: World, legs: NDArray[np.int64], start: NDArra
     a1 = np.stack([np.sum(rel_end * tangent[:, 1], -1), np.sum(rel_end * left[:, 1], -1)], -1)[:, None]
     a = a0 + (a1 - a0) * ease[..., None]  # (N, M, 2)
     xz = point[:, 2:] + tangent[:, 2:] * a[..., :1] + left[:, 2:] * a[..., 1:]
-    y = start[:, None, 1] + (end[:, None, 1] - start[:, None, 1]) * ease
+    y = start[:, None, 1] + (end[:, None, 1] - start[:, None, 1]) * np.clip(ease, 0.0, 1.0)
     return np.stack([xz[..., 0], y, xz[..., 1]], axis=-1)
 
 
@@ -160,6 +161,10 @@ def swing_apex(rig: Rig, world: World, start: NDArray[np.float64], end: NDArray[
     phase = duty[:, None] + s[None, :] * (1.0 - duty[:, None])
     shape = foot_wave(phase, duty[:, None], wave).lift  # (N, M)
     ease = swing_ease(np.broadcast_to(s, shape.shape), wave)
+    walker = heel_to_toe(rig)[legs][:, None]
+    if walker.any():
+        shape = np.where(walker, walker_lift(s[None, :], duty[:, None], shape), shape)
+        ease = np.where(walker, walker_ease(s[None, :], duty[:, None]), ease)
     body_at = lift_at[:, None] + (land_at - lift_at)[:, None] * s[None, :]
     base = swing_support(rig, world, legs, start, end, lift_at, land_at, body_at, ease)  # (N, M, 3)
     chord = end[:, [0, 2]] - start[:, [0, 2]]
@@ -255,7 +260,12 @@ def foot_targets(plan: FootPlan, lift_shape: NDArray[np.float64], wave: WaveShap
     rest relative to the body, and lands exactly on its foothold. Its height eases between
     the two footholds' heights in the world; the lift is along their averaged normal.
     """
-    ease = swing_ease(plan.swing, wave)[..., None]
+    ease = swing_ease(plan.swing, wave)
+    walker = heel_to_toe(rig)[None, :] & ~plan.contact
+    if walker.any():  # a walker's foot swings as people's do (app.kinematics.walker)
+        ease = np.where(walker, walker_ease(plan.swing, plan.duty), ease)
+        lift_shape = np.where(walker, walker_lift(plan.swing, plan.duty, lift_shape), lift_shape)
+    ease = ease[..., None]
     swinging = ~plan.contact
     support = plan.start.copy()
     if swinging.any():

@@ -78,6 +78,10 @@ def solve_legs(
     ankle_weight: NDArray[np.float64] | None = None,
     toe_drop: NDArray[np.float64] | None = None,
     toe_weight: NDArray[np.float64] | None = None,
+    dorsiflexion: NDArray[np.float64] | None = None,
+    dorsi_weight: NDArray[np.float64] | None = None,
+    knee_target: NDArray[np.float64] | None = None,
+    knee_weight: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
     """Solve legs for hip and ball positions.
 
@@ -96,6 +100,12 @@ def solve_legs(
                    above the frame's backward horizontal; may be negative) that replaces the
                    leg's own by the weight in [0, 1] (a rolling foot)
     toe_drop, toe_weight: (..., L) optional: likewise the toe's angle below horizontal
+    dorsiflexion, dorsi_weight: (..., L) optional: the ankle's dorsiflexion (rad, the foot
+                   against the shank, 0 as it stands at rest) that replaces the metatarsus
+                   angle by the weight (a swinging foot held against its shank)
+    knee_target, knee_weight: (..., L) optional: a knee flexion (rad) that the foot turns
+                   about its ball to give, by the weight (a walker's heel rise); the
+                   metatarsus never turns below the ankle lift
 
     Returns joints (..., L, 5, 3): hip, knee, ankle, ball, toe tip. Bone lengths are
     preserved exactly; the ball reaches the target when the target is within
@@ -112,8 +122,9 @@ def solve_legs(
     rows = int(np.prod(shape[:-2], dtype=np.int64)) if len(shape) > 2 else 1
     per_row = shape[-2]
     rolls = (ankle_angle, ankle_weight, toe_drop, toe_weight)
+    foot_rules = (dorsiflexion, dorsi_weight, knee_target, knee_weight)
     if len(shape) != 3 or rows * per_row <= 2 * _CHUNK_LEGS:
-        return _solve(hip, target, forward, up, toe_curl, ground_height, rolls, **rig)
+        return _solve(hip, target, forward, up, toe_curl, ground_height, rolls, foot_rules, **rig)
     # Long clips: solve blocks of frames. Per-frame inputs are sliced, shared ones passed whole.
     step = max(1, _CHUNK_LEGS // per_row)
     out = np.empty(shape[:-1] + (5, 3))
@@ -127,11 +138,13 @@ def solve_legs(
         out[lo:hi] = _solve(np.broadcast_to(hip, shape)[lo:hi], np.broadcast_to(target, shape)[lo:hi],
                             part(forward, lo, hi), part(up, lo, hi), part(toe_curl, lo, hi),
                             part(ground_height, lo, hi),
-                            tuple(None if a is None else part(a, lo, hi) for a in rolls), **rig)
+                            tuple(None if a is None else part(a, lo, hi) for a in rolls),
+                            tuple(None if a is None else part(a, lo, hi) for a in foot_rules), **rig)
     return out
 
 
-def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4, *, femur, tibia, metatarsus, toe, ankle_lift,
+def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4, foot_rules=(None,) * 4, *,
+           femur, tibia, metatarsus, toe, ankle_lift,
            l_max, l_rest, l_min, knee_sign, swing_rest=0.0, knee_pole=None) -> NDArray[np.float64]:
     """:func:`solve_legs` on one block (see there)."""
     shape = np.broadcast_shapes(hip.shape, target.shape)
@@ -173,6 +186,62 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
     ankle_angle, ankle_weight, toe_angle, toe_weight = rolls
     if ankle_angle is not None:  # a rolling foot's metatarsus
         alpha = alpha + ankle_weight * (np.minimum(ankle_angle, MAX_ANKLE_ANGLE) - alpha)
+    dorsiflexion, dorsi_weight, knee_target, knee_weight = foot_rules
+    if knee_target is not None and np.any(knee_weight > 0):
+        # 2b. A foot that turns about its ball so that the knee has a wanted flexion (a
+        #     walker's heel rising through late stance): the ankle at distance m from the
+        #     ball and S from the hip, hf cos(a) - hu sin(a) = (l^2 + m^2 - S^2) / 2m.
+        m = metatarsus
+        span = np.sqrt(femur * femur + tibia * tibia + 2.0 * femur * tibia * np.cos(knee_target))
+        radius = np.maximum(np.hypot(hf, hu), 1e-12)
+        c = np.clip((length * length + m * m - span * span) / (2.0 * m * radius), -1.0, 1.0)
+        phi = np.arctan2(hu, hf)
+        options = np.stack([np.arccos(c) - phi, -np.arccos(c) - phi])
+        options = np.mod(options - alpha + np.pi, 2.0 * np.pi) - np.pi + alpha  # the turns nearest alpha
+        nearest = np.take_along_axis(options, np.argmin(np.abs(options - alpha), axis=0)[None], axis=0)[0]
+        alpha = alpha + knee_weight * (np.clip(nearest, ankle_lift, MAX_ANKLE_ANGLE) - alpha)
+    af, au, al, kf, ku, kl = _ankle_and_knee(alpha, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign, knee_pole)
+    if dorsiflexion is not None and np.any(dorsi_weight > 0):
+        # 4b. A foot held against its shank (a swinging walker's): the metatarsus angle that
+        #     gives the wanted dorsiflexion depends on the shank, which depends on the ankle;
+        #     three fixed-point passes settle it (the shank turns little as the foot does).
+        for _ in range(3):
+            shank = np.arctan2(af - kf, -(au - ku))  # from the vertical, + with the ankle ahead of the knee
+            wanted = np.clip(ankle_lift - dorsiflexion - shank, 0.0, MAX_ANKLE_ANGLE)
+            mixed = alpha + dorsi_weight * (wanted - alpha)
+            af, au, al, kf, ku, kl = _ankle_and_knee(mixed, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign,
+                                                     knee_pole)
+
+    # 5. Toe: flat on the ground while planted, dropping by the ankle lift in the air, its
+    #    tip never lower than half the ball's height (so it never touches down before
+    #    the ball: it lands and lifts off flat, together with the ball).
+    # The ball's height (world y) above the ground under it.
+    height = hip[..., 1] + hf * fwd[..., 1] + hu * upv[..., 1] + hl * lat[..., 1] - ground_height
+    room = np.arcsin(np.clip(0.5 * height / np.maximum(toe, 1e-12), 0.0, 1.0))
+    drop = np.minimum(ankle_lift * np.clip(toe_curl, 0.0, 1.0), room)
+    if toe_angle is not None:  # a rolling foot's toe; blending in the air, its tip never below the ground
+        drop = drop + toe_weight * (toe_angle - drop)
+        clear = np.arcsin(np.clip(height / np.maximum(toe, 1e-12), 0.0, 1.0))
+        drop = np.where(toe_weight < 1.0, np.minimum(drop, clear), drop)
+    tf, tu = hf + toe * np.cos(drop), hu - toe * np.sin(drop)
+
+    # Back to world space: hip + f * forward + u * up + l * lateral, for all four joints.
+    batch = shape[:-1]
+    local = np.stack(np.broadcast_arrays(kf, ku, kl, af, au, al, hf, hu, hl, tf, tu, hl), axis=-1)
+    local = local.reshape(batch + (4, 3))  # knee, ankle, ball, toe in (forward, up, lateral)
+    joints = np.empty(batch + (5, 3))
+    joints[..., 0, :] = hip
+    if shared_frame:  # one BLAS product for every joint of every leg and frame
+        joints[..., 1:, :] = (local.reshape(-1, 3) @ basis).reshape(local.shape) + hip[..., None, :]
+    else:
+        joints[..., 1:, :] = np.einsum("...jk,...kc->...jc", local, basis) + hip[..., None, :]
+    return joints
+
+
+def _ankle_and_knee(alpha, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign, knee_pole):
+    """Steps 3 and 4 of :func:`_solve`: the ankle for metatarsus angle ``alpha`` (kept
+    reachable) and the knee, as (forward, up, lateral) components relative to the hip:
+    (af, au, al, kf, ku, kl)."""
     wf, wu = -np.cos(alpha), np.sin(alpha)  # wanted direction ball -> ankle (no lateral part)
     wl = np.zeros_like(wf)
 
@@ -222,27 +291,4 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
         pn = np.maximum(_norm3(pf, pu, pl), 1e-300)
     kf, ku, kl = along * ef + off * pf / pn, along * eu + off * pu / pn, along * el + off * pl / pn
 
-    # 5. Toe: flat on the ground while planted, dropping by the ankle lift in the air, its
-    #    tip never lower than half the ball's height (so it never touches down before
-    #    the ball: it lands and lifts off flat, together with the ball).
-    # The ball's height (world y) above the ground under it.
-    height = hip[..., 1] + hf * fwd[..., 1] + hu * upv[..., 1] + hl * lat[..., 1] - ground_height
-    room = np.arcsin(np.clip(0.5 * height / np.maximum(toe, 1e-12), 0.0, 1.0))
-    drop = np.minimum(ankle_lift * np.clip(toe_curl, 0.0, 1.0), room)
-    if toe_angle is not None:  # a rolling foot's toe; blending in the air, its tip never below the ground
-        drop = drop + toe_weight * (toe_angle - drop)
-        clear = np.arcsin(np.clip(height / np.maximum(toe, 1e-12), 0.0, 1.0))
-        drop = np.where(toe_weight < 1.0, np.minimum(drop, clear), drop)
-    tf, tu = hf + toe * np.cos(drop), hu - toe * np.sin(drop)
-
-    # Back to world space: hip + f * forward + u * up + l * lateral, for all four joints.
-    batch = shape[:-1]
-    local = np.stack(np.broadcast_arrays(kf, ku, kl, af, au, al, hf, hu, hl, tf, tu, hl), axis=-1)
-    local = local.reshape(batch + (4, 3))  # knee, ankle, ball, toe in (forward, up, lateral)
-    joints = np.empty(batch + (5, 3))
-    joints[..., 0, :] = hip
-    if shared_frame:  # one BLAS product for every joint of every leg and frame
-        joints[..., 1:, :] = (local.reshape(-1, 3) @ basis).reshape(local.shape) + hip[..., None, :]
-    else:
-        joints[..., 1:, :] = np.einsum("...jk,...kc->...jc", local, basis) + hip[..., None, :]
-    return joints
+    return af, au, al, kf, ku, kl

@@ -478,7 +478,7 @@ class LiveMotion:
         stride = np.where(plan.contact[0], self.stride, self.stride_lift + (self.stride - self.stride_lift) * ease)
         return {"clock": self.clock, "time": self.time, "travel": self.travel, "bob": self.bob,
                 "stride": stride * self.rig.leg_scale, "plan": plan, "wave": self._wave_now(),
-                "trunk": self._trunk.copy()}
+                "trunk": self._trunk.copy(), "frequency": self.frequency}
 
     @property
     def cross_fading(self) -> bool:
@@ -498,7 +498,8 @@ class LiveMotion:
         f = self.frame_inputs()
         inputs = MotionInputs(clock=np.array([self.clock]), times=np.array([self.time]), plan=f["plan"],
                               travel=np.array([self.travel]), stride=f["stride"][None], bob=np.array([self.bob]),
-                              wave=f["wave"], waves=self._waves(f["plan"]), trunk=f["trunk"][None])
+                              wave=f["wave"], waves=self._waves(f["plan"]), trunk=f["trunk"][None],
+                              frequency=np.array([f["frequency"]]))
         return solve_motion(self.rig, self.world, inputs).pose(0)
 
 
@@ -512,4 +513,5 @@ def stack_inputs(frames: list[dict]) -> MotionInputs:
                         plan=plan, travel=np.array([f["travel"] for f in frames]),
                         stride=np.array([f["stride"] for f in frames]), bob=np.array([f["bob"] for f in frames]),
                         trunk=np.array([f["trunk"] for f in frames]),
+                        frequency=np.array([f["frequency"] for f in frames]),
                         wave=waves.pop() if len(waves) == 1 else frames[-1]["wave"])

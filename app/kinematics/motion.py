@@ -29,10 +29,11 @@ from .gait import ground_speed
 from .leg import solve_legs
 from .oscillator import FootWave, foot_wave
 from .path import Path
-from .poses import pose_height, reference_foot, step_phase
-from .rig import Rig
+from .poses import body_height, reference_foot
+from .rig import STANCE_BACK, Rig
 from .roll import foot_roll, heel_points
 from .terrain import Terrain
+from .walker import walking_weight
 from .world import World, WorldError
 
 TIGHTEST_TURN = 0.2  # body lengths: the smallest turning radius a path may ask for
@@ -154,7 +155,8 @@ class MotionInputs:
     centre's arc length along the path (m); stride (T, L) the planted feet's travel
     relative to their hips (m, for the standing height); bob (T,) leg rest lengths; wave:
     the oscillator shape; ``waves`` optionally replaces the oscillators (a cross-fade of
-    two shapes: foot wave and bob wave).
+    two shapes: foot wave and bob wave); trunk (T, 2) the spine's flexion and pitch
+    amplitudes (default: the gait's); frequency (T,) cycles/s (default: the gait's).
     """
 
     clock: NDArray[np.float64]
@@ -166,6 +168,7 @@ class MotionInputs:
     wave: WaveShape
     waves: tuple[FootWave, FootWave] | None = None
     trunk: NDArray[np.float64] | None = None
+    frequency: NDArray[np.float64] | None = None
 
 
 def trunk_motion(rig: Rig, phase: NDArray[np.float64], wave: FootWave, trunk: NDArray[np.float64] | None
@@ -211,19 +214,24 @@ def _leg_frames(rig: Rig, heading: NDArray[np.float64], normal: NDArray[np.float
     return forward, normal
 
 
-def _body_height(rig: Rig, plan: FootPlan, wave: str, bob: NDArray[np.float64],
+def _body_height(rig: Rig, inputs: MotionInputs, wave: str, bob: NDArray[np.float64],
                  delay: float = 0.0) -> NDArray[np.float64]:
     """How far (m) each girdle (T, G) stands above or below its standing height from the
-    gait's rhythm ``delay`` cycles ago: the key poses' height, or the bob."""
+    gait's rhythm ``delay`` cycles ago: the key poses' height (a run's flights once the
+    feet leave the ground together), or the bob."""
+    plan = inputs.plan
     if rig.poses.heights is not None:
-        height = pose_height(rig.poses.heights, step_phase(rig, plan.phase - delay))
+        ref = reference_foot(rig)
+        frequency = inputs.frequency if inputs.frequency is not None else np.full(plan.phase.shape[0], rig.gait.frequency)
+        ahead = 0.5 * (1.0 - STANCE_BACK) * inputs.stride[:, ref]  # where the foot lands, ahead of its hip
+        height = body_height(rig, plan.phase - delay, plan.duty, frequency, ahead)
         return np.broadcast_to(height[:, None], (height.shape[0], rig.girdle_rest_height.size))
     lift = foot_wave(plan.phase - rig.motion.bob_phase - delay, plan.duty, wave).lift  # type: ignore[arg-type]
     girdle_lift = np.maximum(lift[:, 0::2], lift[:, 1::2])
     return bob[:, None] * rig.girdle_rest_height * (girdle_lift - 0.5)
 
 
-def _overlap(rig: Rig, plan: FootPlan, wave: str, bob: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+def _overlap(rig: Rig, inputs: MotionInputs, wave: str, bob: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
     """Each delayed part's lag (T,): how much higher (m) its end of the body stood its delay
     ago than now (the head and neck at the front girdle, the tail at the rear one)."""
     lag = {}
@@ -231,8 +239,8 @@ def _overlap(rig: Rig, plan: FootPlan, wave: str, bob: NDArray[np.float64]) -> d
     for part, girdle in (("head", 0), ("neck", 0), ("tail", -1), ("ears", 0)):
         delay = getattr(rig.overlap, part)
         if delay > 0:
-            now = _body_height(rig, plan, wave, bob) if now is None else now
-            lag[part] = _body_height(rig, plan, wave, bob, delay)[:, girdle] - now[:, girdle]
+            now = _body_height(rig, inputs, wave, bob) if now is None else now
+            lag[part] = _body_height(rig, inputs, wave, bob, delay)[:, girdle] - now[:, girdle]
     return lag
 
 
@@ -251,7 +259,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     planted = np.where(plan.contact, 1.0, np.clip(np.maximum(1.0 - 4.0 * plan.swing, 4.0 * plan.swing - 3.0), 0, 1))
     posed = rig.poses.heights is not None
     bob = np.zeros_like(inputs.bob) if posed else inputs.bob
-    height = _body_height(rig, plan, inputs.wave, bob)[:, 0] if posed else None
+    height = _body_height(rig, inputs, inputs.wave, bob)[:, 0] if posed else None
     trunk = trunk_motion(rig, plan.phase, wave, inputs.trunk)
     girdles = place_girdles(rig, world, inputs.travel, feet.support, ball, planted, inputs.stride,
                             bob, bob_wave.lift, wave.forward, pose_height=height,
@@ -259,7 +267,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
                             pitch=None if trunk is None else trunk[1])
 
     # 3. Spine, neck, head, tail (following through by their overlap).
-    lag = _overlap(rig, plan, inputs.wave, bob)
+    lag = _overlap(rig, inputs, inputs.wave, bob)
     spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, lag, flex=None if trunk is None else trunk[0])
     ear_lag = np.arctan2(lag["ears"], max(rig.body.ear_length, 1e-3)) if "ears" in lag else np.zeros(frames)
 
@@ -279,7 +287,8 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
         forward = forward - np.sum(forward * up, axis=-1, keepdims=True) * up
         forward = forward / np.linalg.norm(forward, axis=-1, keepdims=True)
         rolls = dict(ankle_angle=roll.ankle_angle, ankle_weight=roll.ankle_weight, toe_drop=roll.toe_drop,
-                     toe_weight=roll.toe_weight)
+                     toe_weight=roll.toe_weight, dorsiflexion=roll.dorsiflexion, dorsi_weight=roll.dorsi_weight,
+                     knee_target=roll.knee, knee_weight=roll.knee_weight)
         # A rolled foot's ankle angle is its own, not the one L_max assumes: let the leg
         # reach as far as its bones do (place_girdles keeps the ankle within reach).
         l_max = np.where(roll.sets_ankle, 0.999 * (rig.femur + rig.tibia + rig.metatarsus), rig.l_max)
@@ -300,7 +309,8 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
         ref = reference_foot(rig)
         angle = arm_swing(rig.poses.arm_swing, rig.overlap.arms, plan.phase[:, [ref + 1, ref]])
         assert spine.shoulder is not None and spine.shoulder_lateral is not None  # a trunk with arms has shoulders
-        arms = arm_chains(rig.arms, spine.shoulder, spine.shoulder_lateral, angle)
+        running = 1.0 - walking_weight(plan.duty[:, ref])
+        arms = arm_chains(rig.arms, spine.shoulder, spine.shoulder_lateral, angle, running)
     else:
         arms = np.zeros((frames, 0, 4, 3))
 
@@ -343,7 +353,7 @@ def constant_gait_inputs(rig: Rig, world: World, clock: NDArray[np.float64],
     stride = np.broadcast_to(rig.stride_length, plan.phase.shape)
     bob = np.full(clock.shape[0], rig.gait.bob)
     return MotionInputs(clock=clock, times=times, plan=plan, travel=origin + per_cycle * clock, stride=stride,
-                        bob=bob, wave=rig.gait.wave)
+                        bob=bob, wave=rig.gait.wave, frequency=np.full(clock.shape[0], rig.gait.frequency))
 
 
 def check_world(rig: Rig, world: World) -> None:

@@ -4,8 +4,14 @@ A step runs from one foot's contact to the other's (half a cycle). Its key poses
 fixed fractions of it (:data:`app.styles.KEY_POSE_TIMES`): contact 0, down 1/4, pass 1/2,
 up 3/4; the next contact starts the mirrored step. The in-betweens follow a periodic
 monotone cubic (PCHIP) through the four heights: smooth (C1), no overshoot, so the lowest
-and highest points of the curve are key poses themselves — moving the down pose moves the
-body's lowest point by exactly as much, and no other key pose moves.
+and highest points of the curve are key poses themselves — moving the lowest key moves the
+body's lowest point by exactly as much, and no other key pose moves. (In the natural walk,
+:mod:`app.kinematics.natural`, the lowest key is the contact: the body is lowest in double
+support and crests at the pass.)
+
+A run is no walk: once the feet leave the ground together (duty factor under one half) a
+biped's body flies ballistically between stances (:func:`flight_height`), its keys set
+aside, faded in over :data:`RUN_BLEND` of duty factor.
 
 Pure numpy and scipy, no GL.
 """
@@ -19,6 +25,7 @@ from numpy.typing import NDArray
 from scipy.interpolate import PchipInterpolator
 
 from ..styles import KEY_POSE_TIMES
+from .gait import G
 from .rig import Rig
 
 
@@ -55,3 +62,73 @@ def key_pose_phases(first_step: bool = True) -> NDArray[np.float64]:
     step (or the second, mirrored one)."""
     start = 0.0 if first_step else 0.5
     return start + 0.5 * np.append(np.asarray(KEY_POSE_TIMES), 1.0)
+
+
+RUN_KNEE = np.radians(40.0)  # a runner's stance knee at mid-stance, its lowest point
+STRIKE_KNEE = np.radians(15.0)  # ... and never straighter than this at touchdown and lift-off
+RUN_BLEND = 0.06  # of duty factor below one half: how far the run's flights fade in
+
+
+def _step_times(duty: NDArray[np.float64], frequency: NDArray[np.float64]
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """How long (s) a running step's foot is down and how long the body flies, (T,) each:
+    a step is half a cycle, its foot down for ``duty`` of the cycle."""
+    period = 1.0 / np.maximum(frequency, 1e-6)
+    contact = np.clip(duty, 1e-3, 0.5) * period
+    return contact, 0.5 * period - contact
+
+
+def flight_height(u: NDArray[np.float64], duty: NDArray[np.float64], frequency: NDArray[np.float64],
+                  low: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A biped's body height offset (m) through a running step, (T,): ballistic in flight
+    (falling at g), a half sine in stance whose slopes meet the flight's at touchdown and
+    lift-off, lowest (``low``, m) at mid-stance. u (T,) step phase (0 at a touchdown);
+    duty (T,) each foot's duty factor (below 0.5: the step's stance is 2 duty of it);
+    frequency (T,) cycles/s."""
+    contact, flight = _step_times(duty, frequency)
+    t = np.mod(u, 1.0) * (contact + flight)
+    v0 = 0.5 * G * flight  # the take-off (and landing) speed, m/s
+    dip = v0 * contact / np.pi  # how far the stance sinks below touchdown
+    in_air = t - contact
+    stance = low + dip * (1.0 - np.sin(np.pi * np.clip(t / contact, 0.0, 1.0)))
+    air = low + dip + v0 * in_air - 0.5 * G * in_air ** 2
+    return np.where(in_air > 0.0, air, stance)
+
+
+def running_low(rig: Rig, leg: int, ahead: NDArray[np.float64], duty: NDArray[np.float64],
+                frequency: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The height offset (m from the girdle's rest height), (T,), of a runner's mid-stance:
+    its knee flexed :data:`RUN_KNEE` over a flat foot, lowered if need be so that a foot
+    landing ``ahead`` m in front of the hip (T,) reaches with its knee bent at least
+    :data:`STRIKE_KNEE`."""
+    f, t = rig.femur[leg], rig.tibia[leg]
+    ankle = rig.metatarsus[leg] * np.sin(rig.ankle_lift[leg])  # a flat foot's ankle above the ground
+
+    def span(knee: float) -> float:
+        return float(np.sqrt(f * f + t * t + 2.0 * f * t * np.cos(knee)))
+
+    rest = float(rig.girdle_rest_height[rig.girdle[leg]])
+    low = ankle + span(RUN_KNEE) - rest
+    touchdown = ankle + np.sqrt(np.maximum(span(STRIKE_KNEE) ** 2 - ahead ** 2, 0.0)) - rest
+    contact, flight = _step_times(duty, frequency)
+    dip = 0.5 * G * flight * contact / np.pi
+    return np.minimum(low, touchdown - dip)
+
+
+def body_height(rig: Rig, phase: NDArray[np.float64], duty: NDArray[np.float64], frequency: NDArray[np.float64],
+                ahead: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A posed body's height offset (m), (T,): the key poses' curve while a foot is always
+    down, the running step's (:func:`flight_height`) once the duty factor falls below one
+    half, faded in over :data:`RUN_BLEND`. phase, duty (T, L); frequency (T,) Hz; ahead
+    (T,) m: how far in front of its hip the reference foot lands."""
+    assert rig.poses.heights is not None, "body_height is for posed bodies"
+    ref = reference_foot(rig)
+    u = step_phase(rig, phase)
+    walk = pose_height(rig.poses.heights, u)
+    d = duty[:, ref]
+    run_weight = np.clip((0.5 - d) / RUN_BLEND, 0.0, 1.0) if rig.leg_count == 2 else np.zeros_like(d)
+    if not np.any(run_weight):
+        return walk
+    w = run_weight * run_weight * (3.0 - 2.0 * run_weight)
+    run = flight_height(u, d, frequency, running_low(rig, ref, ahead, d, frequency))
+    return walk * (1.0 - w) + run * w

@@ -22,6 +22,8 @@ from ..choices import PLANTIGRADE_BELOW
 from .gait import GaitParams, ground_speed
 
 MIN_CROUCH = 0.6  # a girdle never stands lower than this fraction of its rest height
+REACH_LIMIT = 0.985  # a planted foot's ball stays within this fraction of L_max, wherever the ground is
+STANCE_BACK = 0.25  # of half the stride: how far behind the hip a rolling plantigrade ankle is at mid-stance
 SPRAWL_MARGIN = 0.95  # a sprawled foot's rest spot stays within this fraction of full reach, striding
 
 
@@ -75,12 +77,13 @@ class SecondaryMotion:
     """yaw: how far (rad) the girdles turn with their feet (the shoulders of an upright
     body turn the other way); tail_sway (rad); bob_phase (cycle fraction) shifts the body
     bob relative to the feet; pelvis_tilt (rad): how far a girdle drops on the side of its
-    swinging leg."""
+    swinging leg; sway (m): how far a girdle moves sideways towards its stance foot."""
 
     yaw: float = 0.0
     tail_sway: float = 0.0
     bob_phase: float = 0.0
     pelvis_tilt: float = 0.0
+    sway: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -268,8 +271,10 @@ class Rig:
         plantigrade foot's heel length ahead)."""
         reach = self.sideways_reach
         lateral = self.hip_side * (self.hip_offset + reach * np.cos(self.splay))
-        # A rolling plantigrade foot stands with its ankle under the hip, the ball ahead.
-        ahead = np.where(self.roll_amount > 0, self.heel_length, 0.0)
+        # A rolling plantigrade foot stands with its ankle a little behind the hip at
+        # mid-stance, the ball ahead: it strikes with its heel about a third of a stride
+        # ahead of the hip and pushes off well behind it, as walkers do.
+        ahead = np.where(self.roll_amount > 0, self.heel_length - STANCE_BACK * 0.5 * self.stride_length, 0.0)
         return np.stack([lateral, reach * np.sin(self.splay) + ahead], axis=-1)
 
     def with_gait(self, gait: GaitParams) -> Rig:

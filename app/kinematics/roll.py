@@ -30,15 +30,19 @@ from numpy.typing import NDArray
 
 from .easing import smoothstep
 from .footfalls import FootPlan
-from .rig import Rig
+from .rig import REACH_LIMIT, Rig
+from .walker import walker_knee
 
 HEEL_PART = 0.2  # of the stance, at roll 1: heel strike to foot flat
-RISE_PART = 0.45  # of the stance before lift-off, at roll 1: where the heel starts to rise
+RISE_PART = 0.5  # of the stance before lift-off, at roll 1: where the heel starts to rise
 TOE_PART = 0.2  # of the stance before lift-off, at roll 1: the roll over the toes
-HEEL_RISE = np.radians(22.0)  # how far the heel rises about the ball before the toe roll, at roll 1
-TOE_OFF = np.radians(35.0)  # the toe's angle at lift-off, at roll 1
+HEEL_RISE = np.radians(30.0)  # how far the heel rises about the ball before the toe roll, at roll 1
+TOE_OFF = np.radians(12.0)  # the toe's angle at lift-off, at roll 1
+STRAIGHT_KNEE = np.radians(3.0)  # a rolling plantigrade stance leg is never straighter than this
+SWING_DORSIFLEXION = 0.0  # rad: the swinging plantigrade foot's ankle between lift-off and strike
+LAND = 0.3  # of the swing, before the strike: how long the strike pose builds
 BLEND = 0.4  # of the swing: how long the lift-off pose fades and the strike pose builds
-STRIKE_DROP = 0.25  # of the foot's length: how fast (per swing) a rolling foot meets the ground, so it strikes
+STRIKE_DROP = 0.5  # of the foot's length: how fast (per swing) a rolling foot meets the ground, so it strikes
 
 
 @dataclass(frozen=True)
@@ -49,7 +53,11 @@ class FootRoll:
     foot's forward direction (unit, 3) with its weight against the body's heading; the
     ankle (T, L, 3) of the rolled foot (the ball for feet that keep their own ankle angle)
     and ``reach`` (L,) how far a hip may be from that point (m); ``sets_ankle`` (L,) which
-    legs' ankle angle the roll sets (rolling plantigrade feet)."""
+    legs' ankle angle the roll sets (rolling plantigrade feet); in mid-swing such a foot
+    is held against its shank instead: ``dorsiflexion`` (rad) with ``dorsi_weight``
+    (T, L) against the metatarsus angle; from late stance into the early swing its heel
+    turns about the ball to give the ``knee`` (rad) a walker's has, by ``knee_weight``
+    (:func:`app.kinematics.walker.walker_knee`)."""
 
     ball: NDArray[np.float64]
     ankle_angle: NDArray[np.float64]
@@ -61,6 +69,10 @@ class FootRoll:
     ankle: NDArray[np.float64]
     reach: NDArray[np.float64]
     sets_ankle: NDArray[np.bool_]
+    dorsiflexion: NDArray[np.float64]
+    dorsi_weight: NDArray[np.float64]
+    knee: NDArray[np.float64]
+    knee_weight: NDArray[np.float64]
 
 
 def _foot_frame(direction: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -94,6 +106,13 @@ def _stance(rig: Rig, foot_angle: float, u: NDArray[np.float64], foothold: NDArr
     return ball, ankle, drop
 
 
+def straight_leg(rig: Rig, knee: float = STRAIGHT_KNEE) -> NDArray[np.float64]:
+    """How far (m) femur and tibia span from hip to ankle with the knee flexed by
+    ``knee`` (rad), (L,): the law of cosines."""
+    f, t = rig.femur, rig.tibia
+    return np.sqrt(f * f + t * t + 2.0 * f * t * np.cos(knee))
+
+
 def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: float) -> FootRoll | None:
     """The roll of every foot over a plan (None when no leg rolls). ball (T, L, 3) the
     flat foot's ball targets (:func:`~app.kinematics.footfalls.foot_targets`);
@@ -120,7 +139,7 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     on_heel = np.maximum(pitch, 0.0)
     land_offset = (rig.heel_length * (np.cos(on_heel) - 1.0))[..., None] * f_end \
         + (rig.heel_length * np.sin(on_heel))[..., None] * plan.end_normal
-    w_land = smoothstep((s - BLEND) / (1.0 - 2.0 * BLEND))
+    w_land = smoothstep((s - (1.0 - LAND)) / LAND)
     land_ankle, land_drop = rig.ankle_lift - pitch, -on_heel
     # The swing eases onto the ground; a rolling foot comes down with some speed instead,
     # so it strikes (a kink in its height, as a real heel strike).
@@ -134,7 +153,10 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     swing_ball = ball + lift_offset + land_offset + strike[..., None] * plan.end_normal
     out_ball = np.where((contact & rolling)[..., None], stance_ball, np.where(rolling[..., None], swing_ball, ball))
     weight = np.clip(w_lift + w_land, 1e-12, None)
-    ankle = np.where(contact, stance_ankle, (w_lift * lift_ankle + w_land * land_ankle) / weight)
+    # Between the two poses (both weights nil) the strike pose's angle, which the blend
+    # tends to as the strike pose builds: no jump where the foot is held to its shank.
+    blended = np.where(w_lift + w_land > 1e-9, (w_lift * lift_ankle + w_land * land_ankle) / weight, land_ankle)
+    ankle = np.where(contact, stance_ankle, blended)
     drop = np.where(contact, stance_drop, (w_lift * lift_drop + w_land * land_drop) / weight)
     w = np.where(contact, 1.0, w_lift + w_land) * rolling
     forward = np.where(contact[..., None], f_start, (w_lift[..., None] * f_start + w_land[..., None] * f_end))
@@ -145,9 +167,18 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     ankle_point = out_ball + rig.metatarsus[:, None] * (-np.cos(ankle)[..., None] * forward
                                                        + np.sin(ankle)[..., None] * normal)
     ankle_point = np.where(sets_ankle, ankle_point, out_ball)
-    reach = np.where(sets_ankle[0, :, 0], rig.femur + rig.tibia, rig.l_max)
-    return FootRoll(ball=out_ball, ankle_angle=ankle, ankle_weight=w * plantigrade, toe_drop=drop, toe_weight=w,
-                    forward=forward, forward_weight=w, ankle=ankle_point, reach=reach, sets_ankle=sets_ankle[0, :, 0])
+    reach = np.where(sets_ankle[0, :, 0], straight_leg(rig), REACH_LIMIT * rig.l_max)
+    # Between the lift-off and strike poses a plantigrade foot swings held against its
+    # shank, at right angles to it as a walker's is by mid-swing (not level with the ground).
+    held = sets_ankle[..., 0] & ~contact
+    ankle_weight = np.where(held, 1.0, w * plantigrade)
+    knee, knee_weight = walker_knee(plan.phase, plan.duty, contact, s, w_lift)
+    knee_weight = knee_weight * sets_ankle[..., 0]
+    dorsi_weight = np.where(held, 1.0 - np.clip(w, 0.0, 1.0), 0.0)
+    return FootRoll(ball=out_ball, ankle_angle=ankle, ankle_weight=ankle_weight, toe_drop=drop, toe_weight=w,
+                    forward=forward, forward_weight=w, ankle=ankle_point, reach=reach, sets_ankle=sets_ankle[0, :, 0],
+                    dorsiflexion=np.full(u.shape, SWING_DORSIFLEXION), dorsi_weight=dorsi_weight, knee=knee,
+                    knee_weight=knee_weight)
 
 
 def heel_points(rig: Rig, joints: NDArray[np.float64], forward: NDArray[np.float64],

@@ -106,6 +106,7 @@ class MotionSpec:
     yaw: float = 4.0
     tail_sway: float = 8.0
     pelvis_tilt: float = 0.0
+    sway: float = 0.0
     spine_flex: float = 1.0
 
 

@@ -160,6 +160,7 @@ MOTION_RULES: dict[str, Rule] = {
     "yaw": _num(0, 30, unit="deg", doc="how far the hips and shoulders turn with the feet"),
     "tail_sway": _num(0, 60, unit="deg", doc="side-to-side tail swing"),
     "pelvis_tilt": _num(0, 20, unit="deg", doc="how far the hips drop on the side of the swinging leg"),
+    "sway": _num(0, 0.5, unit="m", doc="how far the hips move sideways towards the stance foot, either way"),
     "spine_flex": _num(0, 3, doc="scales how far the spine flexes and the trunk pitches in bounds and gallops "
                        "(1: as the gait and the creature's build give; 0: a stiff back)"),
 }

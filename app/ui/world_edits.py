@@ -164,7 +164,10 @@ class WorldMixin(StateBase):
         from ..worlds import waypoint_path
 
         point, heading = self._here()
-        length = self.live.rig.body_length
+        rig = self.live.rig
+        # Turns sized to the body and to its stride: a planted foot must stay within reach
+        # of its hip while the body turns about it.
+        length = max(rig.body_length, 1.6 * float(np.max(rig.stride_length)))
         forward = np.array([np.sin(heading), np.cos(heading)])
         lead = point + 0.8 * length * forward
         pts = [(float(p[0]), float(p[1])) for p in points]

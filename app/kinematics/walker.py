@@ -1,0 +1,112 @@
+"""How a walker's foot swings: the shapes of a person's swing, measured.
+
+A foot that rolls heel to toe (a plantigrade foot with ``roll`` > 0: people) does not
+swing along the smooth symmetric arc of the other feet. Measured from the CMU walk 12_01
+(``../shared/reference/motion``; the left toe base, five strides, resampled over each
+swing):
+
+- its progress along the stride in the world starts from rest (the foot is still on the
+  ground at toe-off) and is quick through the middle of the swing, then settles gently
+  onto the strike: :data:`WORLD_PROGRESS`; relative to the hip, which keeps moving, the
+  foot first drifts on backwards as it did in stance;
+- the ball lifts early, highest about a third of the way through the swing (the knee's
+  peak flexion, ~72 % of the cycle), and passes low, a centimetre or two above the
+  ground, through the second half, while the heel comes down to strike:
+  :data:`BALL_LIFT`, as a fraction of the step height.
+
+- its knee, from late stance into the early swing, flexes as people's do: the heel
+  rises about the ball just so much that the knee follows :data:`KNEE_NEAR_TOE_OFF`
+  (the normative mean of Schwartz, Rozumalski & Trost 2008, ``app/reference``, by time
+  from toe-off), nearly straight through terminal stance, ~35 degrees at toe-off.
+
+Runners (duty factor under one half) swing with the common smooth arc instead; the
+walker's shapes fade out between duty factors 0.55 and 0.45.
+
+Pure numpy and scipy, no GL.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.interpolate import PchipInterpolator
+
+from .easing import smootherstep, smoothstep
+from .rig import Rig
+
+SWING = np.linspace(0.0, 1.0, 11)
+WORLD_PROGRESS = np.array([0.0, 0.03, 0.10, 0.20, 0.33, 0.468, 0.61, 0.745, 0.856, 0.945, 1.0])
+BALL_LIFT = np.array([0.0, 0.45, 0.85, 1.0, 0.8, 0.5, 0.3, 0.2, 0.15, 0.08, 0.0])
+# Knee flexion (deg) against time from toe-off (cycle fraction); Schwartz et al. 2008,
+# free speed, whose toe-off is at 60 % of the cycle.
+KNEE_FROM_TOE_OFF = np.arange(-0.32, 0.1201, 0.02)
+KNEE_NEAR_TOE_OFF = np.array([11.3, 10.1, 9.0, 8.0, 7.2, 6.6, 6.2, 6.3, 6.8, 7.9, 9.5, 11.6, 14.5, 18.1, 22.6, 27.9,
+                              33.9, 40.2, 46.3, 51.7, 55.7, 58.2, 59.1])
+HEEL_FROM = -0.30  # of the cycle before toe-off: where the knee starts to steer the heel
+# A runner's knee near toe-off (deg, by the same clock): extending through the push-off
+# to ~20 at toe-off, then folding fast in the swing (Novacheck 1998, Gait Posture 7:77).
+RUN_KNEE_FROM_TOE_OFF = np.array([-0.20, -0.16, -0.12, -0.08, -0.04, 0.0, 0.04, 0.08, 0.12])
+RUN_KNEE_NEAR_TOE_OFF = np.array([45.0, 42.0, 38.0, 32.0, 25.0, 20.0, 38.0, 60.0, 80.0])
+RUN_HEEL_FROM = -0.20
+WALK_DUTY = (0.45, 0.55)  # duty factors over which the walker's swing fades in
+
+
+@lru_cache(maxsize=4)
+def _curve(name: str) -> PchipInterpolator:
+    if name == "knee":
+        return PchipInterpolator(KNEE_FROM_TOE_OFF, np.radians(KNEE_NEAR_TOE_OFF), extrapolate=False)
+    if name == "run knee":
+        return PchipInterpolator(RUN_KNEE_FROM_TOE_OFF, np.radians(RUN_KNEE_NEAR_TOE_OFF), extrapolate=False)
+    values = WORLD_PROGRESS if name == "progress" else BALL_LIFT
+    return PchipInterpolator(SWING, values)
+
+
+def heel_to_toe(rig: Rig) -> NDArray[np.bool_]:
+    """Which legs (L,) swing as a walker's: plantigrade feet that roll heel to toe."""
+    return (rig.roll_amount > 0) & (rig.heel_length > 0)
+
+
+def walking_weight(duty: NDArray[np.float64]) -> NDArray[np.float64]:
+    """1 for a walk (duty factor 0.55 and over), 0 for a run (0.45 and under), smooth between."""
+    low, high = WALK_DUTY
+    return smoothstep((np.asarray(duty) - low) / (high - low))
+
+
+def walker_ease(swing: NDArray[np.float64], duty: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Progress (...) from lift-off to landing relative to the hip's neutral point at swing
+    progress ``swing``, for feet of duty factor ``duty`` (broadcastable): the world
+    progress of :data:`WORLD_PROGRESS` less the body's own travel through the swing (the
+    body moves 1 - duty of a stride while the foot moves a whole one)."""
+    s = np.clip(swing, 0.0, 1.0)
+    d = np.clip(duty, 1e-3, 1.0)
+    relative = (_curve("progress")(s) - (1.0 - d) * s) / d
+    w = walking_weight(duty)
+    return relative * w + smootherstep(s) * (1.0 - w)
+
+
+def walker_lift(swing: NDArray[np.float64], duty: NDArray[np.float64], lift: NDArray[np.float64]
+                ) -> NDArray[np.float64]:
+    """The ball's lift (fraction of the step height) at swing progress ``swing``: the
+    measured walker's shape, faded into the oscillator's own ``lift`` for runners."""
+    w = walking_weight(duty)
+    return _curve("lift")(np.clip(swing, 0.0, 1.0)) * w + lift * (1.0 - w)
+
+
+def walker_knee(phase: NDArray[np.float64], duty: NDArray[np.float64], contact: NDArray[np.bool_],
+                swing: NDArray[np.float64], lifting: NDArray[np.float64]) -> tuple[NDArray[np.float64],
+                                                                                  NDArray[np.float64]]:
+    """The knee a walker's foot turns about its ball to give (rad) and its weight, (T, L)
+    each: from :data:`HEEL_FROM` before toe-off through the stance, then while the
+    lift-off pose lasts in the swing (``lifting`` (T, L) in [0, 1]); a runner's from
+    :data:`RUN_HEEL_FROM`. phase, duty, contact, swing: the plan's (T, L)."""
+    since_toe_off = np.where(contact, phase - duty, swing * (1.0 - duty))
+    walk = _curve("knee")(np.clip(since_toe_off, KNEE_FROM_TOE_OFF[0], KNEE_FROM_TOE_OFF[-1]))
+    run = _curve("run knee")(np.clip(since_toe_off, RUN_KNEE_FROM_TOE_OFF[0], RUN_KNEE_FROM_TOE_OFF[-1]))
+    w = walking_weight(duty)
+    target = walk * w + run * (1.0 - w)
+    start = HEEL_FROM * w + RUN_HEEL_FROM * (1.0 - w)
+    ramp = smoothstep((since_toe_off - start) / (0.06 * w + 0.1 * (1.0 - w)))
+    weight = np.where(contact, ramp, (lifting > 0).astype(np.float64))
+    return target, weight
