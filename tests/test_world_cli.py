@@ -69,6 +69,46 @@ def test_heightmap_image_becomes_ground(tmp_path: Path) -> None:
     assert n == pytest.approx(np.array([-2.0 / 6.3, 1.0, 0.0]) / np.linalg.norm([-2.0 / 6.3, 1.0, 0.0]), abs=1e-3)
 
 
+def _png(width: int, height: int, rows: int) -> bytes:
+    """A greyscale PNG that declares width x height pixels but holds only ``rows`` of them."""
+    import struct
+    import zlib
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    raw = zlib.compress(b"".join(b"\x00" + bytes(width) for _ in range(rows)), 9)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0))
+            + chunk(b"IDAT", raw) + chunk(b"IEND", b""))
+
+
+@pytest.mark.parametrize("side", [30000, 9000])
+def test_a_heightmap_that_declares_too_many_pixels_is_refused_before_decoding(tmp_path: Path, side: int) -> None:
+    bomb = tmp_path / "bomb.png"
+    bomb.write_bytes(_png(side, side, rows=50))  # a few KB that would decode to ~1 GB
+    assert bomb.stat().st_size < 200_000
+    result = gaitlab("render", "dog", "--terrain", f"heightmap:file={bomb}", "-o", tmp_path / "out.png")
+    assert result.returncode == 2
+    assert "heightmap may have at most" in result.stderr and len(result.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "out.png").exists()
+
+
+def test_a_height_grid_keeps_four_bytes_a_point_and_gradient_normals() -> None:
+    rng = np.random.default_rng(3)
+    heights = np.cumsum(rng.normal(0, 0.01, (60, 80)), axis=1)
+    grid = HeightGrid(heights, (-2.0, -1.0), (4.0, 3.0))
+    assert grid.heights.dtype == np.float32 and grid.heights.nbytes == 60 * 80 * 4
+    assert not any(isinstance(v, np.ndarray) and v.size >= heights.size * 3 for v in vars(grid).values())
+    # At grid points the normal is np.gradient's (central inside, one-sided at the edges).
+    gz, gx = np.gradient(heights.astype(np.float32).astype(np.float64), 3.0 / 59, 4.0 / 79)
+    iz, ix = np.meshgrid(np.arange(60), np.arange(80), indexing="ij")
+    xz = np.stack([-2.0 + ix * 4.0 / 79, -1.0 + iz * 3.0 / 59], axis=-1).reshape(-1, 2)
+    inside = (ix.reshape(-1) < 79) & (iz.reshape(-1) < 59)  # the last row and column sit on a cell's far side
+    expected = np.stack([-gx, np.ones_like(gx), -gz], axis=-1).reshape(-1, 3)
+    expected /= np.linalg.norm(expected, axis=-1, keepdims=True)
+    assert np.allclose(grid.normal(xz)[inside], expected[inside], atol=1e-6)
+
+
 def test_mesh_file_becomes_a_height_grid(tmp_path: Path) -> None:
     trimesh = pytest.importorskip("trimesh")
     stairs = StairsTerrain(0.1, 0.35, steps=4, start=0.5)

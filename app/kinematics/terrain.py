@@ -255,21 +255,31 @@ class StairsTerrain(Terrain):
 class HeightGrid(Terrain):
     """Heights sampled on a regular grid: ``heights`` (rows along z, columns along x)
     covering ``origin`` (x0, z0) to origin + ``size`` (m). Bilinear heights; normals from
-    central differences, interpolated bilinearly. Outside the grid the edge continues."""
+    central differences (one-sided at the edges), interpolated bilinearly. Outside the
+    grid the edge continues. The heights are kept as float32 and the normals worked out
+    at the four grid points around each query, so a large grid costs 4 bytes a point."""
 
     kind = "grid"
 
     def __init__(self, heights: ArrayLike, origin: tuple[float, float], size: tuple[float, float],
                  label: str = "grid", max_slope: float = DEFAULT_MAX_SLOPE) -> None:
         super().__init__(max_slope)
-        self.heights = np.ascontiguousarray(heights, dtype=np.float64)
+        self.heights = np.ascontiguousarray(heights, dtype=np.float32)
         rows, cols = self.heights.shape
         self.origin = (float(origin[0]), float(origin[1]))
         self.size = (float(size[0]), float(size[1]))
         self.cell = (self.size[0] / (cols - 1), self.size[1] / (rows - 1))
         self.label = label
-        gz, gx = (np.asarray(g, dtype=np.float64) for g in np.gradient(self.heights, self.cell[1], self.cell[0]))
-        self._normals = _normal_from_gradient(gx, gz)  # (rows, cols, 3)
+
+    def _grid_normals(self, iz: NDArray[np.int64], ix: NDArray[np.int64]) -> NDArray[np.float64]:
+        """Normals (..., 3) at grid points (iz, ix), as ``np.gradient`` gives the slopes."""
+        rows, cols = self.heights.shape
+        h = self.heights
+        x0, x1 = np.maximum(ix - 1, 0), np.minimum(ix + 1, cols - 1)
+        z0, z1 = np.maximum(iz - 1, 0), np.minimum(iz + 1, rows - 1)
+        gx = (h[iz, x1].astype(np.float64) - h[iz, x0]) / ((x1 - x0) * self.cell[0])
+        gz = (h[z1, ix].astype(np.float64) - h[z0, ix]) / ((z1 - z0) * self.cell[1])
+        return _normal_from_gradient(gx, gz)
 
     def _locate(self, xz):
         p = _xz(xz)
@@ -279,18 +289,19 @@ class HeightGrid(Terrain):
         ix, iz = fx.astype(np.int64), fz.astype(np.int64)
         return ix, iz, (fx - ix)[..., None], (fz - iz)[..., None]
 
-    def _bilinear(self, grid, ix, iz, tx, tz):
-        g00, g01 = grid[iz, ix], grid[iz, ix + 1]
-        g10, g11 = grid[iz + 1, ix], grid[iz + 1, ix + 1]
-        return (g00 * (1 - tx) + g01 * tx) * (1 - tz) + (g10 * (1 - tx) + g11 * tx) * tz
-
     def height(self, xz):
         ix, iz, tx, tz = self._locate(xz)
-        return self._bilinear(self.heights[..., None], ix, iz, tx, tz)[..., 0]
+        h = self.heights
+        tx, tz = tx[..., 0], tz[..., 0]
+        g00, g01 = h[iz, ix].astype(np.float64), h[iz, ix + 1].astype(np.float64)
+        g10, g11 = h[iz + 1, ix].astype(np.float64), h[iz + 1, ix + 1].astype(np.float64)
+        return (g00 * (1 - tx) + g01 * tx) * (1 - tz) + (g10 * (1 - tx) + g11 * tx) * tz
 
     def normal(self, xz):
         ix, iz, tx, tz = self._locate(xz)
-        return _unit(self._bilinear(self._normals, ix, iz, tx, tz))
+        n00, n01 = self._grid_normals(iz, ix), self._grid_normals(iz, ix + 1)
+        n10, n11 = self._grid_normals(iz + 1, ix), self._grid_normals(iz + 1, ix + 1)
+        return _unit((n00 * (1 - tx) + n01 * tx) * (1 - tz) + (n10 * (1 - tx) + n11 * tx) * tz)
 
     def describe(self) -> str:
         return self.label

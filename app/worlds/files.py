@@ -16,6 +16,10 @@ def _check_file(file: FilePath) -> None:
         raise WorldError(f"{file}: no such file")
 
 
+MAX_HEIGHTMAP_SIDE = 8192
+MAX_HEIGHTMAP_PIXELS = MAX_HEIGHTMAP_SIDE * MAX_HEIGHTMAP_SIDE  # 256 MB of float32 heights at most
+
+
 def load_heightmap(file: FilePath, size: float, height: float, max_slope: float = DEFAULT_MAX_SLOPE) -> HeightGrid:
     """A greyscale image as ground: its width spans ``size`` m (centred on the origin, rows
     along +Z), black at 0 and white at ``height`` m. 8- and 16-bit images keep their depth."""
@@ -24,17 +28,27 @@ def load_heightmap(file: FilePath, size: float, height: float, max_slope: float 
     _check_file(file)
     try:
         with Image.open(file) as image:
+            # The size an image declares is checked before a byte of it is decoded.
+            cols, rows = image.size
+            if cols * rows > MAX_HEIGHTMAP_PIXELS:
+                raise WorldError(f"{file}: the image declares {cols}x{rows} pixels; a heightmap may have at most "
+                                 f"{MAX_HEIGHTMAP_PIXELS:,} pixels ({MAX_HEIGHTMAP_SIDE}x{MAX_HEIGHTMAP_SIDE}); "
+                                 "scale it down")
             image.load()
             mode = image.mode
             if mode in ("I;16", "I;16B", "I;16L", "I"):
-                data = np.asarray(image, dtype=np.float64)
+                data = np.asarray(image, dtype=np.float32)
                 top = 65535.0 if mode.startswith("I;16") else max(float(data.max()), 1.0)
             elif mode == "F":
-                data = np.asarray(image, dtype=np.float64)
+                data = np.asarray(image, dtype=np.float32)
                 top = max(float(data.max()), 1e-12)
             else:
-                data = np.asarray(image.convert("L"), dtype=np.float64)
+                data = np.asarray(image.convert("L"), dtype=np.float32)
                 top = 255.0
+    except Image.DecompressionBombError:
+        raise WorldError(f"{file}: the image declares more pixels than Pillow will decode; a heightmap may have at "
+                         f"most {MAX_HEIGHTMAP_PIXELS:,} pixels ({MAX_HEIGHTMAP_SIDE}x{MAX_HEIGHTMAP_SIDE}); "
+                         "scale it down") from None
     except (UnidentifiedImageError, OSError, SyntaxError, ValueError) as exc:
         raise WorldError(f"{file}: not an image Gaitlab can read as a heightmap ({type(exc).__name__}); "
                          "give a PNG (8- or 16-bit greyscale)") from None
@@ -44,12 +58,14 @@ def load_heightmap(file: FilePath, size: float, height: float, max_slope: float 
         raise WorldError(f"{file}: the image holds values that are not finite numbers")
     rows, cols = data.shape
     depth = size * (rows - 1) / (cols - 1)
-    heights = data / top * height
-    return HeightGrid(heights, (-0.5 * size, -0.5 * depth), (size, depth),
+    data *= np.float32(height / top)  # in place: one float32 copy of the image in all
+    return HeightGrid(data, (-0.5 * size, -0.5 * depth), (size, depth),
                       label=f"heightmap:file={file},size={size:g},height={height:g}", max_slope=max_slope)
 
 
 MAX_GRID = 1024
+MAX_MESH_BYTES = 256 * 2**20  # checked before the file is parsed
+MAX_MESH_FACES = 4_000_000
 
 
 def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFAULT_MAX_SLOPE) -> HeightGrid:
@@ -59,6 +75,10 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
     import trimesh
 
     _check_file(file)
+    size = file.stat().st_size
+    if size > MAX_MESH_BYTES:
+        raise WorldError(f"{file}: {size / 2**20:.0f} MB; a terrain mesh may be at most {MAX_MESH_BYTES // 2**20} MB "
+                         "(simplify it first)")
     try:
         loaded: trimesh.Trimesh = trimesh.load(str(file), force="mesh")  # type: ignore[assignment]  # force="mesh"
     except Exception as exc:  # trimesh raises many kinds for broken files
@@ -66,6 +86,9 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
     faces = getattr(loaded, "faces", None)
     if faces is None or len(faces) == 0:
         raise WorldError(f"{file}: the mesh has no faces; a terrain mesh needs triangles")
+    if len(faces) > MAX_MESH_FACES:
+        raise WorldError(f"{file}: {len(faces):,} faces; a terrain mesh may have at most {MAX_MESH_FACES:,} "
+                         "(simplify it first)")
     vertices = np.asarray(loaded.vertices, dtype=np.float64)
     if not np.all(np.isfinite(vertices)):
         raise WorldError(f"{file}: the mesh has vertices that are not finite numbers")
