@@ -150,3 +150,31 @@ def test_targets_overlay_is_under_the_feet_in_place() -> None:
     assert overlays is not None and len(overlays.targets)
     feet = state.pose().joints[:, 3]
     assert np.abs(overlays.targets[:, 2]).max() < np.abs(feet[:, 2]).max() + state.live.rig.body_length
+
+
+@pytest.mark.parametrize("creature", ["centipede", "dog", "horse"])
+@pytest.mark.parametrize("angle", [90.0, 180.0, 250.0])
+def test_a_waypoint_close_beside_or_behind_is_looped_to_not_refused(creature: str, angle: float) -> None:
+    """A click near the creature, beside or behind it, gets a loop it can walk (no tighter
+    than its turn), reached without a planted foot moving."""
+    state = ViewerState(load_creature(creature), world=World())
+    walk(state, 0.3)
+    length = state.live.rig.body_length
+    a = np.radians(angle)
+    target = np.array([np.sin(a), np.cos(a)]) * 0.7 * length + state.pose().root[[0, 2], 3]
+    assert state.add_waypoint(*target), state.error
+    roots = np.array(walk(state, 25.0))
+    assert np.linalg.norm(roots[:, [0, 2]] - target, axis=1).min() < 0.1 * length
+    assert state.planted_jump_max < 1e-6
+
+
+def test_turn_towards_keeps_its_radius_and_ends_at_the_target() -> None:
+    from app.kinematics.path import WaypointPath, turn_towards
+
+    rng = np.random.default_rng(4)
+    for target in rng.uniform(-3.0, 3.0, size=(30, 2)):
+        if np.linalg.norm(target) < 0.2:
+            continue
+        way = turn_towards(np.zeros(2), 0.3, target, 0.5)
+        assert np.allclose(way[0], 0.0) and np.allclose(way[-1], target)
+        assert WaypointPath(way, start_direction=(np.sin(0.3), np.cos(0.3))).curvature_radius() >= 0.25

@@ -235,3 +235,37 @@ def test_a_speed_ramp_clip_can_start_later() -> None:
     motion, _ = clip_motion(rig, 25.0, seconds=2.0, speed=(1.0, 2.0), start=3.0)
     assert motion.frame_count == 50 and motion.times[0] == pytest.approx(3.0)
     assert motion.travel[0] == pytest.approx(3.0, rel=0.02) and len(motion.gaits) == 50
+
+
+# -- ground that the README offers is walked, not refused (issue 14) -----------------------
+
+
+@pytest.mark.parametrize("creature, terrain", [
+    ("human", "hills"), ("bird", "hills"), ("theropod", "hills"), ("bear", "hills"), ("bird", "stairs"),
+])
+def test_people_birds_and_bears_walk_the_default_hills_and_stairs(creature: str, terrain: str) -> None:
+    from app.worlds import make_world
+
+    rig = build_rig(load_creature(creature))
+    motion = simulate_rig(rig, 20.0, 30.0, world=make_world("straight", terrain))
+    bearing, same = bearing_points(motion)
+    assert np.linalg.norm(bearing[1:] - bearing[:-1], axis=-1)[same].max() < 1e-6
+    assert motion.reach_error[motion.contact].max() < 1e-6
+
+
+def test_uneven_ground_compromises_footholds_instead_of_refusing_them() -> None:
+    """Ground whose every spot is too bumpy for a flat footprint (but not too steep) is
+    walked on the least-bad spots, counted: ``analyze`` notes them, nothing slips."""
+    from app.analysis import analyze_tracks, tracks_from_motion
+    from app.worlds import make_world
+
+    rig = build_rig(load_creature("dog"))
+    motion = simulate_rig(rig, 6.0, 60.0, world=make_world("straight", "hills:amp=0.02,wavelength=0.3"))
+    assert motion.compromised is not None and motion.compromised.any()
+    bearing, same = bearing_points(motion)
+    assert np.linalg.norm(bearing[1:] - bearing[:-1], axis=-1)[same].max() < 1e-6
+    report = analyze_tracks(tracks_from_motion(motion))
+    assert any("compromised footholds" in note for note in report.notes)
+    # On the default hills the dog finds acceptable spots: nothing compromised.
+    calm = simulate_rig(rig, 6.0, 60.0, world=make_world("straight", "hills"))
+    assert calm.compromised is not None and not calm.compromised.any()

@@ -179,7 +179,7 @@ BAD_WORLD = {
     "negative radius": (["--path", "figure-eight:r=-1"], "must be > 0"),
     "nan radius": (["--path", "circle:r=nan"], "not a finite number"),
     "nan terrain": (["--terrain", "slope:angle=nan"], "not a finite number"),
-    "no foothold": (["--terrain", "slope:angle=60"], "no acceptable foothold"),
+    "no foothold": (["--terrain", "slope:angle=60"], "steeper than max_slope"),
     "in place on hills": (["--terrain", "hills", "--in-place"], "in place needs flat ground"),
     "missing heightmap": (["--terrain", "heightmap:file=nowhere.png"], "no such file"),
     "huge radius": (["--path", "figure-eight:r=1e300"], "must be <= 10000 m"),
@@ -244,13 +244,27 @@ def test_the_viewer_pauses_where_the_ground_offers_no_foothold() -> None:
         state.advance(1.0 / 60.0)
         if not state.playing:
             break
-    assert not state.playing and state.error is not None and "no acceptable foothold" in state.error
+    assert not state.playing and state.error is not None and "steeper than max_slope" in state.error
     before = state.live.clock
     state.step_frame()  # still there, still paused, no traceback
     assert state.live.clock == before and not state.playing
     # A path too tight for a newly chosen creature keeps the old one.
     tight = ViewerState(load_creature("cat"), world=make_world("circle:r=0.1"))
     assert tight.load_preset("horse") is False and tight.spec.name == "cat" and "too tight" in tight.error
+
+
+def test_the_viewer_walks_on_over_uneven_ground_and_says_so() -> None:
+    from app import load_creature
+    from app.ui.state import ViewerState
+    from app.worlds import make_world
+
+    state = ViewerState(load_creature("dog"), world=make_world("straight", "hills:amp=0.02,wavelength=0.3"))
+    for _ in range(240):
+        state.advance(1.0 / 60.0)
+        state.note_pose(state.pose())
+    assert state.playing and state.error is None
+    assert state.live.compromised_count > 0 and "uneven ground" in (state.status or "")
+    assert state.planted_jump_max < 1e-6
 
 
 def test_gaits_that_do_not_fit_are_refused() -> None:

@@ -274,6 +274,9 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
     ref = reference_foot(tracks.names)
     strikes = {fe.name: np.array([times[s.strike] for s in fe.steps if s.complete]) for fe in events}
     notes: list[str] = []
+    if tracks.compromised:
+        notes.append(f"{tracks.compromised} stance(s) stood on compromised footholds: uneven ground with no "
+                     "acceptable spot in reach, so the least-bad one")
     single = len(strikes.get(ref, [])) < 2
     if single:
         # A single stride (a short mocap take): each foot's one contact, the cycle from a

@@ -31,6 +31,7 @@ class FootTracks:
     hip_height: float | None = None
     exact: bool = False
     hands: NDArray[np.float64] | None = None  # (T, 2, 3) m, left and right hand tips (bipeds with arms)
+    compromised: int = 0  # stances on compromised footholds (Gaitlab's own motion on uneven ground)
 
     @property
     def frame_count(self) -> int:
@@ -89,4 +90,15 @@ def tracks_from_motion(motion: Motion) -> FootTracks:
             points[..., 1] -= motion.terrain.height(points[..., [0, 2]])
     return FootTracks(times=motion.times - motion.times[0], names=tuple(motion.leg_names), heel=heel, toe=toe,
                       body=body, source=f"gaitlab:{motion.rig.name}", hip_height=motion.rig.hip_height, exact=True,
-                      hands=hands)
+                      hands=hands, compromised=_compromised_stances(motion))
+
+
+def _compromised_stances(motion: Motion) -> int:
+    """How many stances of the clip stand on compromised footholds (counted at touchdown,
+    and the stances under way at its first frame)."""
+    if motion.compromised is None:
+        return 0
+    contact, bad = motion.contact, motion.compromised
+    starts = contact.copy()
+    starts[1:] &= ~contact[:-1]
+    return int(np.count_nonzero(starts & bad))

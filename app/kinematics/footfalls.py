@@ -44,7 +44,9 @@ class FootPlan:
     in stance), their ground normals, its swing's apex height (m), the body's arc
     length along the path when the swing starts and ends (``lift_at``, ``land_at``), and
     the horizontal (x, z) unit direction each foothold's foot points (``start_dir``,
-    ``end_dir``, (T, L, 2): the foot's direction at its mid-stance, fixed for its stance)."""
+    ``end_dir``, (T, L, 2): the foot's direction at its mid-stance, fixed for its stance),
+    and whether the foothold it stands on (in stance) or swings to is compromised (uneven
+    ground, :class:`~app.kinematics.footholds.Footholds`)."""
 
     phase: NDArray[np.float64]
     duty: NDArray[np.float64]
@@ -59,6 +61,7 @@ class FootPlan:
     land_at: NDArray[np.float64]
     start_dir: NDArray[np.float64]
     end_dir: NDArray[np.float64]
+    compromised: NDArray[np.bool_]
 
 
 def swing_ease(swing: NDArray[np.float64], wave: WaveShape) -> NDArray[np.float64]:
@@ -109,7 +112,8 @@ def stance_directions(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: 
 
 def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDArray[np.int64]) -> Footholds:
     """Footholds (N,) for legs ``legs`` whose stance is centred on body arc length ``s_mid``.
-    Raises :class:`WorldError` when the ground offers a foot no acceptable spot."""
+    Raises :class:`WorldError` when all the ground in a foot's reach is steeper than
+    ``max_slope`` (uneven ground only compromises a foothold: ``Footholds.compromised``)."""
     ideal, _ = neutral_points(rig, world, s_mid, legs)
     front, back, side = footprint(rig)
     search = np.maximum(SEARCH_RADIUS * rig.l_rest[legs], 3.0 * EDGE_MARGIN)
@@ -117,10 +121,10 @@ def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDA
     if not held.ok.all():
         i = int(np.argmin(held.ok))
         x, z = ideal[i]
-        raise WorldError(f"terrain {world.terrain.describe()}: no acceptable foothold for foot "
-                         f"{rig.leg_names[legs[i]]} within {search[i]:.2f} m of (x={x:.2f}, z={z:.2f}); a foot needs "
-                         f"ground no steeper than max_slope = {np.degrees(world.terrain.max_slope):.0f} deg, at "
-                         f"least {EDGE_MARGIN * 100:.1f} cm from an edge")
+        raise WorldError(f"terrain {world.terrain.describe()}: no foothold for foot {rig.leg_names[legs[i]]} near "
+                         f"(x={x:.2f}, z={z:.2f}): all the ground within {search[i]:.2f} m is steeper than "
+                         f"max_slope = {np.degrees(world.terrain.max_slope):.0f} deg (raise max_slope, or make the "
+                         "ground gentler there)")
     return held
 
 
@@ -204,6 +208,7 @@ def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], trave
     dirs = stance_directions(rig, world, s_mid.reshape(-1), leg_index.reshape(-1)).reshape(count, rig.leg_count, 2)
     points = held.points.reshape(count, rig.leg_count, 3)
     normals = held.normals.reshape(count, rig.leg_count, 3)
+    compromised = held.compromised.reshape(count, rig.leg_count)
     step_m = np.broadcast_to(gait.step_height * rig.l_rest, (count - 1, rig.leg_count))
     lift_steps = origin + travel_per_cycle * (steps[:-1, None] + offsets[None, :] + duty)  # (K-1, L)
     apex = swing_apex(rig, world, points[:-1].reshape(-1, 3), points[1:].reshape(-1, 3),
@@ -219,6 +224,7 @@ def plan_constant_gait(rig: Rig, world: World, clock: NDArray[np.float64], trave
                     start=points[index, legs], end=points[nxt, legs], start_normal=normals[index, legs],
                     end_normal=normals[nxt, legs], apex=apex[np.minimum(index, count - 2), legs],
                     lift_at=lift_at, land_at=lift_at + travel_per_cycle * (1.0 - duty), start_dir=dirs[index, legs],
+                    compromised=compromised[nxt, legs],
                     end_dir=dirs[nxt, legs])
 
 

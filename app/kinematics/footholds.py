@@ -8,8 +8,15 @@ acceptable one wins. A spot is acceptable when
 - the foot's footprint lies on one plane: probes on a ring around the spot as wide as the
   foot's reach (its toe or heel, whichever is longer, at least ``EDGE_MARGIN``), in
   every direction — the body may turn the foot while it stands — all sit within a small
-  tolerance of the tangent plane at the spot. This keeps a foot off a riser and away
-  from a step's edge, on any terrain (an exact staircase or a heightmap alike).
+  tolerance of the tangent plane at the spot, plus the bend of ground as curved as
+  :data:`WALKABLE_CURVATURE` (a hilltop or a hollow takes a foot; a riser does not). This
+  keeps a foot off a riser and away from a step's edge, on any terrain (an exact staircase
+  or a heightmap alike).
+
+When no acceptable spot lies within the search radius, the foot takes the least-bad
+spot there that is no steeper than ``max_slope`` — a *compromised* foothold (its footprint does not lie on one
+plane: a ridge, a lip), counted and reported, not an error. Only ground steeper than
+``max_slope`` everywhere in reach is refused.
 
 Feet are placed on the surface itself (y = ground height there), never under or above it.
 """
@@ -26,19 +33,22 @@ from .terrain import Terrain
 EDGE_MARGIN = 0.012  # m: the least distance from a foot's ball to an edge of its ground
 RINGS = 5
 RING_POINTS = 16
-PLANE_TOLERANCE = 0.004  # m, plus PLANE_SLACK of the probe distance (room for curved ground)
+PLANE_TOLERANCE = 0.004  # m, plus PLANE_SLACK of the probe distance, plus the bend of curved ground
 PLANE_SLACK = 0.04
+WALKABLE_CURVATURE = 2.0  # 1/m: ground curving as tightly as a 0.5 m radius still takes a foot
 PROBES = 8
 
 
 @dataclass(frozen=True)
 class Footholds:
-    """points (N, 3) on the ground; normals (N, 3); ok (N,) False where no acceptable spot
-    lies within the search radius (the point is then the ideal spot, on the ground)."""
+    """points (N, 3) on the ground; normals (N, 3); ok (N,) False where all the ground in
+    reach is steeper than ``max_slope`` (the point is then the ideal spot, on the ground);
+    compromised (N,) True where the foot stands on the least-bad spot, uneven under it."""
 
     points: NDArray[np.float64]
     normals: NDArray[np.float64]
     ok: NDArray[np.bool_]
+    compromised: NDArray[np.bool_]
 
 
 def _candidates(radius: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -60,29 +70,36 @@ def place_feet(terrain: Terrain, ideal: NDArray[np.float64], front: NDArray[np.f
     """
     n = ideal.shape[0]
     if n == 0:
-        return Footholds(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, dtype=bool))
+        return Footholds(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, dtype=bool), np.zeros(0, dtype=bool))
     reach = np.maximum.reduce([front, back, side, np.full(n, EDGE_MARGIN)])  # (N,)
     # Most ideal spots are fine as they are: test them first, search only around the rest.
-    centre = _judge(terrain, ideal[:, None, :], reach)
-    held = Footholds(points=centre[0][:, 0], normals=centre[1][:, 0], ok=centre[2][:, 0])
+    points, normals, ok, _, _ = _judge(terrain, ideal[:, None, :], reach)
+    held = Footholds(points=points[:, 0], normals=normals[:, 0], ok=ok[:, 0], compromised=np.zeros(n, dtype=bool))
     redo = np.nonzero(~held.ok)[0]
     if redo.size:
         offsets = _candidates(search[redo])  # (M, C, 2)
-        points, normals, ok = _judge(terrain, ideal[redo, None, :] + offsets, reach[redo])
+        points, normals, ok, steep_ok, unevenness = _judge(terrain, ideal[redo, None, :] + offsets, reach[redo])
         distance = np.linalg.norm(offsets, axis=-1) + np.where(ok, 0.0, np.inf)
         best = distance.argmin(axis=1)
         rows = np.arange(redo.size)
         found = ok[rows, best]
-        choice = np.where(found, best, 0)
+        # None acceptable: the least-bad spot no steeper than max_slope, nearest among equals.
+        score = unevenness + 1e-3 * np.linalg.norm(offsets, axis=-1) + np.where(steep_ok, 0.0, np.inf)
+        least_bad = score.argmin(axis=1)
+        usable = found | steep_ok[rows, least_bad]
+        choice = np.where(found, best, np.where(usable, least_bad, 0))
         held.points[redo] = points[rows, choice]
         held.normals[redo] = normals[rows, choice]
-        held.ok[redo] = found
+        held.ok[redo] = usable
+        held.compromised[redo] = usable & ~found
     return held
 
 
 def _judge(terrain: Terrain, spots: NDArray[np.float64], reach: NDArray[np.float64]):
-    """Ground points (N, C, 3), normals (N, C, 3) and acceptability (N, C) of candidate
-    spots (N, C, 2) for feet reaching ``reach`` (N,) m around their ball."""
+    """Ground points (N, C, 3), normals (N, C, 3), acceptability (N, C), whether the
+    ground is no steeper than ``max_slope`` (N, C) and how uneven the footprint is (N, C:
+    the largest excess over the plane tolerance, as a fraction of it) of candidate spots
+    (N, C, 2) for feet reaching ``reach`` (N,) m around their ball."""
     n, count = spots.shape[:2]
     flat_spots = spots.reshape(-1, 2)
     height = terrain.height(flat_spots).reshape(n, count)
@@ -100,7 +117,9 @@ def _judge(terrain: Terrain, spots: NDArray[np.float64], reach: NDArray[np.float
     # Tangent plane at the spot: dh = -(nx dx + nz dz) / ny.
     slope = -normal[..., [0, 2]] / np.maximum(normal[..., 1:2], 1e-6)  # (N, C, 2)
     predicted = height[..., None] + np.einsum("ncd,nkd->nck", slope, probe_offsets)
-    tolerance = PLANE_TOLERANCE + PLANE_SLACK * np.linalg.norm(probe_offsets, axis=-1)[:, None, :]
-    plane_ok = np.all(np.abs(probe_h - predicted) <= tolerance, axis=-1)
+    r = np.linalg.norm(probe_offsets, axis=-1)[:, None, :]
+    tolerance = PLANE_TOLERANCE + PLANE_SLACK * r + 0.5 * WALKABLE_CURVATURE * r * r
+    excess = (np.abs(probe_h - predicted) - tolerance) / tolerance
+    plane_ok = np.all(excess <= 0.0, axis=-1)
     points = np.stack([spots[..., 0], height, spots[..., 1]], axis=-1)
-    return points, normal, steep_ok & plane_ok
+    return points, normal, steep_ok & plane_ok, steep_ok, np.maximum(excess.max(axis=-1), 0.0)

@@ -116,6 +116,9 @@ class LiveMotion:
         self.start_dir, self.end_dir = plan.start_dir[0].copy(), plan.end_dir[0].copy()
         self.apex = plan.apex[0].copy()
         self.lift_at, self.land_at = plan.lift_at[0].copy(), plan.land_at[0].copy()
+        self.start_compromised = plan.compromised[0].copy()  # feet on uneven ground (the least-bad spot)
+        self.end_compromised = plan.compromised[0].copy()
+        self.compromised_count = 0  # compromised footholds planned since the start
         self._freq_from = self._freq_to = g.frequency
         self._bob_from = self._bob_to = g.bob
         self._trunk = np.array([g.flex, g.pitch])  # spine flex and trunk pitch amplitudes (rad), eased to the gait's
@@ -364,6 +367,7 @@ class LiveMotion:
         self.start = np.where(landed[:, None], self.end, self.start)
         self.start_normal = np.where(landed[:, None], self.end_normal, self.start_normal)
         self.start_dir = np.where(landed[:, None], self.end_dir, self.start_dir)
+        self.start_compromised = np.where(landed, self.end_compromised, self.start_compromised)
         self.stride_lift = np.where(lifted, self.stride, self.stride_lift)
         self.stride = np.where(lifted, g.stride, self.stride)
         self.duty = np.where(landed, g.duty_factor, self.duty)
@@ -425,6 +429,8 @@ class LiveMotion:
         held = plan_footholds(self.rig, self.world, s_mid, legs)
         self.end[legs] = held.points
         self.end_normal[legs] = held.normals
+        self.end_compromised[legs] = held.compromised
+        self.compromised_count += int(held.compromised.sum())
         self.end_dir[legs] = stance_directions(self.rig, self.world, s_mid, legs)
         step_m = self.step_height[legs] * self.rig.l_rest[legs]
         self.apex[legs] = swing_apex(self.rig, self.world, self.start[legs], self.end[legs], legs, step_m,
@@ -468,7 +474,8 @@ class LiveMotion:
         return FootPlan(phase=phase[None], duty=self.duty[None].copy(), contact=contact[None], swing=swing[None],
                         start=self.start[None].copy(), end=end[None], start_normal=self.start_normal[None].copy(),
                         end_normal=end_normal[None], apex=self.apex[None].copy(), lift_at=self.lift_at[None].copy(),
-                        land_at=land_at[None], start_dir=self.start_dir[None].copy(), end_dir=end_dir[None])
+                        land_at=land_at[None], start_dir=self.start_dir[None].copy(), end_dir=end_dir[None],
+                        compromised=np.where(contact, self.start_compromised, self.end_compromised)[None])
 
     def frame_inputs(self) -> dict:
         """This frame's inputs for :func:`solve_motion` (stackable over frames)."""

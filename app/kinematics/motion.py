@@ -109,6 +109,7 @@ class Motion(_BodyParts):
     world: World = field(default_factory=World)
     gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
     reach_error: NDArray[np.float64] | None = None  # (T, L) m between each ball and its target
+    compromised: NDArray[np.bool_] | None = None  # (T, L) the foot stands on (or swings to) uneven ground
 
     @property
     def frame_count(self) -> int:
@@ -132,6 +133,8 @@ class Motion(_BodyParts):
         values = {name: getattr(self, name)[first:] for name in per_frame}
         if self.reach_error is not None:
             values["reach_error"] = self.reach_error[first:]
+        if self.compromised is not None:
+            values["compromised"] = self.compromised[first:]
         if self.gaits:
             values["gaits"] = self.gaits[first:]
         return replace(self, **values)
@@ -331,7 +334,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
                   spine=spine_pts, spine_tangent=spine_tan, spine_radius=spine.radius, neck=neck, head=head,
                   tail=tail, root=root, ground_offset=ground_offset, travel=inputs.travel,
                   leg_names=rig.leg_names, fps=fps, rig=rig, heel=heel, arms=arms, ear_lag=ear_lag, world=world,
-                  reach_error=reach_error)
+                  reach_error=reach_error, compromised=plan.compromised)
 
 
 def frame_count(seconds: float, fps: float) -> int:

@@ -175,7 +175,8 @@ class _Table:
 
 
 class WaypointPath(Path):
-    """A centripetal Catmull-Rom spline through ``points`` (N, 2) given in world (x, z).
+    """A centripetal Catmull-Rom spline through ``points`` (N, 2) given in world (x, z),
+    leaving its first point along ``start_direction`` (x, z) when given.
 
     The spline is sampled densely once and inverted for arc length by interpolation (a
     lookup table); ``start`` and ``heading`` are the first point and the first tangent.
@@ -184,11 +185,12 @@ class WaypointPath(Path):
     kind = "waypoints"
     SAMPLES_PER_SEGMENT = 400
 
-    def __init__(self, points: ArrayLike, closed: bool = False) -> None:
+    def __init__(self, points: ArrayLike, closed: bool = False, start_direction: ArrayLike | None = None) -> None:
         pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
         self.points = pts
         self._closed = bool(closed)
-        self._table = self._build(pts, self._closed)
+        direction = None if start_direction is None else np.asarray(start_direction, dtype=np.float64).reshape(2)
+        self._table = self._build(pts, self._closed, direction)
         super().__init__((0.0, 0.0), 0.0)  # the points are already in the world
 
     @property
@@ -206,11 +208,15 @@ class WaypointPath(Path):
         return self._table.s[knots]
 
     @staticmethod
-    def _build(pts: NDArray[np.float64], closed: bool) -> _Table:
+    def _build(pts: NDArray[np.float64], closed: bool, start_direction: NDArray[np.float64] | None = None) -> _Table:
         if closed:
             ctrl = np.concatenate([pts[-1:], pts, pts[:2]])
         else:  # mirror the end points so the spline starts and ends along its end segments
-            ctrl = np.concatenate([2 * pts[:1] - pts[1:2], pts, 2 * pts[-1:] - pts[-2:-1]])
+            before = 2 * pts[:1] - pts[1:2]
+            if start_direction is not None:  # ... or leaves its start along a given direction
+                unit = start_direction / max(float(np.linalg.norm(start_direction)), 1e-12)
+                before = pts[:1] - unit * np.linalg.norm(pts[1] - pts[0])
+            ctrl = np.concatenate([before, pts, 2 * pts[-1:] - pts[-2:-1]])
         p0, p1, p2, p3 = ctrl[:-3], ctrl[1:-2], ctrl[2:-1], ctrl[3:]
 
         def knot(a, b):
@@ -326,3 +332,53 @@ class SplicedPath(Path):
 
     def describe(self) -> str:
         return self.then.describe()
+
+
+def turn_towards(start: NDArray[np.float64], heading: float, target: NDArray[np.float64], radius: float
+                 ) -> NDArray[np.float64]:
+    """Points (N, 2) of a way from ``start`` (x, z), facing ``heading`` (rad, from +Z
+    towards +X), to ``target`` (x, z) that never turns tighter than ``radius`` (m): an arc
+    on the target's side until the target lies straight ahead, then a straight line
+    (Dubins' turn-and-go). A target inside that turning circle is reached by the loop
+    the other way round. The first point is ``start``, the last ``target``; the points
+    lie a quarter radius apart, for a spline through them to keep the radius."""
+    start = np.asarray(start, dtype=np.float64)
+    target = np.asarray(target, dtype=np.float64)
+    forward = np.array([np.sin(heading), np.cos(heading)])
+    to_target = target - start
+    cross = forward[0] * to_target[1] - forward[1] * to_target[0]
+    side = 1.0 if cross >= 0.0 else -1.0  # +1: the target is on the side of +90 degrees turned from forward
+    normal = side * np.array([-forward[1], forward[0]])
+    centre = start + radius * normal
+    if np.linalg.norm(target - centre) < radius * 1.05:  # inside the turn: loop round the other way
+        side, normal = -side, -normal
+        centre = start + radius * normal
+    # Along the arc, the heading turns by theta; the target is straight ahead where the
+    # line from the arc point to the target is the arc's tangent there.
+    theta = np.linspace(0.0, 2.0 * np.pi, 721)
+    radial0 = start - centre
+    rot = side * theta
+    cos_t, sin_t = np.cos(rot), np.sin(rot)
+    radial = np.stack([radial0[0] * cos_t - radial0[1] * sin_t, radial0[0] * sin_t + radial0[1] * cos_t], axis=-1)
+    on_arc = centre + radial
+    ahead = np.stack([forward[0] * cos_t - forward[1] * sin_t, forward[0] * sin_t + forward[1] * cos_t], axis=-1)
+    towards = target - on_arc
+    misalign = ahead[:, 0] * towards[:, 1] - ahead[:, 1] * towards[:, 0]  # cross(ahead, towards)
+    facing = np.sum(ahead * towards, axis=-1) > 0.0
+    crossing = np.nonzero(facing[1:] & (np.sign(misalign[1:]) != np.sign(misalign[:-1])))[0]
+    aligned = facing & (np.abs(misalign) <= 1e-9)
+    if aligned[0] or (not crossing.size and not aligned.any()):
+        return np.stack([start, target])  # already facing it
+    stop = int(crossing[0]) + 1 if crossing.size else int(np.argmax(aligned))
+    # Evenly spaced along the whole way (arc, then line), a quarter radius apart.
+    arc_length = radius * theta[stop]
+    line = np.linalg.norm(target - on_arc[stop])
+    count = max(2, int(np.ceil((arc_length + line) / (0.25 * radius))) + 1)
+    s_at = np.linspace(0.0, arc_length + line, count)
+    on_turn = s_at <= arc_length
+    angle = side * s_at / radius
+    c, s_ = np.cos(angle), np.sin(angle)
+    turning = centre + np.stack([radial0[0] * c - radial0[1] * s_, radial0[0] * s_ + radial0[1] * c], axis=-1)
+    going = on_arc[stop] + (target - on_arc[stop]) * (np.clip(s_at - arc_length, 0.0, None) / max(line, 1e-12))[:, None]
+    return np.where(on_turn[:, None], turning, going)
+

@@ -65,6 +65,7 @@ class StateBase:
         waypoint_edit: bool
         planted_jump: float
         planted_jump_max: float
+        compromised_told: int
         _last_pose: Pose | None
         _ghosts: tuple[Any, ...] | None
         _style_check: tuple[Any, ...] | None

@@ -66,6 +66,11 @@ class PlaybackMixin(StateBase):
             if dt > 0:
                 for session in self.sessions:
                     step_herd(session, dt)
+            count = self.live.compromised_count
+            if count > self.compromised_told:  # uneven ground: say so once per new foothold, not an error
+                self.compromised_told = count
+                self.status = (f"uneven ground: {count} foothold(s) so far on the least-bad spot in reach "
+                               "(none there lies flat)")
         except GaitlabError as exc:  # ground with no foothold ahead: stop there and say why
             self.playing = False
             self.error = f"paused: {exc}"

@@ -96,6 +96,7 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
         self.waypoint_edit = False  # mouse on the ground: click adds, drag moves, right-click deletes
         self.planted_jump = 0.0  # m a planted foot moved last frame (see note_pose)
         self.planted_jump_max = 0.0
+        self.compromised_told = 0  # compromised footholds already reported on the message line
         self.driver: Driver | None = None  # drive mode: W/S speed, A/D turn
         self.drive_input = (0.0, 0.0)  # held keys: throttle (S -1 .. W 1), steer (D -1 .. A 1)
         self._last_pose: Pose | None = None

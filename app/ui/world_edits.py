@@ -158,50 +158,55 @@ class WorldMixin(StateBase):
 
     def set_waypoints(self, points: list[tuple[float, float]]) -> bool:
         """Go through ``points`` (x, z, m) from here, in order; none: straight on. A first
-        point within half a body length of the body counts as reached; a first point behind
-        the body gets turning points on its side, so the route turns round in a loop
-        (over two body lengths across) instead of on the spot."""
+        point within half a body length of the body counts as reached. The way to the
+        first point turns no tighter than the creature can (:func:`turn_radius`): an arc
+        towards it, then straight on (a point beside or behind gets a loop)."""
+        from ..kinematics.path import turn_towards
         from ..worlds import waypoint_path
 
         point, heading = self._here()
-        rig = self.live.rig
-        # Turns sized to the body and to its stride: a planted foot must stay within reach
-        # of its hip while the body turns about it.
-        length = max(rig.body_length, 1.6 * float(np.max(rig.stride_length)))
+        length = self.live.rig.body_length
         forward = np.array([np.sin(heading), np.cos(heading)])
-        lead = point + 0.8 * length * forward
         pts = [(float(p[0]), float(p[1])) for p in points]
         while pts and np.all(np.isfinite(pts[0])) and np.linalg.norm(np.asarray(pts[0]) - point) <= 0.5 * length:
             pts.pop(0)  # the next waypoint is under the creature: reached
-        turn: list = []
-        lead_points = [lead]
-        if pts and np.all(np.isfinite(pts[0])) and np.linalg.norm(np.asarray(pts[0]) - point) < 1.6 * 0.8 * length:
-            lead_points = []  # a first waypoint just ahead: go straight for it
-        if pts and np.all(np.isfinite(pts[0])):
-            to_first = np.asarray(pts[0]) - point
-            if to_first @ forward < 0.5 * np.linalg.norm(to_first):  # more than 60 degrees off the heading
-                left = np.array([forward[1], -forward[0]])
-                side = 1.0 if to_first @ left >= 0 else -1.0
-                turn = [point + length * (1.2 * forward + 1.2 * side * left)]
-                if to_first @ forward < 0:  # behind: round the half loop
-                    turn.append(point + length * (0.4 * forward + 2.6 * side * left))
         route: GroundPath
+        knots: list[int] = []  # the route's knot at each waypoint
         try:
             if not pts:
                 route = StraightPath(start=(float(point[0]), float(point[1])), heading=heading)
             else:
                 if not all(np.all(np.isfinite(p)) and max(abs(p[0]), abs(p[1])) <= 1e4 for p in pts):
                     raise GaitlabError("a waypoint must be within 10 km of the origin")
-                route = waypoint_path(np.array([point, *lead_points, *turn, *pts]), False, "waypoints")
+                # Each leg of the way turns towards the next point from the way it arrived.
+                radius = turn_radius(self.live.rig)
+                legs, here, facing = [], np.asarray(point, dtype=np.float64), heading
+                # First straight on for a stance, so that the feet down now finish it in reach.
+                lead = max(float(np.max(self.live.rig.stride_length)), 0.5 * length)
+                to_first = np.asarray(pts[0]) - point
+                if to_first @ forward < np.cos(np.radians(20.0)) * np.linalg.norm(to_first):  # not dead ahead
+                    here = here + lead * forward
+                    legs.append(np.stack([np.asarray(point, dtype=np.float64), here]))
+                for target in np.asarray(pts, dtype=np.float64):
+                    way = turn_towards(here, facing, target, radius)
+                    legs.append(way if not legs else way[1:])
+                    knots.append(sum(len(leg) for leg in legs) - 1)
+                    arrive = way[-1] - way[-2]
+                    here, facing = target, float(np.arctan2(arrive[0], arrive[1]))
+                route = waypoint_path(np.concatenate(legs), False, "waypoints", start_direction=forward)
         except GaitlabError as exc:
             self.error = str(exc)
             return False
         if not self._take_route(route):
+            if self.error and "too tight" in self.error and pts:
+                x, z = pts[0]
+                self.error = (f"cannot route the {self.spec.name} to ({x:.1f}, {z:.1f}): the way there turns more "
+                              "tightly than it can walk; put the next waypoints farther apart")
             return False
         self.waypoints = pts
         # Where along the path each waypoint lies (m), to drop those the body has passed.
-        first = 1 + len(lead_points) + len(turn)  # the knot of the first waypoint
-        along = route.point_arc_lengths(first, len(pts)) if isinstance(route, WaypointPath) else np.zeros(0)
+        along = np.array([route.point_arc_lengths(k, 1)[0] for k in knots]) if isinstance(route, WaypointPath) \
+            else np.zeros(0)
         self._waypoint_s = (self.live.travel + along).tolist()
         self.path_kind = "waypoints"
         return True
@@ -237,3 +242,12 @@ class WorldMixin(StateBase):
         d = np.linalg.norm(np.array(self.waypoints) - np.array([x, z]), axis=1)
         i = int(d.argmin())
         return i if d[i] <= within else None
+
+
+def turn_radius(rig) -> float:
+    """The radius (m) a route to a waypoint turns at: enough for the body (a spline through
+    the turn keeps about 0.6 of it, well over the tightest turn a path may ask) and for the
+    stride (a planted foot must stay in reach of its hip while the body turns about it)."""
+    from ..kinematics.motion import TIGHTEST_TURN
+
+    return max(5.0 * TIGHTEST_TURN * rig.body_length, 1.6 * float(np.max(rig.stride_length)))

@@ -122,9 +122,10 @@ def parse_path(text: str) -> Path:
     return FigureEightPath(values["r"], heading=heading)
 
 
-def waypoint_path(points: np.ndarray, closed: bool, what: str) -> WaypointPath:
-    """A smooth path through ``points`` (N, 2) x, z in metres; one line for too few or
-    repeated points."""
+def waypoint_path(points: np.ndarray, closed: bool, what: str, start_direction: np.ndarray | None = None
+                  ) -> WaypointPath:
+    """A smooth path through ``points`` (N, 2) x, z in metres (leaving along
+    ``start_direction`` when given); one line for too few or repeated points."""
     if len(points) < 2:
         raise WorldError(f"{what}: a waypoint path needs at least two points (x,z pairs); got {len(points)}")
     if np.any(np.linalg.norm(np.diff(points, axis=0), axis=1) < 1e-6) or (
@@ -132,7 +133,7 @@ def waypoint_path(points: np.ndarray, closed: bool, what: str) -> WaypointPath:
         raise WorldError(f"{what}: two waypoints in a row are the same point; give distinct points")
     if closed and len(points) < 3:
         raise WorldError(f"{what}: a closed waypoint path needs at least three points")
-    return WaypointPath(points, closed=closed)
+    return WaypointPath(points, closed=closed, start_direction=start_direction)
 
 
 def parse_terrain(text: str, base: FilePath | None = None) -> Terrain:
