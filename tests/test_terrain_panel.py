@@ -105,3 +105,21 @@ def test_a_heightmap_file_loads_as_ground(tmp_path) -> None:
     assert state.world.terrain.describe().startswith("heightmap:file=")
     walk(state, 1.0)
     assert state.planted_jump_max < 1e-3
+
+
+@pytest.mark.parametrize("creature", ["spider", "dog"])
+@pytest.mark.parametrize("kind, values", [("hills", {"amp": 0.12}), ("hills", {"amp": 0.25, "seed": 5}),
+                                          ("stairs", {"rise": 0.15}), ("stairs", {"rise": 0.3})])
+def test_a_terrain_edit_is_either_refused_at_once_or_walked(creature: str, kind: str, values: dict) -> None:
+    """No dead ends: an edit the panel takes is walked on (20 s without a pause); one it
+    refuses says why and changes nothing."""
+    from app.worlds import make_world
+
+    state = ViewerState(load_creature(creature), world=make_world("straight", "flat"))
+    before = state.world.terrain.describe()
+    if not state.set_terrain(kind, **values):
+        assert state.error and state.world.terrain.describe() == before
+        return
+    for _ in range(600):
+        state.advance(1.0 / 30.0)
+        assert state.playing, state.error

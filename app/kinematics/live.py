@@ -49,6 +49,7 @@ from .world import World, WorldError
 
 BLEND_CYCLES = 0.35
 SWING_RETIME = 0.6
+LOOK_AHEAD = 20.0  # s of walking on whose footholds a new world must offer
 SMALL_CHANGE = 0.03  # relative frequency (and absolute bob) change applied at once
 
 
@@ -267,11 +268,24 @@ class LiveMotion:
         self.world = world
 
     def check_world(self, world: World) -> None:
-        """Raise :class:`WorldError` if :meth:`set_world` would refuse ``world``."""
+        """Raise :class:`WorldError` if :meth:`set_world` would refuse ``world``: a path the
+        body cannot follow, or ground that offers a foot no foothold within
+        :data:`LOOK_AHEAD` seconds of walking on (so an accepted edit is walkable, not a
+        pause a few steps later)."""
         check_world(self.rig, world)
         legs = np.arange(self.rig.leg_count)
-        ahead = self.travel + self.travel_per_cycle() * (1.0 - self.foot_phase()) + 0.5 * self.stride * self.rig.leg_scale
-        plan_footholds(self.rig, world, ahead, legs)  # raises when the new ground offers none
+        per_cycle = self.travel_per_cycle()
+        ahead = self.travel + per_cycle * (1.0 - self.foot_phase()) + 0.5 * self.stride * self.rig.leg_scale
+        cycles = int(np.ceil(LOOK_AHEAD * max(self.frequency, 1e-3)))
+        if per_cycle > 1e-9 and not world.in_place:
+            length = world.path.length
+            if np.isfinite(length):  # a path that ends, or one lap of a closed one
+                cycles = min(cycles, int(np.ceil(length / per_cycle)) + 1)
+        else:
+            cycles = 1
+        steps = np.arange(cycles)[:, None]
+        plan_footholds(self.rig, world, (ahead[None, :] + per_cycle * steps).reshape(-1),
+                       np.broadcast_to(legs, (cycles, legs.size)).reshape(-1))  # raises when the ground offers none
 
     def step(self, dt: float) -> None:
         """Advance by ``dt`` seconds of animation time (0 or negative does nothing). On a
