@@ -35,6 +35,8 @@ def leg_type(ankle_lift: float) -> LegType:
 # How recorded frames smooth their edges: FXAA over the creature (fast), multisampling
 # (finest, costly on a software renderer) or nothing.
 Antialias = Literal["fxaa", "msaa", "off"]
+BodyStyle = Literal["skin", "parts"]  # one smooth skinned body, or the shapes it is made from
+BODY_STYLES: tuple[BodyStyle, ...] = ("skin", "parts")
 ANTIALIAS_MODES: tuple[str, ...] = get_args(Antialias)
 DEFAULT_ANTIALIAS: Antialias = "fxaa"
 

@@ -46,13 +46,11 @@ def run():
     return run_measures(motion)
 
 
-def _rows():
-    for name in HUMAN_WALK:
-        marks = [pytest.mark.xfail(strict=True, reason=NOT_YET[name])] if name in NOT_YET else []
-        yield pytest.param(name, marks=marks, id=name.replace(" ", "_"))
+ROWS = [pytest.param(name, marks=[pytest.mark.xfail(strict=True, reason=NOT_YET[name])] if name in NOT_YET else [],
+                     id=name.replace(" ", "_")) for name in HUMAN_WALK]
 
 
-@pytest.mark.parametrize("row", _rows())
+@pytest.mark.parametrize("row", ROWS)
 def test_human_walk_row_is_in_its_typical_range(walk, row: str) -> None:
     low, high = HUMAN_WALK[row]
     value = walk[2][row]

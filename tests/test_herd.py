@@ -99,8 +99,10 @@ def test_a_herd_is_drawn_with_the_same_draw_calls_as_one_animal(gl_ctx, monkeypa
         for n in (2, 60):
             herd = Herd(rig, n)
             scene = HerdInstances(herd).frame(herd)
-            assert scene.capsules.shape[0] % n == 0 and scene.ellipsoid_casters == n
-            points = np.concatenate([scene.capsules[:, :3], scene.ellipsoids[:, :3]]).astype(float)
+            assert len(scene.bodies) == n and all(b.body is scene.bodies[0].body for b in scene.bodies)
+            parts = HerdInstances(herd, body="parts").frame(herd)
+            assert parts.capsules.shape[0] % n == 0 and parts.ellipsoid_casters == n
+            points = scene.spheres()[0]
             camera = frame_points(points, "three-quarter", aspect=4 / 3)
             calls.clear()
             renderer.scene.draw_instances(scene, GroundView(), camera, renderer.target.fbo, RenderOptions())

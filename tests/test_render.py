@@ -27,14 +27,15 @@ def renderer(gl_ctx):
     r.release()
 
 
-def render(renderer, creature: str, gait: str | None = None, frame: int = 4, camera: str = "side") -> np.ndarray:
+def render(renderer, creature: str, gait: str | None = None, frame: int = 4, camera: str = "side",
+           **options) -> np.ndarray:
     spec = load_creature(creature)
     if gait:
         spec = spec.with_overrides({"gait.preset": gait})
     motion, cycles = clip_motion(build_rig(spec), 25.0, cycles=1.0, world=IN_PLACE)
     view = ViewSettings(size=SIZE, camera=camera, antialias="off")
-    options = RenderOptions(grid_spacing=loop_grid_spacing(motion, cycles))
-    return renderer.frame(motion, frame % motion.frame_count, clip_camera(motion, view), options)
+    settings = RenderOptions(grid_spacing=loop_grid_spacing(motion, cycles), **options)
+    return renderer.frame(motion, frame % motion.frame_count, clip_camera(motion, view), settings)
 
 
 @pytest.mark.parametrize("creature", ["bear", "dog", "horse"])  # plantigrade, digitigrade, unguligrade
@@ -54,15 +55,32 @@ def body_pixels(image: np.ndarray, hex_color: str, tolerance: int = 60) -> int:
     return int((np.abs(img - scale[..., None] * rgb).max(axis=-1) < tolerance / 4).sum())
 
 
+def nearest_colour_pixels(image: np.ndarray, colours: list[str]) -> np.ndarray:
+    """How many pixels (one count per colour) are nearest in chromaticity (r, g, b shares,
+    so shading aside) to each of ``colours``, among pixels within 0.06 of one of them."""
+    img = image.reshape(-1, 3).astype(np.float64) + 1.0
+    chroma = img / img.sum(axis=1, keepdims=True)
+    refs = np.array([np.sqrt(srgb_to_linear(c)) + 1 / 255 for c in colours])
+    refs = refs / refs.sum(axis=1, keepdims=True)
+    distance = np.linalg.norm(chroma[:, None] - refs[None], axis=-1)
+    near = distance.min(axis=1) < 0.06
+    return np.bincount(distance.argmin(axis=1)[near], minlength=len(colours))
+
+
 @pytest.mark.parametrize("gait", gaits_for(2))
 @pytest.mark.parametrize("creature", ["bear", "cat", "deer", "dog", "horse"])
 def test_every_creature_renders_every_gait(renderer, creature: str, gait: str) -> None:
+    """In its coat, with no legs coloured by side by default; the side colours come back
+    with the option (and the parts)."""
     image = render(renderer, creature, gait, frame=3, camera="three-quarter")
     assert image.shape == (SIZE[1], SIZE[0], 3) and image.dtype == np.uint8
     look = load_creature(creature).look
-    for side_color in (look.left_color, look.right_color):  # both sides' legs are visible
-        assert body_pixels(image, side_color) > 20
-    assert body_pixels(image, look.body_color) > 150
+    colours = [look.body_color, look.left_color, look.right_color]
+    coat, left, right = nearest_colour_pixels(image, colours)
+    assert coat > 150 and left + right < 0.02 * coat
+    sides = render(renderer, creature, gait, frame=3, camera="three-quarter", body="parts", side_colors=True)
+    _, left, right = nearest_colour_pixels(sides, colours)
+    assert left > 20 and right > 20  # both sides' legs are visible
 
 
 def test_same_frame_twice_gives_identical_pixels(renderer) -> None:

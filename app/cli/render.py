@@ -9,6 +9,7 @@ from pathlib import Path
 from ..choices import (
     ANTIALIAS_MODES,
     ARC_JOINTS,
+    BODY_STYLES,
     CAMERA_CHOICES,
     DEFAULT_ANTIALIAS,
     DEFAULT_CAMERA,
@@ -95,6 +96,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     look.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
     look.add_argument("--no-shadow", action="store_true", help="no shadow")
     look.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
+    look.add_argument("--body", choices=BODY_STYLES, default="skin",
+                      help="skin: one smooth skinned body (the default); parts: the capsules and ellipsoids it is "
+                           "made from")
+    look.add_argument("--side-colors", action="store_true",
+                      help="colour legs and arms by side (the look's left and right colours; with --body parts)")
     look.add_argument("--no-path", action="store_true",
                       help="do not draw a turning path on the ground (a straight one never is)")
     look.add_argument("--arcs", metavar="JOINTS",
@@ -113,7 +119,8 @@ def _view(args: argparse.Namespace, turns: bool):
     return ViewSettings(size=args.size, camera=args.camera, antialias=antialias,
                         samples=4 if args.msaa is None else args.msaa,
                         options=RenderOptions(grid=not args.no_grid, shadow=not args.no_shadow,
-                                              joints=not args.no_joints, path=turns and not args.no_path))
+                                              joints=not args.no_joints, path=turns and not args.no_path,
+                                              body=args.body, side_colors=args.side_colors))
 
 
 def _arcs(args: argparse.Namespace) -> tuple[str, ...]:

@@ -1,9 +1,9 @@
 """glTF 2.0 export (.glb): the skeleton as a skin, the creature's mesh skinned to it, one
 animation with root motion.
 
-The mesh is what the renderer draws — capsules for the bones and trunk, ellipsoids for
-the head, eyes and ears — posed as in the first frame and bound rigidly to the bone it
-belongs to (each vertex weighs 1 on one joint), with vertex colours. Joints are nodes
+The mesh is the creature's skinned body (:mod:`app.skin`: one closed smooth surface,
+what the renderer draws) in the first frame, each vertex bound to up to four joints,
+with vertex colours. Joints are nodes
 with their first frame's local transform; the animation moves every joint's rotation and
 the translation of the joints whose offset changes (the root carries the travel).
 Written with pygltflib; checked by the Khronos validator in the tests.
@@ -92,14 +92,12 @@ def _ground(motions: list[Motion], blob: _Blob, doc: gl.GLTF2) -> int:
 
 
 def _skinned_mesh(motion: Motion, clip: SkeletonClip, name: str, blob: _Blob, doc: gl.GLTF2) -> int:
-    """The creature's mesh as drawn in the first frame, bound rigidly to its joints; the
-    index of the mesh."""
+    """The creature's skinned body in the first frame, each vertex bound to up to four
+    joints; the index of the mesh."""
     mesh = creature_mesh(motion, clip)
     position, normal, color = (a.astype(np.float32) for a in (mesh.positions, mesh.normals, mesh.colors))
-    joints0 = np.zeros((len(mesh.joint), 4), np.uint16)
-    joints0[:, 0] = mesh.joint
-    weights0 = np.zeros((len(mesh.joint), 4), np.float32)
-    weights0[:, 0] = 1.0
+    joints0 = mesh.joints.astype(np.uint16)
+    weights0 = mesh.weights.astype(np.float32)
     indices = mesh.faces.astype(np.uint32).reshape(-1)
     attributes = gl.Attributes(
         POSITION=blob.add(position, gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER, bounds=True),

@@ -3,7 +3,7 @@
 The stage is Y up in metres at the clip's frame rate. ``/Creature`` is a SkelRoot holding
 the Skeleton (joints as paths, bind and rest transforms from the first frame), its
 SkelAnimation (every joint's local translation and rotation at every frame) and the
-creature's mesh, bound rigidly (one joint per vertex, weight 1) with vertex colours.
+creature's skinned body (up to four joints a vertex) with vertex colours.
 Needs Pixar's ``usd-core`` package (``pip install usd-core``, an optional dependency).
 """
 
@@ -134,7 +134,10 @@ def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
     colors.Set(Vt.Vec3fArray.FromNumpy(mesh_data.colors.astype(np.float32)))
     binding = UsdSkel.BindingAPI.Apply(mesh.GetPrim())
     binding.CreateSkeletonRel().SetTargets([skeleton.GetPath()])
-    binding.CreateJointIndicesPrimvar(False, 1).Set(Vt.IntArray.FromNumpy(mesh_data.joint.astype(np.int32)))
-    binding.CreateJointWeightsPrimvar(False, 1).Set(Vt.FloatArray([1.0] * len(mesh_data.joint)))
+    influences = mesh_data.joints.shape[1]
+    binding.CreateJointIndicesPrimvar(False, influences).Set(
+        Vt.IntArray.FromNumpy(mesh_data.joints.reshape(-1).astype(np.int32)))
+    binding.CreateJointWeightsPrimvar(False, influences).Set(
+        Vt.FloatArray.FromNumpy(mesh_data.weights.reshape(-1).astype(np.float32)))
     binding.CreateGeomBindTransformAttr(Gf.Matrix4d(1.0))
     return root

@@ -18,7 +18,7 @@ the clip's joints to rounding; leg bones keep their lengths.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -48,6 +48,19 @@ class Skeleton:
 
 
 @dataclass(frozen=True)
+class SkeletonLayout:
+    """The choices a skeleton's first frame makes: the spine point nearest the root (where
+    the trunk splits forwards and backwards), the spine point each leg and arm hangs from,
+    and each joint's roll axis (the body axis most perpendicular to its bone). A clip laid
+    out like another has the same joints, in the same order, turning the same way."""
+
+    middle: int
+    leg_spine: tuple[int, ...]
+    arm_spine: tuple[int, ...]
+    roll_axes: tuple[int, ...] = ()
+
+
+@dataclass(frozen=True)
 class SkeletonClip:
     """A skeleton's animation. T frames, J joints; metres, Y up.
 
@@ -63,6 +76,7 @@ class SkeletonClip:
     local_rotation: NDArray[np.float64]
     local_translation: NDArray[np.float64]
     fps: float
+    layout: SkeletonLayout | None = None  # how it was laid out (pose another clip the same way)
 
     @property
     def frame_count(self) -> int:
@@ -74,12 +88,26 @@ def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
     return v / np.maximum(n, 1e-12)
 
 
-def skeleton_points(motion: Motion) -> tuple[Skeleton, NDArray[np.float64], list[int], dict[int, NDArray]]:
+def skeleton_layout(motion: Motion) -> SkeletonLayout:
+    """The layout a clip's first frame gives (roll axes left to :func:`skeleton_clip`)."""
+    spine, root = motion.spine[0], motion.root[0, :3, 3]
+
+    def nearest(point: NDArray[np.float64]) -> int:
+        return int(np.argmin(np.linalg.norm(spine - point, axis=-1)))
+
+    return SkeletonLayout(middle=nearest(root), leg_spine=tuple(nearest(p) for p in motion.joints[0, :, 0]),
+                          arm_spine=tuple(nearest(p) for p in motion.arms[0, :, 0]))
+
+
+def skeleton_points(motion: Motion, layout: SkeletonLayout | None = None
+                    ) -> tuple[Skeleton, NDArray[np.float64], list[int], dict[int, NDArray]]:
     """The hierarchy and every joint's world position (T, J, 3); each joint's primary
     child (-1 for end joints), whose direction is the joint's +Y; and the spine joints'
     own directions (the spine's tangent, pointing away from the root): the neck's base
     and the tail's root lie within millimetres of the end segments' centres, too close to
-    aim at."""
+    aim at. ``layout`` (default: the first frame's) says where the trunk splits and
+    where the limbs hang."""
+    layout = layout or skeleton_layout(motion)
     spine = motion.spine  # (T, S, 3), rear to front
     root = motion.root[:, :3, 3]
     S = spine.shape[1]
@@ -97,7 +125,7 @@ def skeleton_points(motion: Motion) -> tuple[Skeleton, NDArray[np.float64], list
             primary[parent] = len(names) - 1
         return len(names) - 1
 
-    middle = int(np.argmin(np.linalg.norm(spine[0] - root[0], axis=-1)))
+    middle = layout.middle
     spine_index: dict[int, int] = {}
     directions: dict[int, NDArray] = {}
     parent = 0
@@ -115,26 +143,29 @@ def skeleton_points(motion: Motion) -> tuple[Skeleton, NDArray[np.float64], list
         parent = add(f"tail{k}", parent, motion.tail[:, k])
     joints = motion.joints  # (T, L, 5, 3)
     for leg, leg_name in enumerate(motion.leg_names):
-        nearest = int(np.argmin(np.linalg.norm(spine[0] - joints[0, leg, 0], axis=-1)))
-        parent = spine_index[nearest]
+        parent = spine_index[layout.leg_spine[leg]]
         for k, part in enumerate(LEG_JOINTS):
             parent = add(f"{leg_name}_{part}", parent, joints[:, leg, k])
     for arm, side in zip(range(motion.arms.shape[1]), "LR"):
-        nearest = int(np.argmin(np.linalg.norm(spine[0] - motion.arms[0, arm, 0], axis=-1)))
-        parent = spine_index[nearest]
+        parent = spine_index[layout.arm_spine[arm]]
         for k, part in enumerate(ARM_JOINTS):
             parent = add(f"{side}_{part}", parent, motion.arms[:, arm, k])
     # The root's frame is the body's own.
     return Skeleton(tuple(names), tuple(parents)), np.stack(points, axis=1), primary, directions
 
 
-def skeleton_clip(motion: Motion) -> SkeletonClip:
-    """The clip as a skeleton with orientations (see the module's description)."""
-    skeleton, position, primary, directions = skeleton_points(motion)
+def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> SkeletonClip:
+    """The clip as a skeleton with orientations (see the module's description), laid out
+    as its first frame says or as ``layout`` does (another clip's, e.g. a skinned body's
+    bind pose: then the same joints turn the same way in both). Each joint's roll is
+    measured from the body axis most perpendicular to its bone in the first frame."""
+    skeleton, position, primary, directions = skeleton_points(motion, layout)
+    roll_axes = layout.roll_axes if layout is not None and layout.roll_axes else None
     T, J = position.shape[:2]
     body = motion.root[:, :3, :3]  # (T, 3, 3) columns: left, up, forward
     rotation = np.empty((T, J, 3, 3))
     rotation[:, 0] = body
+    axes = [0] * J
     for j in range(1, J):  # parents come first
         child = primary[j]
         if j in directions:
@@ -148,7 +179,8 @@ def skeleton_clip(motion: Motion) -> SkeletonClip:
             # A bone of no length (a creature without a neck) takes its parent's direction.
             y = np.where(length > 1e-9, bone / np.maximum(length, 1e-12), rotation[:, skeleton.parents[j], :, 1])
         # The roll reference: the body axis most perpendicular to the bone at the start.
-        axis = int(np.argmin(np.abs(np.einsum("ik,i->k", body[0], y[0]))))
+        axis = int(np.argmin(np.abs(np.einsum("ik,i->k", body[0], y[0])))) if roll_axes is None else roll_axes[j]
+        axes[j] = axis
         ref = body[:, :, axis]
         x = _unit(ref - np.sum(ref * y, axis=-1, keepdims=True) * y)
         z = np.cross(x, y)
@@ -162,7 +194,8 @@ def skeleton_clip(motion: Motion) -> SkeletonClip:
     local_pos[:, 0] = position[:, 0]
     return SkeletonClip(skeleton=skeleton, times=np.asarray(motion.times, dtype=np.float64),
                         world_position=position, world_rotation=rotation, local_rotation=local_rot,
-                        local_translation=local_pos, fps=float(motion.fps))
+                        local_translation=local_pos, fps=float(motion.fps),
+                        layout=replace(layout or skeleton_layout(motion), roll_axes=tuple(axes)))
 
 
 def forward_kinematics(skeleton: Skeleton, local_rotation: NDArray[np.float64],

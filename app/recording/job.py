@@ -19,6 +19,7 @@ from ..output import GifWriter, Mp4Writer, cannot_write, check_output_dir, outpu
 from ..render.clip import ClipRenderer
 from ..render.framing import clip_cameras, loop_grid_spacing
 from ..render.herd import HerdInstances
+from ..render.options import RenderOptions
 from ..render.scene import SceneInstances, creature_points
 from ..rigging import build_rig
 from .request import RecordRequest, RecordResult
@@ -57,7 +58,7 @@ class Recording:
             self.motions = cast_frames_at(request.cast, request.start, request.fps)
             framed = [cycle, *cast_motions(request.cast[1:], request.fps, cycle.frame_count / request.fps,
                                            start=request.start)[0]] if len(request.cast) > 1 else [cycle]
-            herds = [_herd_track(actor, m, request.fps, view.options.joints) for actor, m in zip(request.cast, framed)]
+            herds = [_herd_track(actor, m, request.fps, view.options) for actor, m in zip(request.cast, framed)]
             self.cameras = clip_cameras(cycle, view, _points_in_view(framed, herds))[:1]
             # The herds as they are at the frame: the cycle's first.
             self._herds = [None if h is None else (h[0], _first_frame(h[1]), h[2]) for h in herds]
@@ -66,7 +67,7 @@ class Recording:
         else:
             self.motions, self.cycles = cast_motions(request.cast, request.fps, request.seconds, request.cycles,
                                                      request.start)
-            self._herds = [_herd_track(actor, m, request.fps, view.options.joints)
+            self._herds = [_herd_track(actor, m, request.fps, view.options)
                            for actor, m in zip(request.cast, self.motions)]
             self.cameras = clip_cameras(self.motion, view, _points_in_view(self.motions, self._herds))
             self.options = replace(view.options, grid_spacing=loop_grid_spacing(self.motion, self.cycles))
@@ -244,7 +245,7 @@ def record(request: RecordRequest, progress: Progress | None = None,
 HerdParts = tuple[Herd, HerdTrack, HerdInstances]
 
 
-def _herd_track(actor: Actor, motion: Motion, fps: float, joints: bool) -> HerdParts | None:
+def _herd_track(actor: Actor, motion: Motion, fps: float, options: RenderOptions) -> HerdParts | None:
     """An actor's herd following it over ``motion`` (its animals, their track and their
     instances), or None without a herd."""
     if actor.herd <= 1:
@@ -252,7 +253,8 @@ def _herd_track(actor: Actor, motion: Motion, fps: float, joints: bool) -> HerdP
     points, tangents = motion.path.sample(motion.travel)
     heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
     herd = Herd(motion.rig, actor.herd - 1)
-    return herd, follow_leader(herd, points, heading, fps), HerdInstances(herd, joints)
+    return herd, follow_leader(herd, points, heading, fps), HerdInstances(herd, options.joints, options.body,
+                                                                          options.side_colors)
 
 
 def _first_frame(track: HerdTrack) -> HerdTrack:

@@ -7,6 +7,7 @@ so the same settings give the same pixels.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import moderngl
 import numpy as np
@@ -14,6 +15,7 @@ from numpy.typing import NDArray
 
 from ..choices import ANTIALIAS_MODES, DEFAULT_ANTIALIAS, Antialias
 from ..kinematics.motion import Motion
+from .bodies import motion_body
 from .camera import Camera
 from .context import shared_headless_context
 from .fxaa import screen_tiles
@@ -35,13 +37,19 @@ class ClipRenderer:
         self.scene = SceneRenderer(self.ctx)
         self.target = OffscreenTarget(self.ctx, size, samples=samples if antialias == "msaa" else 0,
                                       fxaa=antialias == "fxaa", shaders=self.scene.shaders)
-        self._cache: dict[int, tuple[Motion, bool, SceneInstances]] = {}
+        self._cache: dict[int, tuple[Motion, tuple, SceneInstances]] = {}
 
-    def _instances(self, motion: Motion, joints: bool) -> SceneInstances:
-        """Every frame's instances of a clip, built in one vectorised pass and kept."""
+    def _instances(self, motion: Motion, options: RenderOptions) -> SceneInstances:
+        """Every frame's instances of a clip (and its skinned body through every frame),
+        built in one vectorised pass and kept."""
+        key = (options.joints, options.body, options.side_colors)
         cached = self._cache.get(id(motion))
-        if cached is None or cached[0] is not motion or cached[1] != joints:
-            cached = self._cache[id(motion)] = (motion, joints, motion_instances(motion, show_joints=joints))
+        if cached is None or cached[0] is not motion or cached[1] != key:
+            skin = options.body == "skin"
+            shapes = motion_instances(motion, show_joints=options.joints, parts=not skin, by_side=options.side_colors)
+            if skin:
+                shapes = replace(shapes, bodies=(motion_body(motion, self.scene.body_cache),))
+            cached = self._cache[id(motion)] = (motion, key, shapes)
         return cached[2]
 
     def frame(self, motions: Motion | Sequence[Motion], index: int, camera: Camera, options: RenderOptions,
@@ -52,7 +60,7 @@ class ClipRenderer:
         extras = [] if extra is None else [extra] if isinstance(extra, SceneInstances) else list(extra)
         if len(self._cache) > 4 * len(motions):  # a new clip: forget the old ones
             self._cache = {k: v for k, v in self._cache.items() if any(v[0] is m for m in motions)}
-        scene = frame_instances([self._instances(m, options.joints).frame(index) for m in motions] + extras)
+        scene = frame_instances([self._instances(m, options).frame(index) for m in motions] + extras)
         lead = motions[0]
         ground = GroundView(terrain=lead.terrain, offset=float(lead.ground_offset[index]),
                             path=None if lead.in_place else lead.path, travel=float(lead.travel[index]))

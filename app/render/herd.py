@@ -12,24 +12,37 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..choices import BodyStyle
 from ..kinematics.herd import Herd
 from ..kinematics.motion import Motion
+from .bodies import BodyDraw, motion_body, shared_body_cache
 from .scene import SceneInstances, motion_instances
 
 
 class HerdInstances:
-    """Instance rows for a herd; rebuilt from the herd's cycle when its rig changes."""
+    """Instance rows for a herd (and its animals' skinned bodies, with ``body`` "skin");
+    rebuilt from the herd's cycle when its rig changes."""
 
-    def __init__(self, herd: Herd, show_joints: bool = True) -> None:
+    def __init__(self, herd: Herd, show_joints: bool = True, body: BodyStyle = "skin", by_side: bool = False) -> None:
         self.show_joints = show_joints
+        self.body = body
+        self.by_side = by_side
         self._cycle: Motion | None = None
         self._rows: SceneInstances | None = None
+        self._skins: BodyDraw | None = None
         self._update(herd)
+
+    def matches(self, show_joints: bool, body: BodyStyle, by_side: bool) -> bool:
+        """Whether these instances draw as asked."""
+        return (self.show_joints, self.body, self.by_side) == (show_joints, body, by_side)
 
     def _update(self, herd: Herd) -> None:
         if herd.cycle is not self._cycle:
             self._cycle = herd.cycle
-            self._rows = motion_instances(herd.cycle, show_joints=self.show_joints)
+            skin = self.body == "skin"
+            self._rows = motion_instances(herd.cycle, show_joints=self.show_joints, parts=not skin,
+                                          by_side=self.by_side)
+            self._skins = motion_body(herd.cycle, shared_body_cache()) if skin else None
 
     def frame(self, herd: Herd, ground_height=None) -> SceneInstances:
         """Every animal's capsules (N * C, 11) and ellipsoids (N * E, 18), the shadow
@@ -51,10 +64,20 @@ class HerdInstances:
         out_e[..., 12:15] = ells[..., 12:15] * scale[:, None, None]
         casters = self._rows.ellipsoid_casters
         n = herd.count
-        ellipsoids = np.concatenate([out_e[:, :casters].reshape(n * casters, -1),
-                                     out_e[:, casters:].reshape(-1, out_e.shape[-1])])
-        return SceneInstances(out_c.reshape(-1, out_c.shape[-1]).astype(np.float32),
-                              ellipsoids.astype(np.float32), n * casters)
+        width = out_e.shape[-1]
+        ellipsoids = np.concatenate([out_e[:, :casters].reshape(n * casters, width),
+                                     out_e[:, casters:].reshape(-1, width)])
+        bodies: tuple[BodyDraw, ...] = ()
+        if self._skins is not None:  # each animal's body: its blended skin, placed
+            skins = self._skins.skin.astype(np.float64)
+            skin = skins[f0] + (skins[f1] - skins[f0]) * w[:, None, None, None]  # (N, J, 4, 4)
+            place = np.tile(np.eye(4), (n, 1, 1))
+            place[:, :3, :3] = rot * scale[:, None, None]
+            place[:, :3, 3] = move
+            posed = np.einsum("nab,njbc->njac", place, skin).astype(np.float32)
+            bodies = tuple(BodyDraw(self._skins.body, posed[k]) for k in range(n))
+        return SceneInstances(out_c.reshape(-1, caps.shape[-1]).astype(np.float32),
+                              ellipsoids.astype(np.float32), n * casters, bodies)
 
 
 def _blend(rows: NDArray[np.float32], f0: NDArray[np.int64], f1: NDArray[np.int64],

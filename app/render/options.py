@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from ..choices import DEFAULT_ANTIALIAS, DEFAULT_CAMERA, Antialias, CameraChoice
+from ..choices import DEFAULT_ANTIALIAS, DEFAULT_CAMERA, Antialias, BodyStyle, CameraChoice
 from ..kinematics.path import Path
 from ..kinematics.terrain import FlatTerrain, Terrain
 
@@ -30,6 +30,8 @@ class RenderOptions:
     targets: bool = False  # where the swinging feet will land
     support: bool = False  # the planted feet's support polygon and the trunk's centre in it
     arcs: tuple[str, ...] = ()  # joints whose paths over the last cycle are drawn (viewer; see kinematics.arcs)
+    body: BodyStyle = "skin"  # one smooth skinned body, or the capsules and ellipsoids it is made from
+    side_colors: bool = False  # colour legs and arms by side (left / right), as a diagnostic
 
 
 @dataclass(frozen=True)

@@ -11,12 +11,15 @@ with the sky).
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import moderngl
 import numpy as np
 from pyglm import glm
 
 from ..kinematics.motion import Pose
 from ..kinematics.rig import Rig
+from .bodies import pose_body, shared_body_cache
 from .camera import Camera
 from .ground import ELLIPSOID_LAYOUT, GroundPass
 from .instanced import InstancedMesh
@@ -59,7 +62,7 @@ class CreaturePass:
         before shading them."""
         caps = scene.capsules
         caps = caps[np.argsort(((0.5 * (caps[:, Cap.A] + caps[:, Cap.B]) - eye) ** 2).sum(axis=1))]
-        thick = caps[:, Cap.RADII].max(axis=1) >= THIN_CAPSULE * caps[:, Cap.RADII].max()
+        thick = caps[:, Cap.RADII].max(axis=1) >= THIN_CAPSULE * (caps[:, Cap.RADII].max() if len(caps) else 0.0)
         self.capsules.upload(caps[thick])
         self.thin_capsules.upload(caps[~thick])
         small = scene.ellipsoids[scene.ellipsoid_casters:]
@@ -85,6 +88,93 @@ class CreaturePass:
             mesh.release()
 
 
+class BodyPass:
+    """Skinned bodies: each body's mesh uploaded once (kept while it is drawn), every
+    frame's skinning matrices in one float texture (a row per joint, four texels a
+    matrix), one instanced draw call for each run of draws of the same body (a herd)."""
+
+    FLOATS = 17  # position, normal, colour, four joints, four weights
+
+    def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary) -> None:
+        self.ctx = ctx
+        self.lit = shaders.program("skinned.vert", "lit.frag")
+        self.depth = shaders.program("skinned.vert", "depth.frag")
+        self._meshes: dict[int, tuple[object, list, int]] = {}  # id(body) -> (body, GL objects, last frame used)
+        self._bones: moderngl.Texture | None = None
+        self._draws: list[tuple[moderngl.VertexArray, moderngl.VertexArray, int, int, int]] = []
+        self._frame = 0
+
+    def _mesh(self, body) -> tuple[moderngl.VertexArray, moderngl.VertexArray]:
+        entry = self._meshes.get(id(body))
+        if entry is None or entry[0] is not body:
+            data = np.concatenate([body.positions, body.normals, body.colors, body.joints.astype(np.float32),
+                                   body.weights], axis=1).astype("f4")
+            vbo = self.ctx.buffer(data.tobytes())
+            ibo = self.ctx.buffer(body.faces.astype("u4").tobytes())
+            layout = (vbo, "3f 3f 3f 4f 4f", "in_pos", "in_normal", "in_color", "in_joints", "in_weights")
+            lit = self.ctx.vertex_array(self.lit, [layout], index_buffer=ibo, index_element_size=4)
+            depth = self.ctx.vertex_array(self.depth, [layout], index_buffer=ibo, index_element_size=4,
+                                          skip_errors=True)
+            entry = (body, [lit, depth, vbo, ibo], self._frame)
+        self._meshes[id(body)] = (entry[0], entry[1], self._frame)
+        return entry[1][0], entry[1][1]
+
+    def upload(self, scene: SceneInstances) -> None:
+        """This frame's bodies and their joints."""
+        self._frame += 1
+        self._draws = []
+        if not scene.bodies:
+            return
+        rows = np.concatenate([b.skin.transpose(0, 2, 1).reshape(-1, 16) for b in scene.bodies]).astype("f4")
+        if self._bones is None or self._bones.height < len(rows):
+            if self._bones is not None:
+                self._bones.release()
+            self._bones = self.ctx.texture((4, max(len(rows), 64)), 4, dtype="f4")
+            self._bones.filter = (moderngl.NEAREST, moderngl.NEAREST)
+        self._bones.write(rows.tobytes(), viewport=(0, 0, 4, len(rows)))
+        offset = 0
+        for draw in scene.bodies:
+            joints = draw.skin.shape[0]
+            if self._draws and self._draws[-1][0] is self._mesh(draw.body)[0]:
+                lit, depth, first, stride, count = self._draws[-1]
+                self._draws[-1] = (lit, depth, first, stride, count + 1)  # one more of the herd
+            else:
+                lit, depth = self._mesh(draw.body)
+                self._draws.append((lit, depth, offset, joints, 1))
+            offset += joints
+        for key in [k for k, (_, _, used) in self._meshes.items() if used < self._frame - 120]:
+            for obj in self._meshes.pop(key)[1]:
+                obj.release()  # a body not drawn for a while (an edited shape, a creature gone)
+
+    def _draw(self, depth_only: bool) -> None:
+        if not self._draws or self._bones is None:
+            return
+        self._bones.use(location=1)
+        program = self.depth if depth_only else self.lit
+        uniform(program, "u_bones").value = 1
+        for lit, depth, offset, stride, count in self._draws:
+            uniform(program, "u_bone_offset").value = offset
+            uniform(program, "u_bone_stride").value = stride
+            (depth if depth_only else lit).render(moderngl.TRIANGLES, instances=count)
+
+    def draw_depth(self, light_vp: glm.mat4) -> None:
+        uniform(self.depth, "u_view_proj").write(light_vp)
+        self._draw(depth_only=True)
+
+    def draw(self) -> None:
+        self.ctx.enable(moderngl.CULL_FACE)
+        self._draw(depth_only=False)
+        self.ctx.disable(moderngl.CULL_FACE)
+
+    def release(self) -> None:
+        for _, objects, _ in self._meshes.values():
+            for obj in objects:
+                obj.release()
+        self._meshes.clear()
+        if self._bones is not None:
+            self._bones.release()
+
+
 class SceneRenderer:
     """Draws creatures over the ground. One per GL context; reuse it for every frame."""
 
@@ -98,6 +188,8 @@ class SceneRenderer:
         self.shaders = shaders or ShaderLibrary(ctx)
         self.uniforms = Uniforms()
         self.creatures = CreaturePass(ctx, self.shaders)
+        self.bodies = BodyPass(ctx, self.shaders)
+        self.body_cache = shared_body_cache()
         self.ground = GroundPass(ctx, self.shaders, self.uniforms)
         self.shadow_map = ctx.depth_texture((SHADOW_MAP_SIZE, SHADOW_MAP_SIZE))
         self.shadow_map.compare_func = "<="
@@ -110,7 +202,10 @@ class SceneRenderer:
                options: RenderOptions | None = None, viewport: tuple[int, int, int, int] | None = None) -> None:
         """Draw ``pose`` of creature ``rig`` seen by ``camera`` into ``target`` (cleared first)."""
         options = options or RenderOptions()
-        scene = pose_instances(pose, rig, show_joints=options.joints)
+        skin = options.body == "skin"
+        scene = pose_instances(pose, rig, show_joints=options.joints, parts=not skin, by_side=options.side_colors)
+        if skin:
+            scene = replace(scene, bodies=(pose_body(pose, rig, self.body_cache),))
         self.draw_instances(scene, GroundView(offset=pose.ground_offset), camera, target, options, viewport)
 
     def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
@@ -134,6 +229,7 @@ class SceneRenderer:
             ground = GroundView(offset=float(ground))
         terrain = ground.terrain
         self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32))
+        self.bodies.upload(scene)
         viewport = viewport or (0, 0, *target.size)
         aspect = viewport[2] / max(viewport[3], 1)
         centre, radius = creature_bounds(scene, terrain)
@@ -144,6 +240,7 @@ class SceneRenderer:
         if multisampled is None:
             multisampled = any(getattr(a, "samples", 0) > 0 for a in target.color_attachments)
         if not multisampled:
+            self.bodies.draw()
             self.creatures.draw()
         self.ctx.disable_direct(GL_MULTISAMPLE)
         self.ctx.disable(moderngl.CULL_FACE)
@@ -160,6 +257,7 @@ class SceneRenderer:
         self.ground.draw_sky(camera, aspect, centre, reach, ground_level, options)
         self.ctx.enable_direct(GL_MULTISAMPLE)
         if multisampled:
+            self.bodies.draw()
             self.creatures.draw()
 
     def _shadow_pass(self, light_vp: glm.mat4, options: RenderOptions) -> None:
@@ -172,6 +270,7 @@ class SceneRenderer:
         self.shadow_fbo.clear(depth=1.0)
         if options.shadow:
             self.creatures.draw_depth(light_vp)
+            self.bodies.draw_depth(light_vp)
 
     def _begin_main_pass(self, target: moderngl.Framebuffer, viewport: tuple[int, int, int, int], camera: Camera,
                          aspect: float, light_vp: glm.mat4, shadow_texel: float, options: RenderOptions) -> None:
@@ -185,7 +284,7 @@ class SceneRenderer:
         view_proj = camera.view_proj(aspect)
         self.shadow_map.use(location=0)
         set_ = self.uniforms.set
-        for prog in (*self.creatures.lit_programs, *self.ground.lit_programs):
+        for prog in (*self.creatures.lit_programs, self.bodies.lit, *self.ground.lit_programs):
             set_(prog, "u_view_proj", view_proj)
             set_(prog, "u_light_view_proj", light_vp)
             set_(prog, "u_light_dir", tuple(LIGHT_DIR))
@@ -199,6 +298,7 @@ class SceneRenderer:
     def release(self) -> None:
         """Free every GL object this renderer made."""
         self.creatures.release()
+        self.bodies.release()
         self.ground.release()
         self.shadow_fbo.release()
         self.shadow_map.release()

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -17,6 +18,9 @@ from numpy.typing import NDArray
 from ..kinematics.frames import UP
 from ..kinematics.motion import Motion, Pose
 from ..kinematics.rig import Rig
+
+if TYPE_CHECKING:
+    from .bodies import BodyDraw
 
 
 class Cap:
@@ -45,7 +49,7 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 # Bone radius along the leg as a fraction of the leg's radius at the hip:
 # hip, knee, ankle, ball, toe tip.
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
-_EYE_COLOR = np.array([0.02, 0.02, 0.025])
+EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (the skinned body leaves them out)
 _UP = UP
 
 
@@ -70,22 +74,26 @@ class SceneInstances:
 
     With a leading frame axis for a clip (see :meth:`frame`). Only the first
     ``ellipsoid_casters`` ellipsoids cast shadows (the skull); eyes and joint markers sit
-    inside other shapes and are left out of the shadow pass.
+    inside other shapes and are left out of the shadow pass. ``bodies``: skinned bodies
+    (:class:`~app.render.bodies.BodyDraw`), drawn with the shapes.
     """
 
     capsules: NDArray[np.float32]
     ellipsoids: NDArray[np.float32]
     ellipsoid_casters: int = 1
+    bodies: tuple[BodyDraw, ...] = ()
 
     def frame(self, index: int) -> SceneInstances:
         """One frame of a clip's instances."""
-        return SceneInstances(self.capsules[index], self.ellipsoids[index], self.ellipsoid_casters)
+        return SceneInstances(self.capsules[index], self.ellipsoids[index], self.ellipsoid_casters,
+                              tuple(b.frame(index) for b in self.bodies))
 
     def __add__(self, other: SceneInstances) -> SceneInstances:
         """Both sets of shapes in one (one frame each); the shadow casters stay first."""
         a, b = self.ellipsoid_casters, other.ellipsoid_casters
         ells = np.concatenate([self.ellipsoids[:a], other.ellipsoids[:b], self.ellipsoids[a:], other.ellipsoids[b:]])
-        return SceneInstances(np.concatenate([self.capsules, other.capsules]), ells, a + b)
+        return SceneInstances(np.concatenate([self.capsules, other.capsules]), ells, a + b,
+                              self.bodies + other.bodies)
 
     def spheres(self, casters_only: bool = False) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Bounding spheres of one frame's shapes: centres (N, 3) and radii (N,) — each
@@ -94,8 +102,11 @@ class SceneInstances:
         caps = self.capsules.astype(np.float64)
         ells = self.ellipsoids[:self.ellipsoid_casters] if casters_only else self.ellipsoids
         ells = ells.astype(np.float64)
-        centres = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], ells[:, Ell.CENTRE]])
-        radii = np.concatenate([caps[:, Cap.RADII].T.ravel(), ells[:, Ell.RADII].max(axis=1)])
+        body_spheres = [b.spheres() for b in self.bodies]
+        centres = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], ells[:, Ell.CENTRE],
+                                  *(c for c, _ in body_spheres)]).reshape(-1, 3)
+        radii = np.concatenate([caps[:, Cap.RADII].T.ravel(), ells[:, Ell.RADII].max(axis=1),
+                                *(r for _, r in body_spheres)])
         return centres, radii
 
     def box(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -218,15 +229,17 @@ def _arm_shapes(arms: NDArray[np.float64], rig: Rig, colors: NDArray[np.float64]
 
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
                show_joints: bool, arms: NDArray[np.float64] | None = None,
-               ear_lag: NDArray[np.float64] | None = None) -> SceneInstances:
+               ear_lag: NDArray[np.float64] | None = None, parts: bool = True, by_side: bool = True) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
-    array has a leading frame axis T."""
+    array has a leading frame axis T. ``parts`` False leaves only what sits on a skinned
+    body (the eyes, the joint markers); ``by_side`` colours legs and arms by side."""
     look = rig.look
     head_radius = rig.body.head_radius
     ear_length = rig.body.ear_length
     frames = joints.shape[0]
     body_color = srgb_to_linear(look.body_color)
-    leg_color = leg_colors(rig)
+    leg_color = leg_colors(rig) if by_side else np.broadcast_to(body_color, (rig.leg_count, 3))
+    arm_color = side_colors(rig) if by_side else np.broadcast_to(body_color, (2, 3))
 
     # Legs: four tapered bones each.
     radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
@@ -260,7 +273,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], body_color)
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
-    arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, side_colors(rig))
+    arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, arm_color)
     capsule_parts = [legs, *leg_parts, *arm_caps, trunk, neck_c, muzzle, tail_c]
     if ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
@@ -274,7 +287,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
     eye_centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
         + sides * hx[:, None] * 0.5 * head_radius
-    eyes = _ellipsoids(eye_centres, head_dir[:, None], np.full(3, 0.17 * head_radius), _EYE_COLOR)
+    eyes = _ellipsoids(eye_centres, head_dir[:, None], np.full(3, 0.17 * head_radius), EYE_COLOR)
     ellipsoid_parts = [skull_e, eyes, *foot_parts, *arm_ells]
     if show_joints:
         inner = joints[:, :, 1:4].reshape(frames, -1, 3)  # knee, ankle, ball
@@ -283,21 +296,28 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         axes = np.broadcast_to(np.eye(3).reshape(1, 1, 9), inner.shape[:2] + (9,))
         ellipsoid_parts.append(np.concatenate([inner, axes, np.broadcast_to(joint_r, inner.shape[:2] + (3,)),
                                                np.broadcast_to(joint_color, inner.shape)], axis=-1))
+    if not parts:  # a skinned body is drawn instead: only the eyes and the joint markers
+        on_skin = [eyes] + ellipsoid_parts[-1:] if show_joints else [eyes]
+        return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
+                              ellipsoids=np.concatenate(on_skin, axis=1).astype(np.float32), ellipsoid_casters=0)
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),
                           ellipsoids=np.concatenate(ellipsoid_parts, axis=1).astype(np.float32))
 
 
-def motion_instances(motion: Motion, show_joints: bool = True) -> SceneInstances:
-    """Instances of every frame of a clip: capsules (T, N, 11), ellipsoids (T, M, 18)."""
+def motion_instances(motion: Motion, show_joints: bool = True, parts: bool = True,
+                     by_side: bool = True) -> SceneInstances:
+    """Instances of every frame of a clip: capsules (T, N, 11), ellipsoids (T, M, 18)
+    (``parts``, ``by_side``: see :func:`_instances`)."""
     return _instances(motion.joints, motion.spine, motion.spine_tangent, motion.spine_radius, motion.neck,
-                      motion.head, motion.tail, motion.rig, show_joints, motion.arms, motion.ear_lag)
+                      motion.head, motion.tail, motion.rig, show_joints, motion.arms, motion.ear_lag, parts, by_side)
 
 
-def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True) -> SceneInstances:
+def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True, parts: bool = True,
+                   by_side: bool = True) -> SceneInstances:
     """Instances of one pose: capsules (N, 11), ellipsoids (M, 18)."""
     batch = _instances(pose.joints[None], pose.spine[None], pose.spine_tangent[None], pose.spine_radius,
                        pose.neck[None], pose.head[None], pose.tail[None], rig, show_joints, pose.arms[None],
-                       np.array([pose.ear_lag]))
+                       np.array([pose.ear_lag]), parts, by_side)
     return batch.frame(0)
 
 
@@ -325,7 +345,7 @@ def frame_instances(parts: list[SceneInstances]) -> SceneInstances:
     casters = [p.ellipsoids[:p.ellipsoid_casters] for p in parts]
     rest = [p.ellipsoids[p.ellipsoid_casters:] for p in parts]
     return SceneInstances(np.concatenate([p.capsules for p in parts]), np.concatenate(casters + rest),
-                          sum(p.ellipsoid_casters for p in parts))
+                          sum(p.ellipsoid_casters for p in parts), tuple(b for p in parts for b in p.bodies))
 
 
 def creature_points(motion: Motion) -> NDArray[np.float64]:

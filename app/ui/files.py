@@ -173,6 +173,7 @@ class FilesMixin(StateBase):
         view = ViewSettings(size=(int(r.width), int(r.height)), camera=r.camera,  # type: ignore[arg-type]
                             antialias=r.antialias,
                             options=replace(RenderOptions(), grid=self.options.grid, shadow=self.options.shadow,
-                                            joints=self.options.joints, path=self.options.path))
+                                            joints=self.options.joints, path=self.options.path,
+                                            body=self.options.body, side_colors=self.options.side_colors))
         return RecordRequest(cast=self.cast(), output=r.path(self.spec.name), fps=float(r.fps), seconds=seconds,
                              cycles=cycles, view=view, gif_quality=r.gif_quality, crf=int(np.clip(r.crf, 0, MAX_CRF)))

@@ -24,6 +24,7 @@ from ..kinematics.motion import Pose
 from ..output import atomic_write_text, write_png
 from ..recording import Recording
 from ..render.arcs import arc_instances
+from ..render.bodies import pose_body, shared_body_cache
 from ..render.camera import eye_ray, ground_point, point3
 from ..render.herd import HerdInstances
 from ..render.renderer import SceneRenderer
@@ -338,15 +339,22 @@ class Viewer:
         """What the 3-D view draws this frame: every creature of the scene, their herds,
         the selected one's key-pose ghosts and arcs (one set, as recordings draw)."""
         state = self.state
-        joints = state.options.joints
-        parts = [pose_instances(pose, state.live.rig, joints)]
-        parts += [pose_instances(other, session.live.rig, joints) for other, session in state.creature_poses()]
+        options = state.options
+        joints, skin, by_side = options.joints, options.body == "skin", options.side_colors
+        creatures = [(pose, state.live.rig), *((other, session.live.rig) for other, session in state.creature_poses())]
+        parts = []
+        for p, rig in creatures:
+            shapes = pose_instances(p, rig, joints, parts=not skin, by_side=by_side)
+            if skin:
+                shapes = replace(shapes, bodies=(pose_body(p, rig, shared_body_cache(), live=True),))
+            parts.append(shapes)
         for session in state.sessions:
             if session.herd is None:
                 continue
             cached = self._herd_instances.get(id(session.herd))
-            if cached is None or cached.show_joints != joints:
-                cached = self._herd_instances[id(session.herd)] = HerdInstances(session.herd, joints)
+            if cached is None or not cached.matches(joints, options.body, by_side):
+                cached = self._herd_instances[id(session.herd)] = HerdInstances(session.herd, joints, options.body,
+                                                                                by_side)
             parts.append(cached.frame(session.herd, session.world.terrain.height))
         parts += [ghost_instances(ghost, state.live.rig, color)
                   for ghost, color in zip(state.ghost_poses(), KEY_POSE_COLORS)]

@@ -45,6 +45,9 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     from dataclasses import replace
 
     options = state.options
+    imgui.same_line()
+    changed_b, smooth = _checkbox(state, "view.smooth_body", "smooth body", options.body == "skin",
+                                  "One smooth skinned body; off: the capsules and ellipsoids it is made from.")
     changed_g, grid = imgui.checkbox("grid", options.grid)
     imgui.same_line()
     changed_s, shadow = imgui.checkbox("shadow", options.shadow)
@@ -52,8 +55,13 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     changed_j, joints = imgui.checkbox("joints", options.joints)
     imgui.same_line()
     changed_p, path = imgui.checkbox("path", options.path)
-    if changed_g or changed_s or changed_j or changed_p:
-        state.options = replace(options, grid=grid, shadow=shadow, joints=joints, path=path)
+    imgui.same_line()
+    changed_c, by_side = _checkbox(state, "view.side_colors", "sides", options.side_colors,
+                                   "Colour legs and arms by side: left in the look's left colour, right in its\n"
+                                   "right colour (with the smooth body off).")
+    if changed_g or changed_s or changed_j or changed_p or changed_b or changed_c:
+        state.options = replace(options, grid=grid, shadow=shadow, joints=joints, path=path,
+                                body="skin" if smooth else "parts", side_colors=by_side)
     imgui.separator_text("overlays")
     options = state.options
     changed_f, footprints = _checkbox(state, "overlay.footprints", "footprints", options.footprints,

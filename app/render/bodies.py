@@ -1,0 +1,190 @@
+"""Skinned bodies in a frame: which body, and where its joints are (no OpenGL).
+
+A :class:`BodyDraw` is one creature's :class:`~app.skin.SkinnedBody` with its joints'
+skinning matrices for a frame (or every frame of a clip). :class:`BodyCache` builds each
+creature's body once per shape (0.1-0.5 s; the rig's gait, speed or colours aside from
+the coat do not rebuild it) and keeps the last few. :func:`pose_body` and
+:func:`motion_body` give the draws of a live pose and of a whole clip.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import pickle
+import threading
+from collections import OrderedDict
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..kinematics.motion import Motion, Pose
+from ..kinematics.rig import Rig
+from ..kinematics.skeleton import skeleton_clip
+from ..skin import SkinnedBody, build_body
+from ..skin.body import Detail, joint_matrices
+
+
+@dataclass(frozen=True)
+class BodyDraw:
+    """A body and its skinning matrices: (J, 4, 4) for a frame, (T, J, 4, 4) for a clip;
+    ``reach`` (J,) how far (m) the surface lies from each joint (bounds and shadows)."""
+
+    body: SkinnedBody
+    skin: NDArray[np.float32]
+
+    def frame(self, index: int) -> BodyDraw:
+        return BodyDraw(self.body, self.skin[index]) if self.skin.ndim == 4 else self
+
+    def spheres(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Bounding spheres (J, 3), (J,) of a frame's body: each joint where it is now with
+        the reach of its vertices."""
+        centres = np.einsum("jab,jb->ja", self.skin.astype(np.float64), self.body.bind[:, :, 3])[:, :3]
+        return centres, joint_reach(self.body)
+
+    def placed(self, matrices: NDArray[np.float64]) -> list[BodyDraw]:
+        """The frame's body moved by each of ``matrices`` (N, 4, 4) (a herd's animals)."""
+        return [BodyDraw(self.body, (m @ self.skin).astype(np.float32)) for m in matrices]
+
+
+def joint_reach(body: SkinnedBody) -> NDArray[np.float64]:
+    """How far (m) each joint's vertices (those it weighs most) lie from it, (J,)."""
+    cached = _REACH.get(id(body))
+    if cached is not None and cached[0] is body:
+        return cached[1]
+    centres = body.bind[:, :3, 3]
+    main = body.joints[:, 0]
+    distance = np.linalg.norm(body.positions - centres[main], axis=1)
+    reach = np.zeros(len(centres))
+    np.maximum.at(reach, main, distance)
+    _REACH[id(body)] = (body, reach)
+    return reach
+
+
+_REACH: dict[int, tuple[SkinnedBody, NDArray[np.float64]]] = {}
+
+
+def shape_key(rig: Rig) -> str:
+    """A digest of what a rig's body is built from (bones, radii, trunk, head, tail, arms,
+    coat), not its gait."""
+    parts = (rig.name, rig.body, rig.femur, rig.tibia, rig.metatarsus, rig.toe, rig.bone_radius, rig.ankle_lift,
+             rig.hip_offset, rig.girdle_rest_height, rig.girdle_position, rig.arms, rig.look.body_color,
+             rig.leg_names, rig.roll_amount)
+    return hashlib.sha1(pickle.dumps(parts)).hexdigest()
+
+
+class BodyCache:
+    """Bodies by shape, the ``capacity`` most recent kept. :meth:`get` builds what it is
+    asked for; :meth:`live` (the viewer) never waits for a full body: it gives the coarse
+    one at once (built in about a tenth of a second) while the full one is built in a
+    background thread, and the full one from the first frame it is ready."""
+
+    def __init__(self, capacity: int = 8) -> None:
+        self.capacity = capacity
+        self._bodies: OrderedDict[tuple[str, str], SkinnedBody] = OrderedDict()
+        self._keys: dict[int, tuple[Rig, str]] = {}  # id(rig) -> its shape key (rigs are immutable)
+        self._lock = threading.Lock()
+        self._building: set[str] = set()  # shapes whose full body is being built in the background
+
+    def _key(self, rig: Rig) -> str:
+        known = self._keys.get(id(rig))
+        if known is None or known[0] is not rig:
+            if len(self._keys) > 64:
+                self._keys.clear()
+            known = self._keys[id(rig)] = (rig, shape_key(rig))
+        return known[1]
+
+    def _store(self, key: tuple[str, str], body: SkinnedBody) -> None:
+        with self._lock:
+            self._bodies[key] = body
+            self._bodies.move_to_end(key)
+            while len(self._bodies) > self.capacity:
+                self._bodies.popitem(last=False)
+
+    def _cached(self, key: tuple[str, str]) -> SkinnedBody | None:
+        with self._lock:
+            body = self._bodies.get(key)
+            if body is not None:
+                self._bodies.move_to_end(key)
+            return body
+
+    def get(self, rig: Rig, detail: Detail = "full") -> SkinnedBody:
+        """The body of ``rig``'s shape (built in its first walking frame, the bind pose)."""
+        key = (self._key(rig), detail)
+        body = self._cached(key)
+        if body is None:
+            body = _build(rig, detail)
+            self._store(key, body)
+        return body
+
+    def live(self, rig: Rig) -> SkinnedBody:
+        """The full body if it is ready, else the coarse one (the full one on its way)."""
+        shape = self._key(rig)
+        full = self._cached((shape, "full"))
+        if full is not None:
+            return full
+        with self._lock:
+            start = shape not in self._building
+            self._building.add(shape)
+        if start:
+            def build() -> None:
+                try:
+                    self._store((shape, "full"), _build(rig, "full"))
+                finally:
+                    with self._lock:
+                        self._building.discard(shape)
+
+            threading.Thread(target=build, name="gaitlab-body", daemon=True).start()
+        return self.get(rig, "coarse")
+
+
+def _build(rig: Rig, detail: Detail) -> SkinnedBody:
+    """A rig's body, bound in its first walking frame in place (the bind pose)."""
+    from ..kinematics.motion import simulate
+    from ..kinematics.world import World
+
+    rest = simulate(rig, 0.0, 30.0, world=World(in_place=True))
+    return build_body(rest, skeleton_clip(rest), detail)
+
+
+_SHARED: BodyCache | None = None
+
+
+def shared_body_cache() -> BodyCache:
+    """The process's body cache (renderers, herds and the viewer share the bodies)."""
+    global _SHARED
+    if _SHARED is None:
+        _SHARED = BodyCache()
+    return _SHARED
+
+
+def pose_motion(pose: Pose, rig: Rig) -> Motion:
+    """A pose as a one-frame clip (for its skeleton)."""
+    from dataclasses import fields
+
+    values = {f.name: getattr(pose, f.name) for f in fields(Pose)}
+    for name in ("ground_offset", "travel", "ear_lag"):
+        values[name] = np.array([values[name]])
+    from ..kinematics.motion import PER_CLIP_FIELDS
+
+    for name, value in list(values.items()):
+        if name not in PER_CLIP_FIELDS and name not in ("ground_offset", "travel", "ear_lag"):
+            values[name] = np.asarray(value)[None]
+    return Motion(**values, times=np.zeros(1), clock=np.zeros(1), fps=30.0, rig=rig)
+
+
+def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> BodyDraw:
+    """The body of a pose (``live``: the viewer's, which never waits for a full body)."""
+    body = cache.live(rig) if live else cache.get(rig)
+    world = joint_matrices(skeleton_clip(pose_motion(pose, rig), body.layout), 0)
+    return BodyDraw(body, (world @ np.linalg.inv(body.bind)).astype(np.float32))
+
+
+def motion_body(motion: Motion, cache: BodyCache) -> BodyDraw:
+    """The body through every frame of a clip: skinning matrices (T, J, 4, 4)."""
+    body = cache.get(motion.rig)
+    clip = skeleton_clip(motion, body.layout)
+    world = np.tile(np.eye(4), clip.world_position.shape[:2] + (1, 1))
+    world[..., :3, :3] = clip.world_rotation
+    world[..., :3, 3] = clip.world_position
+    return BodyDraw(body, (world @ np.linalg.inv(body.bind)).astype(np.float32))

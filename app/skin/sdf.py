@@ -1,0 +1,91 @@
+"""Signed distances (m, negative inside) of a creature's parts and their smooth union.
+
+Parts are the renderer's instances: tapered capsules (two end points, a radius at each)
+and ellipsoids (a centre, three unit axes, three radii). The union is the soft minimum
+``-k log(sum exp(-d_i / k))``: smooth where parts meet (a blend about ``k`` wide), equal
+to the nearest part's distance away from the joins.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+
+def capsule_distance(points: NDArray[np.float64], a: NDArray[np.float64], b: NDArray[np.float64],
+                     r0: float, r1: float) -> NDArray[np.float64]:
+    """Distance (N,) from points (N, 3) to a capsule from ``a`` to ``b`` (3,) whose radius
+    goes from ``r0`` to ``r1`` (a round cone, measured across its axis: close enough for
+    gentle tapers)."""
+    axis = b - a
+    length2 = float(axis @ axis)
+    t = np.clip(((points - a) @ axis) / length2, 0.0, 1.0) if length2 > 1e-18 else np.zeros(len(points))
+    nearest = a + t[:, None] * axis
+    return np.linalg.norm(points - nearest, axis=1) - (r0 + (r1 - r0) * t)
+
+
+def ellipsoid_distance(points: NDArray[np.float64], centre: NDArray[np.float64], axes: NDArray[np.float64],
+                       radii: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Approximate distance (N,) from points (N, 3) to an ellipsoid: ``axes`` (3, 3) rows
+    are its unit axes, ``radii`` (3,) its semi-axes (the k0 (k0 - 1) / k1 bound, exact on
+    the surface and for spheres)."""
+    local = (points - centre) @ axes.T  # (N, 3) along each axis
+    r = np.maximum(radii, 1e-9)
+    k0 = np.linalg.norm(local / r, axis=1)
+    k1 = np.linalg.norm(local / (r * r), axis=1)
+    return np.where(k1 > 1e-12, k0 * (k0 - 1.0) / np.maximum(k1, 1e-12), -float(r.min()))
+
+
+def part_distances(points: NDArray[np.float64], capsules: NDArray[np.float64],
+                   ellipsoids: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each part's distance (P, N) at points (N, 3): capsules (C, >=8: a, b, r0, r1) first,
+    then ellipsoids (E, >=15: centre, x, y, z axes, radii)."""
+    rows = [capsule_distance(points, c[0:3], c[3:6], float(c[6]), float(c[7])) for c in capsules]
+    rows += [ellipsoid_distance(points, e[0:3], np.stack([e[3:6], e[6:9], e[9:12]]), e[12:15]) for e in ellipsoids]
+    return np.stack(rows) if rows else np.full((0, len(points)), np.inf)
+
+
+def smooth_union(distances: NDArray[np.float64], blend: float) -> NDArray[np.float64]:
+    """The soft minimum (N,) over parts (P, N) with blend width ``blend`` (m)."""
+    nearest = distances.min(axis=0)
+    return nearest - blend * np.log(np.sum(np.exp(-(distances - nearest) / blend), axis=0))
+
+
+def union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+                  capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float) -> NDArray[np.float32]:
+    """The smooth union sampled on the grid ``axes`` (x (X,), y (Y,), z (Z,) coordinates):
+    (X, Y, Z) float32. Each part is evaluated only in its bounding box widened by four
+    blend widths (beyond, its share of the soft minimum is under 2 % of ``blend``), and the
+    soft minimum is accumulated part by part (a running minimum and rescaled sum), so
+    memory stays one grid whatever the number of parts."""
+    xs, ys, zs = axes
+    shape = (len(xs), len(ys), len(zs))
+    nearest = np.full(shape, np.inf, dtype=np.float32)
+    total = np.zeros(shape, dtype=np.float32)
+    boxes = [(np.minimum(c[0:3], c[3:6]) - max(c[6], c[7]), np.maximum(c[0:3], c[3:6]) + max(c[6], c[7]))
+             for c in capsules]
+    boxes += [(e[0:3] - e[12:15].max(), e[0:3] + e[12:15].max()) for e in ellipsoids]
+    parts = [("c", c) for c in capsules] + [("e", e) for e in ellipsoids]
+    for (lo, hi), (kind, p) in zip(boxes, parts):
+        lo, hi = lo - 4.0 * blend, hi + 4.0 * blend
+        ix = slice(int(np.searchsorted(xs, lo[0])), int(np.searchsorted(xs, hi[0], side="right")))
+        iy = slice(int(np.searchsorted(ys, lo[1])), int(np.searchsorted(ys, hi[1], side="right")))
+        iz = slice(int(np.searchsorted(zs, lo[2])), int(np.searchsorted(zs, hi[2], side="right")))
+        gx, gy, gz = np.meshgrid(xs[ix], ys[iy], zs[iz], indexing="ij")
+        if gx.size == 0:
+            continue
+        points = np.stack([gx.ravel(), gy.ravel(), gz.ravel()], axis=1)
+        if kind == "c":
+            d = capsule_distance(points, p[0:3], p[3:6], float(p[6]), float(p[7]))
+        else:
+            d = ellipsoid_distance(points, p[0:3], np.stack([p[3:6], p[6:9], p[9:12]]), p[12:15])
+        d = d.reshape(gx.shape).astype(np.float32)
+        m_old = nearest[ix, iy, iz]
+        m_new = np.minimum(m_old, d)
+        scale = np.where(np.isfinite(m_old), np.exp(-(m_old - m_new) / blend), 0.0)
+        total[ix, iy, iz] = total[ix, iy, iz] * scale + np.exp(-(d - m_new) / blend)
+        nearest[ix, iy, iz] = m_new
+    inside = np.isfinite(nearest)
+    union = np.full(shape, 4.0 * blend + 1.0, dtype=np.float32)
+    union[inside] = nearest[inside] - blend * np.log(np.maximum(total[inside], 1e-30))
+    return union

@@ -1,0 +1,135 @@
+"""The skinned body: one closed surface per creature, weights that blend to one, and
+vertices that follow their bones through a clip."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from app import build_rig, load_creature
+from app.kinematics.clip import clip_motion
+from app.kinematics.skeleton import skeleton_clip
+from app.resources import creatures_dir
+from app.skin import build_body
+from app.skin.body import _parts
+from app.skin.sdf import capsule_distance, ellipsoid_distance, part_distances, smooth_union
+
+PRESETS = sorted(p.stem for p in creatures_dir().glob("*.toml"))
+
+
+@pytest.fixture(scope="module", params=PRESETS)
+def built(request):
+    rig = build_rig(load_creature(request.param))
+    motion, _ = clip_motion(rig, 30.0, cycles=1.0)
+    clip = skeleton_clip(motion)
+    return request.param, motion, clip, build_body(motion, clip)
+
+
+def test_the_body_is_one_closed_manifold_surface(built) -> None:
+    import trimesh
+
+    name, _, _, body = built
+    mesh = trimesh.Trimesh(body.positions, body.faces, process=False)
+    assert mesh.is_watertight and mesh.is_winding_consistent, name
+    assert mesh.body_count == 1, name  # one piece, not a pile of parts
+    assert mesh.volume > 0, name  # faces wound outwards
+    assert np.allclose(np.linalg.norm(body.normals, axis=1), 1.0, atol=1e-4)
+
+
+def test_skin_weights_are_non_negative_and_sum_to_one(built) -> None:
+    name, _, clip, body = built
+    assert body.weights.shape == body.joints.shape == (len(body.positions), 4)
+    assert (body.weights >= 0).all(), name
+    assert np.allclose(body.weights.sum(axis=1), 1.0, atol=1e-5), name
+    assert body.joints.min() >= 0 and body.joints.max() < clip.world_position.shape[1]
+
+
+def test_vertices_follow_their_bones_through_the_clip(built) -> None:
+    """Skinned to later frames, the surface stays as close to the posed parts as it was in
+    the bind pose (within a quarter of a typical part's radius, plus half a per cent of
+    the creature's size: the grid thickens the thinnest legs to two cells)."""
+    name, motion, clip, body = built
+
+    def error(frame: int) -> float:
+        capsules, ellipsoids = _parts(motion.frames(frame))
+        d = smooth_union(part_distances(body.posed(clip, frame), capsules, ellipsoids), 0.01)
+        return float(np.percentile(np.abs(d), 95))
+
+    capsules, ellipsoids = _parts(motion)
+    typical = float(np.median(np.concatenate([capsules[:, 6:8].ravel(), ellipsoids[:, 12:15].ravel()])))
+    size = float(np.ptp(body.positions, axis=0).max())
+    bind = error(0)
+    for frame in (motion.frame_count // 3, 2 * motion.frame_count // 3):
+        assert error(frame) <= bind + 0.25 * typical + 0.005 * size, (name, frame)
+
+
+def test_the_posed_body_at_the_bind_frame_is_the_bind_mesh(built) -> None:
+    _, _, clip, body = built
+    assert np.allclose(body.posed(clip, 0), body.positions, atol=1e-5)
+
+
+def test_part_distances_are_signed_distances() -> None:
+    points = np.array([[0.0, 0.0, 0.0], [0.0, 2.0, 0.0], [3.0, 0.5, 0.0], [0.0, -1.0, 0.0]])
+    d = capsule_distance(points, np.zeros(3), np.array([0.0, 1.0, 0.0]), 0.5, 0.5)
+    assert d == pytest.approx([-0.5, 0.5, 2.5, 0.5])
+    e = ellipsoid_distance(np.array([[2.0, 0.0, 0.0], [0.0, 0.0, 0.0]]), np.zeros(3), np.eye(3),
+                           np.array([1.0, 2.0, 3.0]))
+    assert e[0] == pytest.approx(1.0) and e[1] < 0
+    # The smooth union is never above the nearest part and meets it away from joins.
+    both = np.stack([np.array([0.3, 5.0]), np.array([0.3, -1.0])])
+    u = smooth_union(both, 0.05)
+    assert u[0] <= 0.3 and u[0] == pytest.approx(0.3 - 0.05 * np.log(2.0))
+    assert u[1] == pytest.approx(-1.0, abs=1e-12)
+
+
+def test_coarse_bodies_are_quick_and_closed() -> None:
+    import trimesh
+
+    rig = build_rig(load_creature("dog"))
+    motion, _ = clip_motion(rig, 30.0, cycles=0.2)
+    clip = skeleton_clip(motion)
+    coarse = build_body(motion, clip, detail="coarse")
+    full = build_body(motion, clip)
+    assert len(coarse.faces) < len(full.faces) / 2
+    assert trimesh.Trimesh(coarse.positions, coarse.faces, process=False).is_watertight
+
+
+@pytest.mark.parametrize("creature", ["human", "dog", "horse", "spider"])
+def test_a_single_pose_is_skinned_like_the_clip_it_comes_from(creature: str) -> None:
+    """The viewer skins one pose at a time: its skeleton is laid out as the body's bind
+    skeleton (the same joints in the same order, rolled the same way), so every key
+    pose's surface stays on its parts."""
+    from app.kinematics.clip import frame_at
+    from app.kinematics.world import World
+    from app.render.bodies import BodyCache, motion_body, pose_body
+
+    rig = build_rig(load_creature(creature))
+    cache = BodyCache()
+    for phase in np.linspace(0.0, 1.0, 8, endpoint=False):
+        motion = frame_at(rig, float(phase / rig.gait.frequency), 60.0, World(in_place=True))
+        draw = motion_body(motion, cache).frame(0)
+        assert np.allclose(pose_body(motion.pose(0), rig, cache).skin, draw.skin, atol=1e-5)
+        body = draw.body
+        p = np.concatenate([body.positions, np.ones((len(body.positions), 1), np.float32)], axis=1).astype(float)
+        posed = np.einsum("vk,vkij,vj->vi", body.weights.astype(float), draw.skin.astype(float)[body.joints], p)[:, :3]
+        capsules, ellipsoids = _parts(motion)
+        off = np.abs(smooth_union(part_distances(posed, capsules, ellipsoids), 0.01))
+        size = float(np.ptp(body.positions, axis=0).max())
+        assert np.percentile(off, 95) < 0.015 * size, (creature, phase)
+
+
+def test_the_viewer_gets_a_coarse_body_at_once_and_the_full_one_soon() -> None:
+    import time
+
+    from app.render.bodies import BodyCache
+
+    rig = build_rig(load_creature("cat"))
+    cache = BodyCache()
+    first = cache.live(rig)
+    assert first.detail == "coarse"
+    deadline = time.monotonic() + 30.0
+    while cache.live(rig).detail != "full" and time.monotonic() < deadline:
+        time.sleep(0.05)
+    full = cache.live(rig)
+    assert full.detail == "full" and len(full.faces) > len(first.faces)
+    assert np.allclose(full.bind, first.bind) and full.layout == first.layout  # the same skeleton either way
