@@ -165,26 +165,44 @@ def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> Skele
     body = motion.root[:, :3, :3]  # (T, 3, 3) columns: left, up, forward
     rotation = np.empty((T, J, 3, 3))
     rotation[:, 0] = body
+    parents_all = np.array(skeleton.parents)
+    # Each joint's +Y: its own direction (spine), towards its primary child, or (an end
+    # joint) its parent's frame whole. Every joint but the ends at once.
+    y = np.zeros((T, J, 3))
+    aims = np.array([j for j in range(1, J) if j not in directions and primary[j] >= 0], dtype=np.int64)
+    if aims.size:
+        bone = position[:, np.array([primary[j] for j in aims])] - position[:, aims]
+        length = np.linalg.norm(bone, axis=-1, keepdims=True)
+        y[:, aims] = bone / np.maximum(length, 1e-12)
+        short = np.nonzero((length[..., 0] <= 1e-9).any(axis=0))[0]
+    else:
+        short = np.zeros(0, dtype=np.int64)
+    for j, d in directions.items():
+        y[:, j] = d
+    ends = [j for j in range(1, J) if j not in directions and primary[j] < 0]
+    framed = np.array([j for j in range(1, J) if j not in ends], dtype=np.int64)
     axes = [0] * J
-    for j in range(1, J):  # parents come first
-        child = primary[j]
-        if j in directions:
-            y = directions[j]
-        elif child < 0:
-            rotation[:, j] = rotation[:, skeleton.parents[j]]
-            continue
+    for k in short:  # a bone of no length (a creature without a neck) takes its parent's direction, in order
+        j = int(aims[k])
+        zero = np.linalg.norm(position[:, primary[j]] - position[:, j], axis=-1) <= 1e-9
+        parent_y = y[:, parents_all[j]] if parents_all[j] > 0 else body[:, :, 1]
+        y[:, j] = np.where(zero[:, None], parent_y, y[:, j])
+    if framed.size:
+        yf = y[:, framed]  # (T, F, 3)
+        if roll_axes is None:
+            # The roll reference: the body axis most perpendicular to the bone at the start.
+            chosen = np.argmin(np.abs(np.einsum("ik,fi->fk", body[0], yf[0])), axis=1)
         else:
-            bone = position[:, child] - position[:, j]
-            length = np.linalg.norm(bone, axis=-1, keepdims=True)
-            # A bone of no length (a creature without a neck) takes its parent's direction.
-            y = np.where(length > 1e-9, bone / np.maximum(length, 1e-12), rotation[:, skeleton.parents[j], :, 1])
-        # The roll reference: the body axis most perpendicular to the bone at the start.
-        axis = int(np.argmin(np.abs(np.einsum("ik,i->k", body[0], y[0])))) if roll_axes is None else roll_axes[j]
-        axes[j] = axis
-        ref = body[:, :, axis]
-        x = _unit(ref - np.sum(ref * y, axis=-1, keepdims=True) * y)
-        z = np.cross(x, y)
-        rotation[:, j] = np.stack([x, y, z], axis=-1)
+            chosen = np.array([roll_axes[j] for j in framed])
+        for j, a in zip(framed, chosen):
+            axes[int(j)] = int(a)
+        ref = np.moveaxis(body[:, :, chosen], -1, 1)  # (T, F, 3): each joint's chosen body axis
+        x = _unit(ref - np.sum(ref * yf, axis=-1, keepdims=True) * yf)
+        z = np.cross(x, yf)
+        rotation[:, framed] = np.stack([x, yf, z], axis=-1)
+    for j in ends:  # parents come first
+        rotation[:, j] = rotation[:, parents_all[j]]
+        axes[j] = axes[parents_all[j]]
     parents = np.array(skeleton.parents)
     parent_rot = rotation[:, np.maximum(parents, 0)]
     parent_pos = position[:, np.maximum(parents, 0)]

@@ -62,6 +62,15 @@ def joint_reach(body: SkinnedBody) -> NDArray[np.float64]:
 
 
 _REACH: dict[int, tuple[SkinnedBody, NDArray[np.float64]]] = {}
+_SIZE: dict[int, tuple[SkinnedBody, float]] = {}
+
+
+def body_size(body: SkinnedBody) -> float:
+    """The body's longest extent (m) in its bind pose (kept per body)."""
+    cached = _SIZE.get(id(body))
+    if cached is None or cached[0] is not body:
+        cached = _SIZE[id(body)] = (body, float(np.ptp(body.positions, axis=0).max()))
+    return cached[1]
 
 
 def shape_key(rig: Rig) -> str:

@@ -40,7 +40,8 @@ class HerdInstances:
         if herd.cycle is not self._cycle:
             self._cycle = herd.cycle
             skin = self.body == "skin"
-            self._rows = motion_instances(herd.cycle, show_joints=self.show_joints, parts=not skin,
+            # On skinned bodies a herd shows no joint markers (inside the skin, and many).
+            self._rows = motion_instances(herd.cycle, show_joints=self.show_joints and not skin, parts=not skin,
                                           by_side=self.by_side)
             self._skins = motion_body(herd.cycle, shared_body_cache()) if skin else None
 

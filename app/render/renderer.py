@@ -19,7 +19,7 @@ from pyglm import glm
 
 from ..kinematics.motion import Pose
 from ..kinematics.rig import Rig
-from .bodies import pose_body, shared_body_cache
+from .bodies import body_size, pose_body, shared_body_cache
 from .camera import Camera
 from .ground import ELLIPSOID_LAYOUT, GroundPass
 from .instanced import InstancedMesh
@@ -94,6 +94,7 @@ class BodyPass:
     matrix), one instanced draw call for each run of draws of the same body (a herd)."""
 
     FLOATS = 17  # position, normal, colour, four joints, four weights
+    FAR = 4.0  # body sizes from the camera beyond which the coarse stand-in is drawn
 
     def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary) -> None:
         self.ctx = ctx
@@ -119,13 +120,25 @@ class BodyPass:
         self._meshes[id(body)] = (entry[0], entry[1], self._frame)
         return entry[1][0], entry[1][1]
 
-    def upload(self, scene: SceneInstances) -> None:
-        """This frame's bodies and their joints."""
+    def upload(self, scene: SceneInstances, eye: np.ndarray) -> None:
+        """This frame's bodies and their joints: far from the camera ``eye`` (over
+        :data:`FAR` body sizes away) a body is drawn with its coarse stand-in; draws of the
+        same mesh go together (one instanced call each)."""
         self._frame += 1
         self._draws = []
         if not scene.bodies:
             return
-        rows = np.concatenate([b.skin.transpose(0, 2, 1).reshape(-1, 16) for b in scene.bodies]).astype("f4")
+        chosen = []
+        for draw in scene.bodies:
+            body = draw.body
+            if body.far is not None:
+                size = body_size(body)
+                root = draw.skin[0, :3, 3] + draw.skin[0, :3, :3] @ body.bind[0, :3, 3]
+                if np.linalg.norm(root - eye) > self.FAR * size:
+                    body = body.far
+            chosen.append((body, draw))
+        chosen.sort(key=lambda c: id(c[0]))  # runs of one mesh
+        rows = np.concatenate([d.skin.transpose(0, 2, 1).reshape(-1, 16) for _, d in chosen]).astype("f4")
         if self._bones is None or self._bones.height < len(rows):
             if self._bones is not None:
                 self._bones.release()
@@ -133,13 +146,15 @@ class BodyPass:
             self._bones.filter = (moderngl.NEAREST, moderngl.NEAREST)
         self._bones.write(rows.tobytes(), viewport=(0, 0, 4, len(rows)))
         offset = 0
-        for draw in scene.bodies:
+        for body, draw in chosen:
             joints = draw.skin.shape[0]
-            if self._draws and self._draws[-1][0] is self._mesh(draw.body)[0]:
-                lit, depth, first, stride, count = self._draws[-1]
+            lit, depth = self._mesh(body)
+            if body.shadow is not None:  # a coarser stand-in casts the (soft) shadow
+                depth = self._mesh(body.shadow)[1]
+            if self._draws and self._draws[-1][0] is lit:
+                _, _, first, stride, count = self._draws[-1]
                 self._draws[-1] = (lit, depth, first, stride, count + 1)  # one more of the herd
             else:
-                lit, depth = self._mesh(draw.body)
                 self._draws.append((lit, depth, offset, joints, 1))
             offset += joints
         for key in [k for k, (_, _, used) in self._meshes.items() if used < self._frame - 120]:
@@ -229,7 +244,7 @@ class SceneRenderer:
             ground = GroundView(offset=float(ground))
         terrain = ground.terrain
         self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32))
-        self.bodies.upload(scene)
+        self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64))
         viewport = viewport or (0, 0, *target.size)
         aspect = viewport[2] / max(viewport[3], 1)
         centre, radius = creature_bounds(scene, terrain)

@@ -227,6 +227,40 @@ def _arm_shapes(arms: NDArray[np.float64], rig: Rig, colors: NDArray[np.float64]
     return [bones, muscle], [hand]
 
 
+def _skull(head: NDArray[np.float64], rig: Rig) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The skull's centre (T, 3) and the head's direction (T, 3)."""
+    head_radius = rig.body.head_radius
+    skull_back, nose = head[:, 0], head[:, 1]  # (T, 3)
+    head_len = np.linalg.norm(nose - skull_back, axis=-1, keepdims=True)
+    head_dir = _unit(nose - skull_back)
+    skull = skull_back + head_dir * np.minimum(0.5 * head_radius, 0.3 * head_len)
+    if rig.body.upright:
+        skull = skull + _UP * 0.75 * head_radius
+    return skull, head_dir
+
+
+def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -> NDArray[np.float64]:
+    """The two eyes (T, 2, 18) on the skull, looking along the head."""
+    head_radius = rig.body.head_radius
+    hx, hy, _ = _frame_axes(head_dir)
+    sides = np.array([1.0, -1.0])[None, :, None]  # left, right
+    centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
+        + sides * hx[:, None] * 0.5 * head_radius
+    return _ellipsoids(centres, head_dir[:, None], np.full(3, 0.17 * head_radius), EYE_COLOR)
+
+
+def _joint_markers(joints: NDArray[np.float64], radii: NDArray[np.float64],
+                   leg_color: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Spheres (T, 3 L, 18) at every knee, ankle and ball."""
+    frames = joints.shape[0]
+    inner = joints[:, :, 1:4].reshape(frames, -1, 3)  # knee, ankle, ball
+    joint_r = (radii[:, 1:4] * 1.08).reshape(-1, 1)
+    joint_color = np.repeat(0.8 * leg_color + 0.12, 3, axis=0)
+    axes = np.broadcast_to(np.eye(3).reshape(1, 1, 9), inner.shape[:2] + (9,))
+    return np.concatenate([inner, axes, np.broadcast_to(joint_r, inner.shape[:2] + (3,)),
+                           np.broadcast_to(joint_color, inner.shape)], axis=-1)
+
+
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
                show_joints: bool, arms: NDArray[np.float64] | None = None,
                ear_lag: NDArray[np.float64] | None = None, parts: bool = True, by_side: bool = True) -> SceneInstances:
@@ -240,9 +274,14 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     body_color = srgb_to_linear(look.body_color)
     leg_color = leg_colors(rig) if by_side else np.broadcast_to(body_color, (rig.leg_count, 3))
     arm_color = side_colors(rig) if by_side else np.broadcast_to(body_color, (2, 3))
+    radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
+    if not parts:  # a skinned body is drawn instead: only the eyes and the joint markers
+        skull, head_dir = _skull(head, rig)
+        on_skin = [_eyes(skull, head_dir, rig)] + ([_joint_markers(joints, radii, leg_color)] if show_joints else [])
+        return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
+                              ellipsoids=np.concatenate(on_skin, axis=1).astype(np.float32), ellipsoid_casters=0)
 
     # Legs: four tapered bones each.
-    radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
     legs = _capsules(joints[:, :, :-1], joints[:, :, 1:], radii[:, :-1], radii[:, 1:],
                      leg_color[:, None, :]).reshape(frames, -1, CAPSULE_FLOATS)
     leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color)
@@ -259,12 +298,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     neck_c = _capsules(neck[:, :1], neck[:, 1:], neck_r[0], neck_r[1], body_color)
 
     # Head: a round skull and a tapering muzzle towards the nose.
-    skull_back, nose = head[:, 0], head[:, 1]  # (T, 3)
-    head_len = np.linalg.norm(nose - skull_back, axis=-1, keepdims=True)
-    head_dir = _unit(nose - skull_back)
-    skull = skull_back + head_dir * np.minimum(0.5 * head_radius, 0.3 * head_len)
-    if upright:
-        skull = skull + _UP * 0.75 * head_radius
+    skull, head_dir = _skull(head, rig)
+    nose = head[:, 1]
     # Long heads (a horse's: over four skull radii) keep a broad muzzle; short ones taper.
     long_head = float(np.clip((rig.body.head_length / max(head_radius, 1e-9) - 3.5) / 1.5, 0.0, 1.0))
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
@@ -285,21 +320,9 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
 
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
-    eye_centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
-        + sides * hx[:, None] * 0.5 * head_radius
-    eyes = _ellipsoids(eye_centres, head_dir[:, None], np.full(3, 0.17 * head_radius), EYE_COLOR)
-    ellipsoid_parts = [skull_e, eyes, *foot_parts, *arm_ells]
+    ellipsoid_parts = [skull_e, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells]
     if show_joints:
-        inner = joints[:, :, 1:4].reshape(frames, -1, 3)  # knee, ankle, ball
-        joint_r = (radii[:, 1:4] * 1.08).reshape(-1, 1)
-        joint_color = np.repeat(0.8 * leg_color + 0.12, 3, axis=0)
-        axes = np.broadcast_to(np.eye(3).reshape(1, 1, 9), inner.shape[:2] + (9,))
-        ellipsoid_parts.append(np.concatenate([inner, axes, np.broadcast_to(joint_r, inner.shape[:2] + (3,)),
-                                               np.broadcast_to(joint_color, inner.shape)], axis=-1))
-    if not parts:  # a skinned body is drawn instead: only the eyes and the joint markers
-        on_skin = [eyes] + ellipsoid_parts[-1:] if show_joints else [eyes]
-        return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
-                              ellipsoids=np.concatenate(on_skin, axis=1).astype(np.float32), ellipsoid_casters=0)
+        ellipsoid_parts.append(_joint_markers(joints, radii, leg_color))
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),
                           ellipsoids=np.concatenate(ellipsoid_parts, axis=1).astype(np.float32))
 

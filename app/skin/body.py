@@ -27,7 +27,9 @@ from .sdf import part_distances, union_on_grid
 
 Detail = Literal["full", "coarse"]
 CELLS = {"full": 160, "coarse": 72}  # grid cells along the creature's longest extent
-FACES = {"full": 24000, "coarse": 5000}  # simplified to about this many triangles
+FACES = {"full": 12000, "coarse": 4000}  # simplified to about this many triangles
+SHADOW_FACES = 2500  # the full body's stand-in for the (soft, low-resolution) shadow map
+FAR_FACES = 400  # ... and for an animal far from the camera (a herd's)
 INFLUENCES = 4  # joints per vertex
 COUNTERSHADE = 0.35  # how much lighter the underside is
 
@@ -48,6 +50,8 @@ class SkinnedBody:
     bind: NDArray[np.float64]
     layout: SkeletonLayout | None = None  # the bind skeleton's (pose others alike: skeleton_clip(m, layout))
     detail: Detail = "full"
+    shadow: SkinnedBody | None = field(default=None, compare=False)  # a coarser body for the shadow pass
+    far: SkinnedBody | None = field(default=None, compare=False)  # a much coarser one, drawn far away
     seconds: float = field(default=0.0, compare=False)
 
     def skin_matrices(self, clip: SkeletonClip, frame: int) -> NDArray[np.float64]:
@@ -179,16 +183,24 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     start = time.perf_counter()
     capsules, ellipsoids = _parts(motion)
     verts, faces, blend = _surface(capsules, ellipsoids, detail)
-    verts, faces = _simplify(verts, faces, FACES[detail])
-    mesh = trimesh.Trimesh(verts, faces, process=False)
-    mesh.fix_normals()
-    verts, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces, dtype=np.int64)
-    normals = np.asarray(mesh.vertex_normals)
     part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
                                  bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
-    joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1], 0.45 * blend)
-    return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),
-                       colors=_colors(normals, motion.rig.look.body_color), faces=faces.astype(np.int32),
-                       joints=joints, weights=weights, bind=joint_matrices(clip, 0), layout=clip.layout,
-                       detail=detail,
-                       seconds=time.perf_counter() - start)
+
+    def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
+                shadow: SkinnedBody | None = None, far: SkinnedBody | None = None) -> SkinnedBody:
+        mesh = trimesh.Trimesh(verts, faces, process=False)
+        mesh.fix_normals()
+        verts, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces, dtype=np.int64)
+        normals = np.asarray(mesh.vertex_normals)
+        joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1],
+                                   0.45 * blend)
+        return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),
+                           colors=_colors(normals, motion.rig.look.body_color), faces=faces.astype(np.int32),
+                           joints=joints, weights=weights, bind=joint_matrices(clip, 0), layout=clip.layout,
+                           detail=detail, shadow=shadow, far=far, seconds=time.perf_counter() - start)
+
+    shown = _simplify(verts, faces, FACES[detail])
+    if detail != "full":
+        return skinned(*shown, detail)
+    stand_in = _simplify(*shown, SHADOW_FACES)
+    return skinned(*shown, detail, skinned(*stand_in, "coarse"), skinned(*_simplify(*stand_in, FAR_FACES), "coarse"))
