@@ -262,3 +262,32 @@ def test_a_clip_of_no_frames_is_refused_and_nothing_written(tmp_path: Path, monk
     with pytest.raises(GaitlabError, match="the clip has no frames"):
         export_module.export_clip(load_creature("dog"), tmp_path / "dog.glb")
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("creature", ["dog", "human", "spider"])
+def test_the_glb_carries_the_skinned_body_the_viewer_draws(tmp_path: Path, creature: str) -> None:
+    import pygltflib
+
+    from app.export import write_glb
+    from app.skin import build_body
+
+    motion = motion_of(creature, fps=30.0)
+    clip = skeleton_clip(motion)
+    path = write_glb(tmp_path / f"{creature}.glb", motion, clip)
+    doc = pygltflib.GLTF2().load(str(path))
+    blob = doc.binary_blob()
+    attributes = doc.meshes[0].primitives[0].attributes
+
+    def read(index: int, dtype, width: int) -> np.ndarray:
+        view = doc.bufferViews[doc.accessors[index].bufferView]
+        count = doc.accessors[index].count
+        start = view.byteOffset + (doc.accessors[index].byteOffset or 0)
+        return np.frombuffer(blob, dtype=dtype, count=count * width, offset=start).reshape(count, width)
+
+    body = build_body(motion, clip)
+    positions = read(attributes.POSITION, np.float32, 3)
+    weights = read(attributes.WEIGHTS_0, np.float32, 4)
+    joints = read(attributes.JOINTS_0, np.uint16, 4)
+    assert np.allclose(positions, body.positions, atol=1e-6)
+    assert np.allclose(weights.sum(axis=1), 1.0, atol=1e-5) and (weights >= 0).all()
+    assert np.array_equal(joints, body.joints)
