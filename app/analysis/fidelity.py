@@ -121,7 +121,25 @@ def walk_measures(motion) -> dict[str, float]:
     out["ankle late stance max"] = float(ankle[30:int(toe_off)].max())
     out["ankle at toe-off"] = float(np.interp(toe_off, grid, ankle))
     out["ankle mid-swing"] = float(np.interp(0.5 * (toe_off + 100.0), grid, ankle))
-    # The pelvis: the middle of the hips.
+    left = np.cross(np.array([0.0, 1.0, 0.0]), _horizontal(forward))
+    out.update(_pelvis_measures(motion, ref, strikes, cycle, left))
+    heel = motion.heel
+    other_strikes = strikes_from_contact(motion.contact[:, other])
+    widths = [abs(float(np.sum((heel[a, ref] - heel[b, other]) * left[a])))
+              for a in strikes for b in other_strikes[(other_strikes > a)][:1]]
+    out["step width cm"] = 100.0 * float(np.median(widths)) if widths else float("nan")
+    out.update(_arm_measures(motion, strikes))
+    out["toe clearance cm"] = _toe_clearance(motion, ref, strikes)
+    return out
+
+
+def _pelvis_measures(motion, ref: int, strikes: NDArray[np.int64], cycle: float,
+                     left: NDArray[np.float64]) -> dict[str, float]:
+    """The pelvis (the middle of the hips): its vertical and lateral excursion (cm), crests a
+    cycle, obliquity and rotation (degrees, half the peak to peak). ``left`` (T, 3)."""
+    out: dict[str, float] = {}
+    other = ref + 1
+    forward = motion.root[:, :3, 2]
     hips = motion.joints[:, [ref, other], 0]
     pelvis = hips.mean(axis=1)
     vertical = _mean_cycle(pelvis[:, 1], strikes)
@@ -133,7 +151,6 @@ def walk_measures(motion) -> dict[str, float]:
     start = SAMPLES // 4 - 1
     out["pelvis peaks per cycle"] = float(np.count_nonzero((crests >= start) & (crests < start + SAMPLES - 1)))
     # Sideways: against the pelvis's own mean path (a cycle's running mean), towards the left.
-    left = np.cross(np.array([0.0, 1.0, 0.0]), _horizontal(forward))
     lateral = np.sum((pelvis - _running_mean(pelvis, int(round(cycle * motion.fps)))) * left, axis=-1)
     out["pelvis lateral cm"] = 100.0 * float(np.ptp(_mean_cycle(lateral, strikes)))
     across = hips[:, 0] - hips[:, 1]
@@ -141,11 +158,14 @@ def walk_measures(motion) -> dict[str, float]:
     rotation = np.degrees(np.arctan2(np.sum(across * _horizontal(forward), axis=-1), np.sum(across * left, axis=-1)))
     out["pelvic obliquity deg"] = 0.5 * float(np.ptp(_mean_cycle(obliquity, strikes)))
     out["pelvic rotation deg"] = 0.5 * float(np.ptp(_mean_cycle(rotation, strikes)))
-    heel = motion.heel
-    other_strikes = strikes_from_contact(motion.contact[:, other])
-    widths = [abs(float(np.sum((heel[a, ref] - heel[b, other]) * left[a])))
-              for a in strikes for b in other_strikes[(other_strikes > a)][:1]]
-    out["step width cm"] = 100.0 * float(np.median(widths)) if widths else float("nan")
+    return out
+
+
+def _arm_measures(motion, strikes: NDArray[np.int64]) -> dict[str, float]:
+    """The left arm's shoulder swing (degrees, half the peak to peak) and mean elbow angle;
+    nothing for a creature without two arms."""
+    out: dict[str, float] = {}
+    forward = motion.root[:, :3, 2]
     if motion.arms.shape[1] == 2:
         arm = motion.arms[:, 0]  # the left arm: shoulder, elbow, wrist, hand
         upper, fore = arm[:, 1] - arm[:, 0], arm[:, 2] - arm[:, 1]
@@ -155,7 +175,12 @@ def walk_measures(motion) -> dict[str, float]:
                                                                           * np.linalg.norm(fore, axis=-1)), -1, 1)))
         out["shoulder swing deg"] = 0.5 * float(np.ptp(_mean_cycle(swing, strikes)))
         out["elbow deg"] = float(_mean_cycle(elbow, strikes).mean())
-    # Toe clearance: the lowest the toe tip comes in the middle of each swing.
+    return out
+
+
+def _toe_clearance(motion, ref: int, strikes: NDArray[np.int64]) -> float:
+    """The median over swings of the lowest the toe tip comes in the middle half of the
+    swing, cm above the ground under it."""
     toe = motion.joints[:, ref, 4, 1] - _ground(motion, motion.joints[:, ref, 4])
     swing = ~motion.contact[:, ref]
     clear = []
@@ -164,8 +189,7 @@ def walk_measures(motion) -> dict[str, float]:
         if len(frames) > 4:
             middle = frames[len(frames) // 4: 3 * len(frames) // 4]
             clear.append(float(toe[middle].min()))
-    out["toe clearance cm"] = 100.0 * float(np.median(clear)) if clear else float("nan")
-    return out
+    return 100.0 * float(np.median(clear)) if clear else float("nan")
 
 
 def _ground(motion, points: NDArray[np.float64]) -> NDArray[np.float64]:

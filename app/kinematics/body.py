@@ -284,6 +284,37 @@ def _upright_spine(rig: Rig, girdles: Girdles, clock: NDArray[np.float64],
                  shoulder_lateral=lateral)
 
 
+def _equal_arc_segments(ctrl: NDArray[np.float64], ext_rear: float, ext_front: float,
+                        count: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``count`` points (T, S, 3) and tangents (T, S, 3, not unit) at equal arc length along a
+    chain of cubic Bezier pieces ``ctrl`` (T, K-1, 4, 3), the chain extended before its
+    first piece by ``ext_rear`` and after its last by ``ext_front`` (in piece parameter)."""
+    frames, pieces = ctrl.shape[:2]
+    per = max(8, 64 // pieces)
+    local = np.linspace(0.0, 1.0, per + 1)
+    grid_t = np.broadcast_to(local, (pieces, per + 1)).copy()
+    grid_t[0] = np.linspace(-ext_rear, 1.0, per + 1)
+    grid_t[-1] = np.linspace(grid_t[-1, 0], 1.0 + ext_front, per + 1)
+    samples = bezier(ctrl, np.broadcast_to(grid_t, (frames, pieces, per + 1)))  # (T, K-1, per+1, 3)
+    seg_len = np.linalg.norm(np.diff(samples, axis=-2), axis=-1)  # (T, K-1, per)
+    cum = np.concatenate([np.zeros((frames, 1)), np.cumsum(seg_len.reshape(frames, -1), axis=-1)], axis=-1)
+    fractions = (np.arange(count) + 0.5) / count
+    wanted = fractions[None, :] * cum[:, -1:]  # (T, S)
+    idx = np.clip((cum[:, :, None] <= wanted[:, None, :]).sum(axis=1) - 1, 0, cum.shape[1] - 2)
+    c0 = np.take_along_axis(cum, idx, axis=1)
+    c1 = np.take_along_axis(cum, idx + 1, axis=1)
+    w = np.clip((wanted - c0) / np.maximum(c1 - c0, 1e-15), 0.0, 1.0)
+    seg = idx // per
+    sub = idx % per
+    t_lo = grid_t[seg, sub]
+    t_hi = grid_t[seg, sub + 1]
+    t_seg = t_lo + w * (t_hi - t_lo)
+    seg_ctrl = np.take_along_axis(ctrl, seg[..., None, None], axis=1)  # (T, S, 4, 3)
+    points = bezier(seg_ctrl, t_seg[..., None])[..., 0, :]
+    tangents = bezier_tangent(seg_ctrl, t_seg[..., None])[..., 0, :]
+    return points, tangents
+
+
 def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64],
                   clock: NDArray[np.float64], lag: Mapping[str, NDArray[np.float64]] | None = None,
                   flex: NDArray[np.float64] | None = None) -> Spine:
@@ -319,32 +350,11 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
                      knots[:, 1:] - tangent[:, 1:] * third[:, None], knots[:, 1:]], axis=-2)  # (T, K-1, 4, 3)
 
     # Segment centres at equal arc length over the chain, a little beyond both ends.
-    radius = body.radius
-    ext_rear = 0.9 * radius[0] / gap[0]
-    ext_front = 0.9 * radius[-1] / gap[-1]
-    per = max(8, 64 // (count - 1))
-    local = np.linspace(0.0, 1.0, per + 1)
-    grid_t = np.broadcast_to(local, (count - 1, per + 1)).copy()
-    grid_t[0] = np.linspace(-ext_rear, 1.0, per + 1)
-    grid_t[-1] = np.linspace(grid_t[-1, 0], 1.0 + ext_front, per + 1)
-    samples = bezier(ctrl, np.broadcast_to(grid_t, (frames, count - 1, per + 1)))  # (T, K-1, per+1, 3)
-    seg_len = np.linalg.norm(np.diff(samples, axis=-2), axis=-1)  # (T, K-1, per)
-    cum = np.concatenate([np.zeros((frames, 1)), np.cumsum(seg_len.reshape(frames, -1), axis=-1)], axis=-1)
+    ext_rear = 0.9 * body.radius[0] / gap[0]
+    ext_front = 0.9 * body.radius[-1] / gap[-1]
+    segments, tangents = _equal_arc_segments(ctrl, ext_rear, ext_front, body.segments)
     fractions = (np.arange(body.segments) + 0.5) / body.segments
-    wanted = fractions[None, :] * cum[:, -1:]  # (T, S)
-    idx = np.clip((cum[:, :, None] <= wanted[:, None, :]).sum(axis=1) - 1, 0, cum.shape[1] - 2)
-    c0 = np.take_along_axis(cum, idx, axis=1)
-    c1 = np.take_along_axis(cum, idx + 1, axis=1)
-    w = np.clip((wanted - c0) / np.maximum(c1 - c0, 1e-15), 0.0, 1.0)
-    seg = idx // per
-    sub = idx % per
-    t_lo = grid_t[seg, sub]
-    t_hi = grid_t[seg, sub + 1]
-    t_seg = t_lo + w * (t_hi - t_lo)
-    seg_ctrl = np.take_along_axis(ctrl, seg[..., None, None], axis=1)  # (T, S, 4, 3)
-    segments = bezier(seg_ctrl, t_seg[..., None])[..., 0, :]
-    tangents = bezier_tangent(seg_ctrl, t_seg[..., None])[..., 0, :]
-    spine_radius = np.interp(fractions, np.linspace(0.0, 1.0, radius.size), radius)
+    spine_radius = np.interp(fractions, np.linspace(0.0, 1.0, body.radius.size), body.radius)
 
     # Neck and head off the front, tail off the rear.
     front = bezier(ctrl[:, -1], np.full((frames, 1), 1.0 + 0.6 * ext_front))[:, 0]
