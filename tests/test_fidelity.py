@@ -24,11 +24,10 @@ DATA = Path(__file__).parent / "data"
 CMU_WALK = DATA / "human_walk_cmu_12_01.bvh"
 
 NOT_YET = {  # row: why Gaitlab's walk is still outside the typical range
-    "knee loading peak at %": "the knee flexes to its loading peak by ~6 %, not 12-15 %",
-    "knee swing peak at %": "the swing peak comes at ~78 %, a few per cent late",
-    "ankle late stance max": "the shank leans ~20 degrees over the flat foot before the heel rises",
-    "ankle at toe-off": "the push-off plantarflexion reaches ~-8, not -15...-20",
-    "toe clearance cm": "the toe passes ~7 mm over the ground at mid-swing (typical 1-2 cm)",
+    "ankle late stance max": "the heel stays down until the other foot strikes (~50 %): the shank leans ~21 "
+                             "degrees over the flat foot first",
+    "ankle at toe-off": "the push-off plantarflexion reaches ~-8 at toe-off (-14 at 60 % in the norm), ~-10 just "
+                        "after",
 }
 
 
@@ -62,17 +61,16 @@ def _walk_curves(walk):
     return leg_curves(motion_legs(motion), "L", contact_fraction=rig.gait.duty_factor)
 
 
-@pytest.mark.parametrize("joint", [
-    "hip", pytest.param("knee", marks=pytest.mark.xfail(
-        strict=True, reason="the terminal swing keeps the knee ~15 degrees too bent: 9 degrees RMS")), "ankle"])
+@pytest.mark.parametrize("joint", ["hip", "knee", "ankle"])
 def test_human_walk_curves_are_near_the_normative_mean(walk, joint: str) -> None:
     """Within 8 degrees RMS of Schwartz, Rozumalski & Trost (2008), free speed (bundled)."""
     normative = read_normative(reference_dir() / "human_walk_schwartz2008.csv")
     assert compare_curves(_walk_curves(walk), normative).rms[joint] < 8.0
 
 
-@pytest.mark.xfail(strict=True, reason="the CMU 12_01 walker keeps ~25-30 degrees of knee flexion through "
-                                       "stance, 17 degrees RMS from the normative mean: 12 degrees RMS")
+@pytest.mark.xfail(strict=True, reason="the CMU 12_01 walker keeps 25-34 degrees of knee flexion through "
+                                       "stance and peaks late, 17 degrees RMS from the normative mean; a knee "
+                                       "within 8 of the norm (6.5 here) is 13 from this walker")
 def test_human_walk_knee_is_near_the_cmu_walk(walk) -> None:
     clip = compare_curves(_walk_curves(walk), leg_curves(bvh_legs(str(CMU_WALK)), "L"))
     assert clip.rms["knee"] < 10.0

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 JOINT_NAMES: tuple[str, ...] = ("hip", "knee", "ankle", "ball", "toe")
 MAX_ANKLE_ANGLE = 0.75 * np.pi  # the ankle may pass over the ball a little, not fold flat forward
+BAND_CLEARANCE = 0.02  # m: a knee's ceiling lowers a swinging ball no nearer the ground
 _REACH_MARGIN = 1e-6  # keep the knee triangle this far (relative) from straight or folded flat
 
 
@@ -82,6 +83,9 @@ def solve_legs(
     dorsi_weight: NDArray[np.float64] | None = None,
     knee_target: NDArray[np.float64] | None = None,
     knee_weight: NDArray[np.float64] | None = None,
+    knee_floor: NDArray[np.float64] | None = None,
+    knee_ceiling: NDArray[np.float64] | None = None,
+    band_weight: NDArray[np.float64] | None = None,
 ) -> NDArray[np.float64]:
     """Solve legs for hip and ball positions.
 
@@ -106,6 +110,11 @@ def solve_legs(
     knee_target, knee_weight: (..., L) optional: a knee flexion (rad) that the foot turns
                    about its ball to give, by the weight (a walker's heel rise); the
                    metatarsus never turns below the ankle lift
+    knee_floor, knee_ceiling, band_weight: (..., L) optional: the least and most knee
+                   flexion (rad) a foot in the air keeps: a ball whose knee would be
+                   straighter rises along the frame's up until the knee has the floor, one
+                   more bent comes down to the ceiling (never nearer the ground than
+                   BAND_CLEARANCE), by the weight (a walker's swing)
 
     Returns joints (..., L, 5, 3): hip, knee, ankle, ball, toe tip. Bone lengths are
     preserved exactly; the ball reaches the target when the target is within
@@ -122,7 +131,7 @@ def solve_legs(
     rows = int(np.prod(shape[:-2], dtype=np.int64)) if len(shape) > 2 else 1
     per_row = shape[-2]
     rolls = (ankle_angle, ankle_weight, toe_drop, toe_weight)
-    foot_rules = (dorsiflexion, dorsi_weight, knee_target, knee_weight)
+    foot_rules = (dorsiflexion, dorsi_weight, knee_target, knee_weight, knee_floor, knee_ceiling, band_weight)
     if len(shape) != 3 or rows * per_row <= 2 * _CHUNK_LEGS:
         return _solve(hip, target, forward, up, toe_curl, ground_height, rolls, foot_rules, **rig)
     # Long clips: solve blocks of frames. Per-frame inputs are sliced, shared ones passed whole.
@@ -143,7 +152,7 @@ def solve_legs(
     return out
 
 
-def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4, foot_rules=(None,) * 4, *,
+def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4, foot_rules=(None,) * 7, *,
            femur, tibia, metatarsus, toe, ankle_lift,
            l_max, l_rest, l_min, knee_sign, swing_rest=0.0, knee_pole=None) -> NDArray[np.float64]:
     """:func:`solve_legs` on one block (see there)."""
@@ -186,7 +195,7 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
     ankle_angle, ankle_weight, toe_angle, toe_weight = rolls
     if ankle_angle is not None:  # a rolling foot's metatarsus
         alpha = alpha + ankle_weight * (np.minimum(ankle_angle, MAX_ANKLE_ANGLE) - alpha)
-    dorsiflexion, dorsi_weight, knee_target, knee_weight = foot_rules
+    dorsiflexion, dorsi_weight, knee_target, knee_weight, knee_floor, knee_ceiling, band_weight = foot_rules
     if knee_target is not None and np.any(knee_weight > 0):
         # 2b. A foot that turns about its ball so that the knee has a wanted flexion (a
         #     walker's heel rising through late stance): the ankle at distance m from the
@@ -201,16 +210,29 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
         nearest = np.take_along_axis(options, np.argmin(np.abs(options - alpha), axis=0)[None], axis=0)[0]
         alpha = alpha + knee_weight * (np.clip(nearest, ankle_lift, MAX_ANKLE_ANGLE) - alpha)
     af, au, al, kf, ku, kl = _ankle_and_knee(alpha, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign, knee_pole)
-    if dorsiflexion is not None and np.any(dorsi_weight > 0):
+    holds = dorsiflexion is not None and np.any(dorsi_weight > 0)
+    bands = knee_floor is not None and knee_ceiling is not None and np.any(band_weight > 0)
+    if bands:  # the ball's planned level, and how far below it a ceiling may take it
+        planned = hu
+        above = hip[..., 1] + hf * fwd[..., 1] + hu * upv[..., 1] + hl * lat[..., 1] - ground_height
+        room = np.maximum(above - BAND_CLEARANCE, 0.0) / np.maximum(upv[..., 1], 0.5)
+    for _ in range(3 if holds or bands else 0):
         # 4b. A foot held against its shank (a swinging walker's): the metatarsus angle that
         #     gives the wanted dorsiflexion depends on the shank, which depends on the ankle;
         #     three fixed-point passes settle it (the shank turns little as the foot does).
-        for _ in range(3):
+        mixed = alpha
+        if holds:
             shank = np.arctan2(af - kf, -(au - ku))  # from the vertical, + with the ankle ahead of the knee
             wanted = np.clip(ankle_lift - dorsiflexion - shank, 0.0, MAX_ANKLE_ANGLE)
             mixed = alpha + dorsi_weight * (wanted - alpha)
-            af, au, al, kf, ku, kl = _ankle_and_knee(mixed, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign,
-                                                     knee_pole)
+        if bands:  # 4c. A knee within its band (see _band_level)
+            af, au, al, _, _, _ = _ankle_and_knee(mixed, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign,
+                                                  knee_pole)
+            level = _band_level(af, au, al, hu, planned, room, knee_floor, knee_ceiling, femur, tibia)
+            hu = hu + band_weight * (level - hu)
+            length = _norm3(hf, hu, hl)
+        af, au, al, kf, ku, kl = _ankle_and_knee(mixed, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign,
+                                                 knee_pole)
 
     # 5. Toe: flat on the ground while planted, dropping by the ankle lift in the air, its
     #    tip never lower than half the ball's height (so it never touches down before
@@ -236,6 +258,23 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
     else:
         joints[..., 1:, :] = np.einsum("...jk,...kc->...jc", local, basis) + hip[..., None, :]
     return joints
+
+
+def _band_level(af, au, al, hu, planned, room, floor, ceiling, femur, tibia):
+    """Step 4c of :func:`_solve`: the ball's level (its up component relative to the hip)
+    that keeps the knee between ``floor`` and ``ceiling`` flexion (rad), for an ankle at
+    (af, au, al) now and the ball at ``hu`` (planned at ``planned``): up until the ankle is
+    no farther from the hip than the floor's span; down until it is no nearer than the
+    ceiling's, softly within ``room`` below the plan (a descent D wanted gives
+    room (1 - exp(-D / room)): D while small, never all the room)."""
+    lateral2 = af * af + al * al
+    far = np.sqrt(femur * femur + tibia * tibia + 2.0 * femur * tibia * np.cos(floor))
+    near = np.sqrt(femur * femur + tibia * tibia + 2.0 * femur * tibia * np.cos(ceiling))
+    highest = -np.sqrt(np.maximum(far * far - lateral2, 0.0))  # the ankle's level for the floor
+    lowest = -np.sqrt(np.maximum(near * near - lateral2, 0.0))  # ... and for the ceiling
+    descent = np.maximum(planned - hu + np.maximum(au - lowest, 0.0), 0.0)  # below the plan, in all
+    soft = room * -np.expm1(-descent / np.maximum(room, 1e-9))
+    return np.where(au < highest, hu + highest - au, np.minimum(hu, planned - soft))
 
 
 def _ankle_and_knee(alpha, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign, knee_pole):

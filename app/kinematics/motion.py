@@ -291,7 +291,9 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
         forward = forward / np.linalg.norm(forward, axis=-1, keepdims=True)
         rolls = dict(ankle_angle=roll.ankle_angle, ankle_weight=roll.ankle_weight, toe_drop=roll.toe_drop,
                      toe_weight=roll.toe_weight, dorsiflexion=roll.dorsiflexion, dorsi_weight=roll.dorsi_weight,
-                     knee_target=roll.knee, knee_weight=roll.knee_weight)
+                     knee_target=roll.knee, knee_weight=roll.knee_weight,
+                     knee_floor=roll.knee_floor, knee_ceiling=roll.knee_ceiling,
+                     band_weight=roll.band_weight)
         # A rolled foot's ankle angle is its own, not the one L_max assumes: let the leg
         # reach as far as its bones do (place_girdles keeps the ankle within reach).
         l_max = np.where(roll.sets_ankle, 0.999 * (rig.femur + rig.tibia + rig.metatarsus), rig.l_max)

@@ -7,7 +7,9 @@ monotone cubic (PCHIP) through the four heights: smooth (C1), no overshoot, so t
 and highest points of the curve are key poses themselves — moving the lowest key moves the
 body's lowest point by exactly as much, and no other key pose moves. (In the natural walk,
 :mod:`app.kinematics.natural`, the lowest key is the contact: the body is lowest in double
-support and crests at the pass.)
+support and crests at the pass. A lowest contact gets a narrow trough, two more knots at
+:data:`CONTACT_TROUGH` either side on the secants to its neighbours: the strike turns the
+body's fall into a rise at once, as a walker's stance leg vaults it.)
 
 A run is no walk: once the feet leave the ground together (duty factor under one half) a
 biped's body flies ballistically between stances (:func:`flight_height`), its keys set
@@ -40,6 +42,9 @@ def step_phase(rig: Rig, phase: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.mod(2.0 * phase[..., reference_foot(rig)], 1.0)
 
 
+CONTACT_TROUGH = 0.05  # of a step: the knots either side of a lowest contact key
+
+
 @lru_cache(maxsize=64)
 def _curve(heights: tuple[float, ...]) -> PchipInterpolator:
     times = np.asarray(KEY_POSE_TIMES)
@@ -47,6 +52,21 @@ def _curve(heights: tuple[float, ...]) -> PchipInterpolator:
     # Two keys either side wrap the step around, so the slopes at contact match (periodic).
     t = np.concatenate([times[-2:] - 1.0, times, times[:2] + 1.0, [times[2] + 1.0]])
     v = np.concatenate([values[-2:], values, values[:2], [values[2]]])
+    if values[0] < values[1] and values[0] < values[3]:
+        # A lowest contact: the heel strike turns the body's fall into a rise at once, as
+        # the stance leg vaults it up (a walker's knee flexes in loading response only as
+        # the body rides up: its peak comes at ~14 %, not at once). Knots either side at
+        # CONTACT_TROUGH, on the secants to the neighbouring keys, keep the trough narrow;
+        # the lowest point is still the contact key's.
+        pairs = [(time, height) for time, height in zip(t, v)]
+        for contact in (0.0, 1.0):
+            for side, key in ((-1.0, values[3]), (1.0, values[1])):
+                span = 1.0 - times[3] if side < 0 else times[1]
+                pairs.append((contact + side * CONTACT_TROUGH,
+                              values[0] + (key - values[0]) * CONTACT_TROUGH / span))
+        pairs.sort()
+        t = np.array([time for time, _ in pairs])
+        v = np.array([height for _, height in pairs])
     return PchipInterpolator(t, v)
 
 

@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from .easing import smoothstep
 from .footfalls import FootPlan
 from .rig import REACH_LIMIT, Rig
-from .walker import walker_knee
+from .walker import walker_knee, walker_knee_band
 
 HEEL_PART = 0.2  # of the stance, at roll 1: heel strike to foot flat
 RISE_PART = 0.5  # of the stance before lift-off, at roll 1: where the heel starts to rise
@@ -57,7 +57,9 @@ class FootRoll:
     is held against its shank instead: ``dorsiflexion`` (rad) with ``dorsi_weight``
     (T, L) against the metatarsus angle; from late stance into the early swing its heel
     turns about the ball to give the ``knee`` (rad) a walker's has, by ``knee_weight``
-    (:func:`app.kinematics.walker.walker_knee`)."""
+    (:func:`app.kinematics.walker.walker_knee`); through the terminal swing its knee is
+    flexes between ``knee_floor`` and ``knee_ceiling`` (rad), by ``band_weight``
+    (:func:`app.kinematics.walker.walker_knee_band`)."""
 
     ball: NDArray[np.float64]
     ankle_angle: NDArray[np.float64]
@@ -73,6 +75,9 @@ class FootRoll:
     dorsi_weight: NDArray[np.float64]
     knee: NDArray[np.float64]
     knee_weight: NDArray[np.float64]
+    knee_floor: NDArray[np.float64]
+    knee_ceiling: NDArray[np.float64]
+    band_weight: NDArray[np.float64]
 
 
 def _foot_frame(direction: NDArray[np.float64], normal: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -174,11 +179,14 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     ankle_weight = np.where(held, 1.0, w * plantigrade)
     knee, knee_weight = walker_knee(plan.phase, plan.duty, contact, s, w_lift)
     knee_weight = knee_weight * sets_ankle[..., 0]
+    floor, ceiling, band_weight = walker_knee_band(s, plan.duty)
+    band_weight = np.where(contact, 0.0, band_weight * sets_ankle[..., 0])
     dorsi_weight = np.where(held, 1.0 - np.clip(w, 0.0, 1.0), 0.0)
     return FootRoll(ball=out_ball, ankle_angle=ankle, ankle_weight=ankle_weight, toe_drop=drop, toe_weight=w,
                     forward=forward, forward_weight=w, ankle=ankle_point, reach=reach, sets_ankle=sets_ankle[0, :, 0],
                     dorsiflexion=np.full(u.shape, SWING_DORSIFLEXION), dorsi_weight=dorsi_weight, knee=knee,
-                    knee_weight=knee_weight)
+                    knee_weight=knee_weight, knee_floor=floor, knee_ceiling=ceiling,
+                    band_weight=band_weight)
 
 
 def heel_points(rig: Rig, joints: NDArray[np.float64], forward: NDArray[np.float64],

@@ -1,23 +1,29 @@
 """How a walker's foot swings: the shapes of a person's swing, measured.
 
 A foot that rolls heel to toe (a plantigrade foot with ``roll`` > 0: people) does not
-swing along the smooth symmetric arc of the other feet. Measured from the CMU walk 12_01
-(``../shared/reference/motion``; the left toe base, five strides, resampled over each
-swing):
+swing along the smooth symmetric arc of the other feet. From the normative mean joint
+angles of Schwartz, Rozumalski & Trost (2008, free speed, bundled in ``app/reference``),
+put through a two-segment leg with a rigid foot (forward kinematics, the hip moving at
+the stance foot's speed):
 
-- its progress along the stride in the world starts from rest (the foot is still on the
-  ground at toe-off) and is quick through the middle of the swing, then settles gently
-  onto the strike: :data:`WORLD_PROGRESS`; relative to the hip, which keeps moving, the
-  foot first drifts on backwards as it did in stance;
-- the ball lifts early, highest about a third of the way through the swing (the knee's
-  peak flexion, ~72 % of the cycle), and passes low, a centimetre or two above the
-  ground, through the second half, while the heel comes down to strike:
-  :data:`BALL_LIFT`, as a fraction of the step height.
-
+- the ball's progress along the stride in the world starts from rest (the foot is still
+  on the ground at toe-off), is quick through the middle of the swing and settles onto
+  the strike: :data:`WORLD_PROGRESS`; relative to the hip, which keeps moving, the foot
+  first drifts on backwards as it did in stance;
+- the ball lifts early, highest about a third of the way through the swing, and passes
+  a couple of centimetres over the ground through the second half while the heel comes
+  down to strike: :data:`BALL_LIFT`, as a fraction of the step height (the shape was
+  first measured from the CMU walk 12_01, then held up in its second half so the toe
+  tip clears the ground by ~1 cm, as people's does);
 - its knee, from late stance into the early swing, flexes as people's do: the heel
   rises about the ball just so much that the knee follows :data:`KNEE_NEAR_TOE_OFF`
-  (the normative mean of Schwartz, Rozumalski & Trost 2008, ``app/reference``, by time
-  from toe-off), nearly straight through terminal stance, ~35 degrees at toe-off.
+  (by time from toe-off), nearly straight through terminal stance, ~35 degrees at
+  toe-off;
+- from the knee's peak to just before the strike it keeps within
+  :data:`KNEE_BAND` of :data:`KNEE_BEFORE_STRIKE` (by time to the strike): the swinging
+  ball rises where the leg would straighten early and comes down (never nearer the
+  ground than ``app.kinematics.leg.BAND_CLEARANCE``) where the knee would fold past its
+  peak, so the knee peaks at ~72 % and straightens before the strike.
 
 Runners (duty factor under one half) swing with the common smooth arc instead; the
 walker's shapes fade out between duty factors 0.55 and 0.45.
@@ -37,14 +43,22 @@ from .easing import smootherstep, smoothstep
 from .rig import Rig
 
 SWING = np.linspace(0.0, 1.0, 11)
-WORLD_PROGRESS = np.array([0.0, 0.03, 0.10, 0.20, 0.33, 0.468, 0.61, 0.745, 0.856, 0.945, 1.0])
-BALL_LIFT = np.array([0.0, 0.45, 0.85, 1.0, 0.8, 0.5, 0.3, 0.2, 0.15, 0.08, 0.0])
+WORLD_PROGRESS = np.array([0.0, 0.041, 0.127, 0.24, 0.366, 0.504, 0.647, 0.779, 0.889, 0.963, 1.0])
+BALL_LIFT = np.array([0.0, 0.45, 0.85, 1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.3, 0.0])
 # Knee flexion (deg) against time from toe-off (cycle fraction); Schwartz et al. 2008,
 # free speed, whose toe-off is at 60 % of the cycle.
 KNEE_FROM_TOE_OFF = np.arange(-0.32, 0.1201, 0.02)
 KNEE_NEAR_TOE_OFF = np.array([11.3, 10.1, 9.0, 8.0, 7.2, 6.6, 6.2, 6.3, 6.8, 7.9, 9.5, 11.6, 14.5, 18.1, 22.6, 27.9,
                               33.9, 40.2, 46.3, 51.7, 55.7, 58.2, 59.1])
 HEEL_FROM = -0.30  # of the cycle before toe-off: where the knee starts to steer the heel
+# Knee flexion (deg) against time to the strike (cycle fraction), the same source: the
+# terminal swing, in which the knee straightens from its peak to ~5 just before the strike.
+KNEE_TO_STRIKE = np.arange(-0.36, 0.0001, 0.02)
+KNEE_BEFORE_STRIKE = np.array([46.3, 51.7, 55.7, 58.2, 59.1, 58.7, 56.9, 53.9, 49.8, 44.7, 38.8, 32.4, 25.5, 18.7,
+                               12.5, 7.6, 4.6, 4.0, 5.4])
+FLOOR_FADE = (0.05, 0.015)  # of the cycle before the strike: the knee band lets go between these
+KNEE_BAND = 3.0  # deg either side of the terminal swing's knee
+CEILING_FADE = (-0.14, -0.08)  # of the cycle before the strike: the band's ceiling lets go between these
 # A runner's knee near toe-off (deg, by the same clock): extending through the push-off
 # to ~20 at toe-off, then folding fast in the swing (Novacheck 1998, Gait Posture 7:77).
 RUN_KNEE_FROM_TOE_OFF = np.array([-0.20, -0.16, -0.12, -0.08, -0.04, 0.0, 0.04, 0.08, 0.12])
@@ -57,6 +71,8 @@ WALK_DUTY = (0.45, 0.55)  # duty factors over which the walker's swing fades in
 def _curve(name: str) -> PchipInterpolator:
     if name == "knee":
         return PchipInterpolator(KNEE_FROM_TOE_OFF, np.radians(KNEE_NEAR_TOE_OFF), extrapolate=False)
+    if name == "terminal knee":
+        return PchipInterpolator(KNEE_TO_STRIKE, np.radians(KNEE_BEFORE_STRIKE), extrapolate=False)
     if name == "run knee":
         return PchipInterpolator(RUN_KNEE_FROM_TOE_OFF, np.radians(RUN_KNEE_NEAR_TOE_OFF), extrapolate=False)
     values = WORLD_PROGRESS if name == "progress" else BALL_LIFT
@@ -110,3 +126,25 @@ def walker_knee(phase: NDArray[np.float64], duty: NDArray[np.float64], contact: 
     ramp = smoothstep((since_toe_off - start) / (0.06 * w + 0.1 * (1.0 - w)))
     weight = np.where(contact, ramp, (lifting > 0).astype(np.float64))
     return target, weight
+
+
+def walker_knee_band(swing: NDArray[np.float64], duty: NDArray[np.float64]
+                     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The least and the most knee flexion (rad) a walker's swinging foot keeps, and their
+    weight, (T, L) each, from ``swing`` progress and ``duty`` (the plan's): the swing of
+    :data:`KNEE_BEFORE_STRIKE` less and more :data:`KNEE_BAND`, from the swing's peak
+    flexion on (the foot neither skims the ground on a straight leg nor folds up past the
+    peak), letting go just before the strike (:data:`FLOOR_FADE`) so the foot lands on
+    its foothold; the ceiling lets go earlier (:data:`CEILING_FADE`), once past the peak."""
+    s = np.clip(swing, 0.0, 1.0)
+    to_strike = -(1.0 - s) * (1.0 - np.clip(duty, 0.0, 1.0))
+    knee = _curve("terminal knee")(np.clip(to_strike, KNEE_TO_STRIKE[0], KNEE_TO_STRIKE[-1]))
+    start, end = FLOOR_FADE
+    begin = smoothstep((to_strike - KNEE_TO_STRIKE[0]) / 0.04)
+    weight = walking_weight(duty) * begin * (1.0 - smoothstep((to_strike + start) / (start - end)))
+    band = np.radians(KNEE_BAND)
+    # The ceiling only shapes the peak: in the terminal swing the foot comes down to the
+    # ground on its own, the knee no more bent than its swing makes it.
+    late, gone = CEILING_FADE
+    ceiling_weight = 1.0 - smoothstep((to_strike - late) / (gone - late))
+    return knee - band, knee + band + (1.0 - ceiling_weight) * 0.5 * np.pi, weight
