@@ -76,7 +76,7 @@ def bench_pose(repeats: int) -> list[tuple[str, str]]:
 
 
 def bench_render(repeats: int) -> list[tuple[str, str]]:
-    from app.recording import clip_motion
+    from app.kinematics.clip import clip_motion
     from app.render.clip import ClipRenderer
     from app.render.framing import clip_camera
     from app.render.options import RenderOptions, ViewSettings

@@ -3,10 +3,11 @@
     python bench/bench_herd.py              # kinematics, then the viewer (needs Xvfb) at 1280x720
     python bench/bench_herd.py --no-viewer  # kinematics only
     python bench/bench_herd.py --old DIR    # also one dog in another checkout's viewer, same run
+    python bench/bench_herd.py --ui         # the viewer with its UI shown (the sidebar and panels)
 
 Kinematics is one step of the herd's steering and clocks, every animal's leg joints and
 every animal's instance rows (what the renderer draws), all vectorised across animals.
-The viewer runs ``gaitlab view dog --herd N`` with the UI hidden and no vsync on a private
+The viewer runs ``gaitlab view dog --herd N`` with the UI hidden (``--ui``: shown) and no vsync on a private
 Xvfb display and prints its own split (simulate / draw scene / draw UI / swap). The same
 run measures an EGL clear + readback of the same size, the floor any frame pays on this
 machine's software renderer, and reports the viewer's frame rate as a fraction of it.
@@ -82,7 +83,7 @@ def clear_readback_fps(size: tuple[int, int], frames: int = 200) -> float:
     return fps
 
 
-def viewer(size: tuple[int, int], repeats: int, old: Path | None = None) -> None:
+def viewer(size: tuple[int, int], repeats: int, old: Path | None = None, ui: bool = False) -> None:
     if shutil.which("Xvfb") is None:
         print("viewer: skipped (Xvfb is not installed; bash .ci/setup --test installs it)")
         return
@@ -97,14 +98,16 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None) -> None
     pattern = re.compile(r"([\d.]+) fps .*simulate ([\d.]+), draw scene ([\d.]+), draw UI ([\d.]+), "
                          r"swap and rest ([\d.]+)")
     try:
-        print(f"viewer at {size[0]}x{size[1]}, UI hidden, no vsync (median of {repeats} runs of 240 frames):")
+        shown = "UI shown" if ui else "UI hidden"
+        print(f"viewer at {size[0]}x{size[1]}, {shown}, no vsync (median of {repeats} runs of 240 frames):")
         floor = []
         results: dict[int, list[tuple[float, ...]]] = {n: [] for n in SIZES}
         before: list[float] = []
+        after: list[float] = []  # this tree, the same command as the other checkout's
 
         def run(tree: Path, herd: list[str]) -> tuple[float, ...]:
             out = subprocess.run([sys.executable, "-m", "app", "view", "dog", *herd, "--frames", "240", "--no-vsync",
-                                  "--report-fps", "--hide-ui", "--size", f"{size[0]}x{size[1]}"],
+                                  "--report-fps", *([] if ui else ["--hide-ui"]), "--size", f"{size[0]}x{size[1]}"],
                                  env={**env, "PYTHONPATH": str(tree)}, cwd=tmp, capture_output=True, text=True,
                                  timeout=600)
             match = pattern.search(out.stdout + out.stderr)
@@ -119,6 +122,7 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None) -> None
                     results[n].append(run(ROOT, ["--herd", str(n)]))
                 if old is not None:
                     before.append(run(old, [])[0])
+                    after.append(run(ROOT, [])[0])
         base = statistics.median(floor)
         for n in SIZES:
             fps, sim, scene, ui, rest = (statistics.median(r[k] for r in results[n]) for k in range(5))
@@ -128,8 +132,9 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None) -> None
         print(f"EGL clear + readback at {size[0]}x{size[1]}: {base:.1f} fps; one dog in the viewer runs at "
               f"{one / base:.3f} of it")
         if before:
-            print(f"one dog in {old}'s viewer: {statistics.median(before):.1f} fps (this tree {one:.1f}: "
-                  f"{one / statistics.median(before):.2f}x)")
+            old_fps, new_fps = statistics.median(before), statistics.median(after)
+            print(f"gaitlab view dog (no herd): {old}: {old_fps:.1f} fps, this tree: {new_fps:.1f} fps "
+                  f"({new_fps / old_fps:.2f}x)")
     finally:
         xvfb.terminate()
         xvfb.wait(timeout=10)
@@ -140,11 +145,12 @@ def main() -> None:
     parser.add_argument("--no-viewer", action="store_true", help="kinematics only")
     parser.add_argument("--repeats", type=int, default=3)
     parser.add_argument("--old", type=Path, help="another Gaitlab checkout: its viewer's frame rate for one dog")
+    parser.add_argument("--ui", action="store_true", help="run the viewer with its UI shown")
     ns = parser.parse_args()
     print(f"# herds - {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}")
     kinematics()
     if not ns.no_viewer:
-        viewer((1280, 720), ns.repeats, ns.old)
+        viewer((1280, 720), ns.repeats, ns.old, ns.ui)
 
 
 if __name__ == "__main__":

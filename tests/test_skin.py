@@ -133,3 +133,16 @@ def test_the_viewer_gets_a_coarse_body_at_once_and_the_full_one_soon() -> None:
     full = cache.live(rig)
     assert full.detail == "full" and len(full.faces) > len(first.faces)
     assert np.allclose(full.bind, first.bind) and full.layout == first.layout  # the same skeleton either way
+
+
+def test_a_body_depends_on_its_shape_not_on_the_gait_it_walks() -> None:
+    """The body cache keys bodies by shape: a trotting dog's body is the walking dog's
+    (bound in one standing-apart pose), so what a render shows never depends on which gait
+    happened to build the body first."""
+    from app.render.bodies import _build
+
+    walk = build_rig(load_creature("dog"))
+    trot = build_rig(load_creature("dog").with_overrides({"gait.preset": "trot"}))
+    a, b = _build(walk, "coarse"), _build(trot, "coarse")
+    assert a.positions.shape == b.positions.shape
+    assert np.array_equal(a.positions, b.positions) and np.array_equal(a.bind, b.bind)

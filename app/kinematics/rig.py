@@ -127,11 +127,13 @@ class Overlap:
 
 @dataclass(frozen=True)
 class Look:
-    """Colours as ``#rrggbb`` strings (sRGB)."""
+    """Colours as ``#rrggbb`` strings (sRGB); ``countershade`` in [0, 1] how much lighter
+    the smooth body is underneath."""
 
     body_color: str = "#b59a7a"
     left_color: str = "#2f8f9d"
     right_color: str = "#d8664f"
+    countershade: float = 0.35
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ import hashlib
 import pickle
 import threading
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -78,6 +78,7 @@ def shape_key(rig: Rig) -> str:
     coat), not its gait."""
     parts = (rig.name, rig.body, rig.femur, rig.tibia, rig.metatarsus, rig.toe, rig.bone_radius, rig.ankle_lift,
              rig.hip_offset, rig.girdle_rest_height, rig.girdle_position, rig.arms, rig.look.body_color,
+             rig.look.countershade,
              rig.leg_names, rig.roll_amount)
     return hashlib.sha1(pickle.dumps(parts)).hexdigest()
 
@@ -147,12 +148,27 @@ class BodyCache:
         return self.get(rig, "coarse")
 
 
+BIND_STRIDE = 1.0  # leg lengths: the bind pose's stride, the legs apart as in a walk
+
+
+def bind_rig(rig: Rig) -> Rig:
+    """The rig in its bind pose's gait, the same whatever gait it walks: a walk's
+    alternation (each pair's right foot half a cycle after its left, each pair a quarter
+    cycle after the one behind) on a stride of :data:`BIND_STRIDE`, nothing bobbing or
+    flexing, so the legs stand apart (a smooth union would web legs held together). Its
+    body so depends on its shape alone, as :func:`shape_key` says."""
+    legs = np.arange(rig.leg_count)
+    offsets = np.mod(0.25 * (legs // 2) + 0.5 * (legs % 2), 1.0)
+    gait = replace(rig.gait, duty_factor=0.75, offsets=offsets, stride=BIND_STRIDE, bob=0.0, flex=0.0, pitch=0.0)
+    return rig.with_gait(gait)
+
+
 def _build(rig: Rig, detail: Detail) -> SkinnedBody:
-    """A rig's body, bound in its first walking frame in place (the bind pose)."""
+    """A rig's body, bound standing in place (:func:`bind_rig`: the bind pose)."""
     from ..kinematics.motion import simulate
     from ..kinematics.world import World
 
-    rest = simulate(rig, 0.0, 30.0, world=World(in_place=True))
+    rest = simulate(bind_rig(rig), 0.0, 30.0, world=World(in_place=True))
     return build_body(rest, skeleton_clip(rest), detail)
 
 
@@ -186,7 +202,7 @@ def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> Bod
     """The body of a pose (``live``: the viewer's, which never waits for a full body)."""
     body = cache.live(rig) if live else cache.get(rig)
     world = joint_matrices(skeleton_clip(pose_motion(pose, rig), body.layout), 0)
-    return BodyDraw(body, (world @ np.linalg.inv(body.bind)).astype(np.float32))
+    return BodyDraw(body, (world @ body.inverse_bind).astype(np.float32))
 
 
 def motion_body(motion: Motion, cache: BodyCache) -> BodyDraw:
@@ -196,4 +212,4 @@ def motion_body(motion: Motion, cache: BodyCache) -> BodyDraw:
     world = np.tile(np.eye(4), clip.world_position.shape[:2] + (1, 1))
     world[..., :3, :3] = clip.world_rotation
     world[..., :3, 3] = clip.world_position
-    return BodyDraw(body, (world @ np.linalg.inv(body.bind)).astype(np.float32))
+    return BodyDraw(body, (world @ body.inverse_bind).astype(np.float32))

@@ -90,8 +90,9 @@ class CreaturePass:
 
 class BodyPass:
     """Skinned bodies: each body's mesh uploaded once (kept while it is drawn), every
-    frame's skinning matrices in one float texture (a row per joint, four texels a
-    matrix), one instanced draw call for each run of draws of the same body (a herd)."""
+    frame's skinning matrices in one float texture (a row per joint: the matrix's top
+    three rows, a texel each), one instanced draw call for each run of draws of the same
+    body (a herd)."""
 
     FLOATS = 17  # position, normal, colour, four joints, four weights
     FAR = 4.0  # body sizes from the camera beyond which the coarse stand-in is drawn
@@ -138,13 +139,13 @@ class BodyPass:
                     body = body.far
             chosen.append((body, draw))
         chosen.sort(key=lambda c: id(c[0]))  # runs of one mesh
-        rows = np.concatenate([d.skin.transpose(0, 2, 1).reshape(-1, 16) for _, d in chosen]).astype("f4")
+        rows = np.concatenate([d.skin[:, :3, :].reshape(-1, 12) for _, d in chosen]).astype("f4")  # 3 rows of 4
         if self._bones is None or self._bones.height < len(rows):
             if self._bones is not None:
                 self._bones.release()
-            self._bones = self.ctx.texture((4, max(len(rows), 64)), 4, dtype="f4")
+            self._bones = self.ctx.texture((3, max(len(rows), 64)), 4, dtype="f4")
             self._bones.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        self._bones.write(rows.tobytes(), viewport=(0, 0, 4, len(rows)))
+        self._bones.write(rows.tobytes(), viewport=(0, 0, 3, len(rows)))
         offset = 0
         for body, draw in chosen:
             joints = draw.skin.shape[0]

@@ -120,13 +120,24 @@ def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
+def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """a x b over the last axis (..., 3), broadcast: np.cross without its overhead on the
+    small arrays of one frame."""
+    a, b = np.broadcast_arrays(a, b)
+    out = np.empty(a.shape)
+    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    return out
+
+
 def _frame_axes(z: NDArray[np.float64]) -> tuple[NDArray, NDArray, NDArray]:
     """Orthonormal (x, y, z) frames (..., 3) with z given and y as close to +Y as possible."""
     z = _unit(z)
-    x = np.cross(_UP, z)
+    x = _cross(_UP, z)
     degenerate = np.linalg.norm(x, axis=-1, keepdims=True) < 1e-6
     x = _unit(np.where(degenerate, np.array([1.0, 0.0, 0.0]), x))
-    return x, np.cross(z, x), z
+    return x, _cross(z, x), z
 
 
 def _capsules(a, b, ra, rb, color) -> NDArray[np.float64]:
@@ -246,7 +257,10 @@ def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
     centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
         + sides * hx[:, None] * 0.5 * head_radius
-    return _ellipsoids(centres, head_dir[:, None], np.full(3, 0.17 * head_radius), EYE_COLOR)
+    shape = centres.shape[:-1]  # spheres: any orthonormal axes will do
+    return np.concatenate([centres, np.broadcast_to(np.eye(3).reshape(9), shape + (9,)),
+                           np.full(shape + (3,), 0.17 * head_radius), np.broadcast_to(EYE_COLOR, shape + (3,))],
+                          axis=-1)
 
 
 def _joint_markers(joints: NDArray[np.float64], radii: NDArray[np.float64],

@@ -9,13 +9,14 @@ decimation (kept only when the result is still closed). Each vertex follows the 
 the parts nearest it, weighted by ``exp(-(d - d_min) / s)`` of its distance to each part
 (a soft nearest part: one joint in the middle of a bone, blended across a joint), the
 four largest kept and normalised. Colours are the creature's coat (``look.body_color``),
-lighter underneath (countershading).
+lighter underneath by ``look.countershade`` (countershading).
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -26,12 +27,12 @@ from ..kinematics.skeleton import SkeletonClip, SkeletonLayout
 from .sdf import part_distances, union_on_grid
 
 Detail = Literal["full", "coarse"]
-CELLS = {"full": 160, "coarse": 72}  # grid cells along the creature's longest extent
-FACES = {"full": 12000, "coarse": 4000}  # simplified to about this many triangles
+VOXELS = {"full": 1.0e6, "coarse": 9.0e4}  # grid cells in the creature's box (cubic cells)
+MAX_CELLS = 400  # along its longest extent, at most
+FACES = {"full": 6000, "coarse": 4000}  # simplified to about this many triangles
 SHADOW_FACES = 2500  # the full body's stand-in for the (soft, low-resolution) shadow map
 FAR_FACES = 400  # ... and for an animal far from the camera (a herd's)
 INFLUENCES = 4  # joints per vertex
-COUNTERSHADE = 0.35  # how much lighter the underside is
 
 
 @dataclass(frozen=True)
@@ -54,10 +55,15 @@ class SkinnedBody:
     far: SkinnedBody | None = field(default=None, compare=False)  # a much coarser one, drawn far away
     seconds: float = field(default=0.0, compare=False)
 
+    @cached_property
+    def inverse_bind(self) -> NDArray[np.float64]:
+        """The bind matrices' inverses (J, 4, 4)."""
+        return np.asarray(np.linalg.inv(self.bind), dtype=np.float64)
+
     def skin_matrices(self, clip: SkeletonClip, frame: int) -> NDArray[np.float64]:
         """Each joint's skinning matrix (J, 4, 4) at ``frame``: its world matrix then times
         the inverse of its bind matrix."""
-        return joint_matrices(clip, frame) @ np.linalg.inv(self.bind)
+        return joint_matrices(clip, frame) @ self.inverse_bind
 
     def posed(self, clip: SkeletonClip, frame: int) -> NDArray[np.float64]:
         """The vertices (V, 3) at ``frame`` of ``clip`` by linear blend skinning."""
@@ -120,7 +126,8 @@ def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], det
     reach = max(float(capsules[:, 6:8].max()) if len(capsules) else 0.0,
                 float(ellipsoids[:, 12:15].max()) if len(ellipsoids) else 0.0)
     lo, hi = lo - reach, hi + reach
-    cell = float((hi - lo).max()) / CELLS[detail]
+    box = hi - lo  # cells as fine as the budget allows: a long thin creature's legs stay thin
+    cell = max(float(np.cbrt(np.prod(box) / VOXELS[detail])), float(box.max()) / MAX_CELLS)
     radii = np.concatenate([capsules[:, 6:8].ravel(), ellipsoids[:, 12:15].ravel()])
     blend = max(1.5 * cell, 0.12 * float(np.median(radii)))
     capsules = capsules.copy()
@@ -137,17 +144,25 @@ def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], det
 
 def _simplify(verts: NDArray[np.float64], faces: NDArray[np.int64], target: int
               ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """Quadric decimation towards ``target`` triangles, kept only if still closed."""
+    """Quadric decimation towards ``target`` triangles, cleaned of the degenerate and
+    repeated faces it can leave, kept only if still closed; a decimation that opens the
+    surface is tried again gentler (less aggressive collapses), then less deep (up to twice
+    the target); failing all, the mesh is kept as it is."""
     import fast_simplification
     import trimesh
 
-    if len(faces) <= target:
-        return verts, faces
-    points, tris = fast_simplification.simplify(verts.astype(np.float32), faces.astype(np.int32),
-                                                target_reduction=1.0 - target / len(faces))
-    mesh = trimesh.Trimesh(points, tris, process=True)
-    if mesh.is_watertight and mesh.is_winding_consistent:
-        return np.asarray(mesh.vertices), np.asarray(mesh.faces, dtype=np.int64)
+    for goal in (target, int(1.25 * target), int(1.6 * target), 2 * target):
+        if len(faces) <= goal:
+            break
+        for aggression in (7.0, 3.0):
+            points, tris = fast_simplification.simplify(verts.astype(np.float32), faces.astype(np.int32),
+                                                        target_count=goal, agg=aggression)
+            mesh = trimesh.Trimesh(points, tris, process=True)
+            mesh.update_faces(mesh.nondegenerate_faces())
+            mesh.update_faces(mesh.unique_faces())
+            mesh.remove_unreferenced_vertices()
+            if mesh.is_watertight and mesh.is_winding_consistent:
+                return np.asarray(mesh.vertices), np.asarray(mesh.faces, dtype=np.int64)
     return verts, faces
 
 
@@ -165,14 +180,15 @@ def _weights(verts: NDArray[np.float64], capsules: NDArray[np.float64], ellipsoi
     return order.T.astype(np.int32), top.T.astype(np.float32)
 
 
-def _colors(normals: NDArray[np.float64], body_color: str) -> NDArray[np.float32]:
-    """The coat: ``body_color`` (sRGB) in linear RGB, lighter where the surface faces down."""
+def _colors(normals: NDArray[np.float64], body_color: str, countershade: float) -> NDArray[np.float32]:
+    """The coat: ``body_color`` (sRGB) in linear RGB, lighter where the surface faces down
+    by ``countershade`` (0 to 1)."""
     from ..render.scene import srgb_to_linear
 
     base = np.asarray(srgb_to_linear(body_color), dtype=np.float64)
     under = np.clip(-normals[:, 1], 0.0, 1.0)[:, None]
     light = base + (1.0 - base) * 0.5
-    return (base * (1.0 - COUNTERSHADE * under) + light * COUNTERSHADE * under).astype(np.float32)
+    return (base * (1.0 - countershade * under) + light * countershade * under).astype(np.float32)
 
 
 def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> SkinnedBody:
@@ -195,7 +211,8 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
         joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1],
                                    0.45 * blend)
         return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),
-                           colors=_colors(normals, motion.rig.look.body_color), faces=faces.astype(np.int32),
+                           colors=_colors(normals, motion.rig.look.body_color, motion.rig.look.countershade),
+                           faces=faces.astype(np.int32),
                            joints=joints, weights=weights, bind=joint_matrices(clip, 0), layout=clip.layout,
                            detail=detail, shadow=shadow, far=far, seconds=time.perf_counter() - start)
 

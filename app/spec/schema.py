@@ -177,6 +177,8 @@ LOOK_RULES: dict[str, Rule] = {
     "body_color": Rule("color", doc="body, neck, head and tail colour"),
     "left_color": Rule("color", doc="colour of the left legs"),
     "right_color": Rule("color", doc="colour of the right legs"),
+    "countershade": _num(0.0, 1.0, doc="how much lighter the smooth body is underneath (0: one colour all "
+                         "round, as a person's skin; 0.35: a mammal's coat)"),
 }
 
 TOP_RULES: dict[str, Rule] = {
