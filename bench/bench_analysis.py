@@ -27,7 +27,7 @@ ROOT = Path(__file__).resolve().parents[1]
 def measure(repeats: int) -> dict:
     from app import build_rig, load_creature
     from app.analysis import analyze_tracks, tracks_from_motion
-    from app.recording import clip_motion
+    from app.kinematics.clip import clip_motion
 
     rig = build_rig(load_creature("dog"))
     t0 = time.perf_counter()

@@ -125,8 +125,8 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None, ui: boo
                     after.append(run(ROOT, [])[0])
         base = statistics.median(floor)
         for n in SIZES:
-            fps, sim, scene, ui, rest = (statistics.median(r[k] for r in results[n]) for k in range(5))
-            print(f"  {n:4d} dogs: {fps:6.1f} fps   simulate {sim:6.2f}  draw scene {scene:6.2f}  draw UI {ui:5.2f}  "
+            fps, sim, scene, ui_ms, rest = (statistics.median(r[k] for r in results[n]) for k in range(5))
+            print(f"  {n:4d} dogs: {fps:6.1f} fps   simulate {sim:6.2f}  draw scene {scene:6.2f}  draw UI {ui_ms:5.2f}  "
                   f"swap and rest {rest:5.2f} ms")
         one = statistics.median(r[0] for r in results[1])
         print(f"EGL clear + readback at {size[0]}x{size[1]}: {base:.1f} fps; one dog in the viewer runs at "

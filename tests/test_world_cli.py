@@ -239,7 +239,7 @@ def test_the_viewer_pauses_where_the_ground_offers_no_foothold() -> None:
     from app.ui.state import ViewerState
     from app.worlds import make_world
 
-    state = ViewerState(load_creature("dog"), world=make_world("straight", "hills:amp=0.28,seed=5"))
+    state = ViewerState(load_creature("dog"), world=make_world("straight", "hills:amp=0.28,seed=6,max_slope=22"))
     for _ in range(600):
         state.advance(1.0 / 60.0)
         if not state.playing:

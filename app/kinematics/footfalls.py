@@ -31,6 +31,8 @@ from .walker import heel_to_toe, walker_ease, walker_lift
 from .world import World, WorldError
 
 SEARCH_RADIUS = 0.3  # of the leg rest length: how far from its ideal spot a foot may land
+GRIP_SLOPE = np.radians(60.0)  # the steepest ground a sprawled, clawed foot holds on to (at least)
+WIDER_SEARCH = (2.0, 3.0)  # ... and, where all of that is too steep, how much further it looks
 MAX_LIFT = 1.5  # of the leg's rest length: the highest a swing may rise
 CLEARANCE = 0.3  # of the step height: the least room under a swinging foot over the ground between footholds
 _CLEAR_SAMPLES = np.linspace(0.06, 0.94, 31)
@@ -110,21 +112,40 @@ def stance_directions(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: 
     return foot_directions(rig, tangent, legs)
 
 
+def foot_max_slope(rig: Rig, terrain_max_slope: float) -> NDArray[np.float64]:
+    """The steepest ground (rad) each foot (L,) stands on: the terrain's ``max_slope``, and
+    for a sprawled, clawed leg (an arthropod's: its knee out) at least :data:`GRIP_SLOPE`,
+    as ants, spiders and centipedes hold on to steep ground."""
+    return np.where(rig.knee_out, max(terrain_max_slope, GRIP_SLOPE), terrain_max_slope)
+
+
 def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDArray[np.int64]) -> Footholds:
     """Footholds (N,) for legs ``legs`` whose stance is centred on body arc length ``s_mid``.
-    Raises :class:`WorldError` when all the ground in a foot's reach is steeper than
-    ``max_slope`` (uneven ground only compromises a foothold: ``Footholds.compromised``)."""
+    Where all the ground in a foot's reach is steeper than ``max_slope`` it looks two and
+    three times as far (the step longer or shorter: a compromised foothold); raises
+    :class:`WorldError` when that is all too steep as well (uneven ground only compromises
+    a foothold: ``Footholds.compromised``)."""
     ideal, _ = neutral_points(rig, world, s_mid, legs)
     front, back, side = footprint(rig)
     search = np.maximum(SEARCH_RADIUS * rig.l_rest[legs], 3.0 * EDGE_MARGIN)
-    held = place_feet(world.terrain, ideal, front[legs], back[legs], side[legs], search)
+    steepest = foot_max_slope(rig, world.terrain.max_slope)[legs]
+    held = place_feet(world.terrain, ideal, front[legs], back[legs], side[legs], search, steepest)
+    for wider in WIDER_SEARCH:  # a patch too steep all round: look further, the step longer or shorter
+        if held.ok.all():
+            break
+        redo = np.nonzero(~held.ok)[0]
+        again = place_feet(world.terrain, ideal[redo], front[legs[redo]], back[legs[redo]], side[legs[redo]],
+                           wider * search[redo], steepest[redo])
+        held.points[redo], held.normals[redo], held.ok[redo] = again.points, again.normals, again.ok
+        held.compromised[redo] = again.ok  # off its stride: counted as compromised
     if not held.ok.all():
+        search = search * WIDER_SEARCH[-1]  # what was searched, for the message
         i = int(np.argmin(held.ok))
         x, z = ideal[i]
         raise WorldError(f"terrain {world.terrain.describe()}: no foothold for foot {rig.leg_names[legs[i]]} near "
                          f"(x={x:.2f}, z={z:.2f}): all the ground within {search[i]:.2f} m is steeper than "
-                         f"max_slope = {np.degrees(world.terrain.max_slope):.0f} deg (raise max_slope, or make the "
-                         "ground gentler there)")
+                         f"max_slope = {np.degrees(steepest[i]):.0f} deg (raise max_slope, or make the ground "
+                         "gentler there)")
     return held
 
 

@@ -61,24 +61,28 @@ def _candidates(radius: NDArray[np.float64]) -> NDArray[np.float64]:
 
 
 def place_feet(terrain: Terrain, ideal: NDArray[np.float64], front: NDArray[np.float64],
-               back: NDArray[np.float64], side: NDArray[np.float64], search: NDArray[np.float64]) -> Footholds:
+               back: NDArray[np.float64], side: NDArray[np.float64], search: NDArray[np.float64],
+               max_slope: NDArray[np.float64] | None = None) -> Footholds:
     """Acceptable footholds nearest to ideal ground spots.
 
     ideal (N, 2) x, z; front, back, side (N,) the footprint's reach (m) ahead of the ball
     (toe), behind it (heel) and to each side; search (N,) the largest distance (m) to look
-    from the ideal spot.
+    from the ideal spot; max_slope (N,) rad the steepest ground each foot stands on
+    (default: the terrain's ``max_slope``).
     """
     n = ideal.shape[0]
     if n == 0:
         return Footholds(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, dtype=bool), np.zeros(0, dtype=bool))
     reach = np.maximum.reduce([front, back, side, np.full(n, EDGE_MARGIN)])  # (N,)
+    steepest = np.full(n, terrain.max_slope) if max_slope is None else np.asarray(max_slope, dtype=np.float64)
     # Most ideal spots are fine as they are: test them first, search only around the rest.
-    points, normals, ok, _, _ = _judge(terrain, ideal[:, None, :], reach)
+    points, normals, ok, _, _ = _judge(terrain, ideal[:, None, :], reach, steepest)
     held = Footholds(points=points[:, 0], normals=normals[:, 0], ok=ok[:, 0], compromised=np.zeros(n, dtype=bool))
     redo = np.nonzero(~held.ok)[0]
     if redo.size:
         offsets = _candidates(search[redo])  # (M, C, 2)
-        points, normals, ok, steep_ok, unevenness = _judge(terrain, ideal[redo, None, :] + offsets, reach[redo])
+        points, normals, ok, steep_ok, unevenness = _judge(terrain, ideal[redo, None, :] + offsets, reach[redo],
+                                                           steepest[redo])
         distance = np.linalg.norm(offsets, axis=-1) + np.where(ok, 0.0, np.inf)
         best = distance.argmin(axis=1)
         rows = np.arange(redo.size)
@@ -95,16 +99,17 @@ def place_feet(terrain: Terrain, ideal: NDArray[np.float64], front: NDArray[np.f
     return held
 
 
-def _judge(terrain: Terrain, spots: NDArray[np.float64], reach: NDArray[np.float64]):
+def _judge(terrain: Terrain, spots: NDArray[np.float64], reach: NDArray[np.float64],
+           max_slope: NDArray[np.float64]):
     """Ground points (N, C, 3), normals (N, C, 3), acceptability (N, C), whether the
-    ground is no steeper than ``max_slope`` (N, C) and how uneven the footprint is (N, C:
-    the largest excess over the plane tolerance, as a fraction of it) of candidate spots
-    (N, C, 2) for feet reaching ``reach`` (N,) m around their ball."""
+    ground is no steeper than ``max_slope`` (N,) rad (N, C) and how uneven the footprint
+    is (N, C: the largest excess over the plane tolerance, as a fraction of it) of
+    candidate spots (N, C, 2) for feet reaching ``reach`` (N,) m around their ball."""
     n, count = spots.shape[:2]
     flat_spots = spots.reshape(-1, 2)
     height = terrain.height(flat_spots).reshape(n, count)
     normal = terrain.normal(flat_spots).reshape(n, count, 3)
-    steep_ok = normal[..., 1] >= np.cos(terrain.max_slope) - 1e-12
+    steep_ok = normal[..., 1] >= np.cos(max_slope)[:, None] - 1e-12
     # Footprint probes: a ring of the foot's reach (toe or heel), and half of it, in every
     # direction, at least EDGE_MARGIN from the ball.
     angles = 2.0 * np.pi * np.arange(PROBES) / PROBES

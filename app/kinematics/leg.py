@@ -213,7 +213,7 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
     holds = dorsiflexion is not None and np.any(dorsi_weight > 0)
     bands = knee_floor is not None and knee_ceiling is not None and np.any(band_weight > 0)
     if bands:  # the ball's planned level, and how far below it a ceiling may take it
-        planned = hu
+        planned = banded = hu
         above = hip[..., 1] + hf * fwd[..., 1] + hu * upv[..., 1] + hl * lat[..., 1] - ground_height
         room = np.maximum(above - BAND_CLEARANCE, 0.0) / np.maximum(upv[..., 1], 0.5)
     for _ in range(3 if holds or bands else 0):
@@ -225,11 +225,12 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
             shank = np.arctan2(af - kf, -(au - ku))  # from the vertical, + with the ankle ahead of the knee
             wanted = np.clip(ankle_lift - dorsiflexion - shank, 0.0, MAX_ANKLE_ANGLE)
             mixed = alpha + dorsi_weight * (wanted - alpha)
-        if bands:  # 4c. A knee within its band (see _band_level)
-            af, au, al, _, _, _ = _ankle_and_knee(mixed, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign,
+        if bands:  # 4c. A knee within its band (see _band_level), settled unweighted, then weighed once
+            span = _norm3(hf, banded, hl)
+            af, au, al, _, _, _ = _ankle_and_knee(mixed, hf, banded, hl, span, femur, tibia, metatarsus, knee_sign,
                                                   knee_pole)
-            level = _band_level(af, au, al, hu, planned, room, knee_floor, knee_ceiling, femur, tibia)
-            hu = hu + band_weight * (level - hu)
+            banded = _band_level(af, au, al, banded, planned, room, knee_floor, knee_ceiling, femur, tibia)
+            hu = planned + band_weight * (banded - planned)
             length = _norm3(hf, hu, hl)
         af, au, al, kf, ku, kl = _ankle_and_knee(mixed, hf, hu, hl, length, femur, tibia, metatarsus, knee_sign,
                                                  knee_pole)
@@ -270,7 +271,9 @@ def _band_level(af, au, al, hu, planned, room, floor, ceiling, femur, tibia):
     lateral2 = af * af + al * al
     far = np.sqrt(femur * femur + tibia * tibia + 2.0 * femur * tibia * np.cos(floor))
     near = np.sqrt(femur * femur + tibia * tibia + 2.0 * femur * tibia * np.cos(ceiling))
-    highest = -np.sqrt(np.maximum(far * far - lateral2, 0.0))  # the ankle's level for the floor
+    # The ankle's level for the floor (where even level with the hip it would be too far,
+    # the floor asks nothing: no foot is lifted to the hip).
+    highest = np.where(lateral2 < far * far, -np.sqrt(np.maximum(far * far - lateral2, 0.0)), -np.inf)
     lowest = -np.sqrt(np.maximum(near * near - lateral2, 0.0))  # ... and for the ceiling
     descent = np.maximum(planned - hu + np.maximum(au - lowest, 0.0), 0.0)  # below the plan, in all
     soft = room * -np.expm1(-descent / np.maximum(room, 1e-9))

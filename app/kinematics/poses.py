@@ -52,7 +52,7 @@ def _curve(heights: tuple[float, ...]) -> PchipInterpolator:
     # Two keys either side wrap the step around, so the slopes at contact match (periodic).
     t = np.concatenate([times[-2:] - 1.0, times, times[:2] + 1.0, [times[2] + 1.0]])
     v = np.concatenate([values[-2:], values, values[:2], [values[2]]])
-    if values[0] < values[1] and values[0] < values[3]:
+    if values[0] < min(values[1], values[2], values[3]):
         # A lowest contact: the heel strike turns the body's fall into a rise at once, as
         # the stance leg vaults it up (a walker's knee flexes in loading response only as
         # the body rides up: its peak comes at ~14 %, not at once). Knots either side at

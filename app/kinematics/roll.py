@@ -57,7 +57,7 @@ class FootRoll:
     is held against its shank instead: ``dorsiflexion`` (rad) with ``dorsi_weight``
     (T, L) against the metatarsus angle; from late stance into the early swing its heel
     turns about the ball to give the ``knee`` (rad) a walker's has, by ``knee_weight``
-    (:func:`app.kinematics.walker.walker_knee`); through the terminal swing its knee is
+    (:func:`app.kinematics.walker.walker_knee`); through most of the swing its knee
     flexes between ``knee_floor`` and ``knee_ceiling`` (rad), by ``band_weight``
     (:func:`app.kinematics.walker.walker_knee_band`)."""
 

@@ -19,11 +19,11 @@ the stance foot's speed):
   rises about the ball just so much that the knee follows :data:`KNEE_NEAR_TOE_OFF`
   (by time from toe-off), nearly straight through terminal stance, ~35 degrees at
   toe-off;
-- from the knee's peak to just before the strike it keeps within
-  :data:`KNEE_BAND` of :data:`KNEE_BEFORE_STRIKE` (by time to the strike): the swinging
-  ball rises where the leg would straighten early and comes down (never nearer the
-  ground than ``app.kinematics.leg.BAND_CLEARANCE``) where the knee would fold past its
-  peak, so the knee peaks at ~72 % and straightens before the strike.
+- from early in the swing (36 % of a cycle before the strike) to just before the strike
+  its knee keeps within :data:`KNEE_BAND` of :data:`KNEE_BEFORE_STRIKE` (by time to the
+  strike): the swinging ball rises where the leg would straighten early and comes down
+  (never nearer the ground than ``app.kinematics.leg.BAND_CLEARANCE``) where the knee
+  would fold past its peak, so the knee peaks at ~72 % and straightens before the strike.
 
 Runners (duty factor under one half) swing with the common smooth arc instead; the
 walker's shapes fade out between duty factors 0.55 and 0.45.
@@ -44,7 +44,7 @@ from .rig import Rig
 
 SWING = np.linspace(0.0, 1.0, 11)
 WORLD_PROGRESS = np.array([0.0, 0.041, 0.127, 0.24, 0.366, 0.504, 0.647, 0.779, 0.889, 0.963, 1.0])
-BALL_LIFT = np.array([0.0, 0.45, 0.85, 1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.3, 0.0])
+BALL_LIFT = np.array([0.0, 0.7, 1.0, 1.0, 0.9, 0.8, 0.7, 0.6, 0.5, 0.3, 0.0])
 # Knee flexion (deg) against time from toe-off (cycle fraction); Schwartz et al. 2008,
 # free speed, whose toe-off is at 60 % of the cycle.
 KNEE_FROM_TOE_OFF = np.arange(-0.32, 0.1201, 0.02)
@@ -132,9 +132,9 @@ def walker_knee_band(swing: NDArray[np.float64], duty: NDArray[np.float64]
                      ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The least and the most knee flexion (rad) a walker's swinging foot keeps, and their
     weight, (T, L) each, from ``swing`` progress and ``duty`` (the plan's): the swing of
-    :data:`KNEE_BEFORE_STRIKE` less and more :data:`KNEE_BAND`, from the swing's peak
-    flexion on (the foot neither skims the ground on a straight leg nor folds up past the
-    peak), letting go just before the strike (:data:`FLOOR_FADE`) so the foot lands on
+    :data:`KNEE_BEFORE_STRIKE` less and more :data:`KNEE_BAND`, from early in the swing
+    (the first entry of :data:`KNEE_TO_STRIKE`; the foot neither skims the ground on a
+    straight leg nor folds up past the peak), letting go just before the strike (:data:`FLOOR_FADE`) so the foot lands on
     its foothold; the ceiling lets go earlier (:data:`CEILING_FADE`), once past the peak."""
     s = np.clip(swing, 0.0, 1.0)
     to_strike = -(1.0 - s) * (1.0 - np.clip(duty, 0.0, 1.0))

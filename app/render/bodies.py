@@ -19,7 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..kinematics.motion import Motion, Pose
-from ..kinematics.rig import Rig
+from ..kinematics.rig import KeyPoses, Overlap, Rig, SecondaryMotion
 from ..kinematics.skeleton import skeleton_clip
 from ..skin import SkinnedBody, build_body
 from ..skin.body import Detail, joint_matrices
@@ -119,7 +119,7 @@ class BodyCache:
             return body
 
     def get(self, rig: Rig, detail: Detail = "full") -> SkinnedBody:
-        """The body of ``rig``'s shape (built in its first walking frame, the bind pose)."""
+        """The body of ``rig``'s shape (built in the bind pose: :func:`bind_rig`)."""
         key = (self._key(rig), detail)
         body = self._cached(key)
         if body is None:
@@ -152,15 +152,16 @@ BIND_STRIDE = 1.0  # leg lengths: the bind pose's stride, the legs apart as in a
 
 
 def bind_rig(rig: Rig) -> Rig:
-    """The rig in its bind pose's gait, the same whatever gait it walks: a walk's
-    alternation (each pair's right foot half a cycle after its left, each pair a quarter
-    cycle after the one behind) on a stride of :data:`BIND_STRIDE`, nothing bobbing or
-    flexing, so the legs stand apart (a smooth union would web legs held together). Its
-    body so depends on its shape alone, as :func:`shape_key` says."""
+    """The rig in its bind pose, the same whatever gait, key poses, secondary motion or
+    overlap it walks with: a walk's alternation (each pair's right foot half a cycle after
+    its left, the pairs a quarter cycle apart) on a stride of :data:`BIND_STRIDE`, the
+    body carried level (no bob, key-pose heights, sway, turn, lean or lag), so the legs
+    stand apart (a smooth union would web legs held together) and the body depends on its
+    shape alone, as :func:`shape_key` says."""
     legs = np.arange(rig.leg_count)
     offsets = np.mod(0.25 * (legs // 2) + 0.5 * (legs % 2), 1.0)
     gait = replace(rig.gait, duty_factor=0.75, offsets=offsets, stride=BIND_STRIDE, bob=0.0, flex=0.0, pitch=0.0)
-    return rig.with_gait(gait)
+    return replace(rig.with_gait(gait), motion=SecondaryMotion(), overlap=Overlap(), poses=KeyPoses())
 
 
 def _build(rig: Rig, detail: Detail) -> SkinnedBody:
