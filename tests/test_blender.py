@@ -20,6 +20,7 @@ import pytest
 
 from app import build_rig, load_creature
 from app.export import write_glb
+from app.export.mesh import export_layout
 from app.kinematics.clip import clip_motion
 from app.kinematics.skeleton import skeleton_clip
 from app.resources import preset_creature_names
@@ -45,7 +46,7 @@ def test_blender_imports_every_preset_with_its_bones_on_gaitlab_s_joints_and_its
     clips = {}
     for name in preset_creature_names():
         motion, _ = clip_motion(build_rig(load_creature(name)), float(FPS), cycles=1.0)
-        clip = skeleton_clip(motion)
+        clip = skeleton_clip(motion, export_layout(motion))  # as `gaitlab export` writes it
         path = write_glb(tmp_path / f"{name}.glb", motion, clip)
         clips[str(path)] = clip
     out = subprocess.run([python, str(SCRIPT), str(FPS), *clips], capture_output=True, text=True, timeout=600)

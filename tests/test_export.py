@@ -204,7 +204,10 @@ def test_every_preset_passes_the_khronos_validator(tmp_path: Path, creature: str
     command = _validator()
     world = make_world("circle:r=2", "stairs:rise=0.05,run=0.3") if creature == "dog" else None
     motion = motion_of(creature, fps=30.0, world=world)
-    path = write_glb(tmp_path / f"{creature}.glb", motion, skeleton_clip(motion), ground=creature in ("dog", "ant"))
+    from app.export.mesh import export_layout
+
+    path = write_glb(tmp_path / f"{creature}.glb", motion, skeleton_clip(motion, export_layout(motion)),
+                     ground=creature in ("dog", "ant"))
     out = subprocess.run([*command, str(path)], capture_output=True, text=True, timeout=120)
     report = json.loads(out.stdout)
     assert report.get("errors") == 0, report
@@ -266,13 +269,17 @@ def test_a_clip_of_no_frames_is_refused_and_nothing_written(tmp_path: Path, monk
 
 @pytest.mark.parametrize("creature", ["dog", "human", "spider"])
 def test_the_glb_carries_the_skinned_body_the_viewer_draws(tmp_path: Path, creature: str) -> None:
+    """The file's mesh, skinned by the file's own joints, weights and inverse binds, stands
+    where the viewer draws its body (the shared cache's body, skinned per pose), vertex for
+    vertex, at the first frame and mid-clip."""
     import pygltflib
 
     from app.export import write_glb
-    from app.skin import build_body
+    from app.export.mesh import export_layout
+    from app.render.bodies import pose_body, shared_body_cache
 
     motion = motion_of(creature, fps=30.0)
-    clip = skeleton_clip(motion)
+    clip = skeleton_clip(motion, export_layout(motion))  # as `gaitlab export` lays it out
     path = write_glb(tmp_path / f"{creature}.glb", motion, clip)
     doc = pygltflib.GLTF2().load(str(path))
     blob = doc.binary_blob()
@@ -284,10 +291,23 @@ def test_the_glb_carries_the_skinned_body_the_viewer_draws(tmp_path: Path, creat
         start = view.byteOffset + (doc.accessors[index].byteOffset or 0)
         return np.frombuffer(blob, dtype=dtype, count=count * width, offset=start).reshape(count, width)
 
-    body = build_body(motion, clip)
-    positions = read(attributes.POSITION, np.float32, 3)
-    weights = read(attributes.WEIGHTS_0, np.float32, 4)
-    joints = read(attributes.JOINTS_0, np.uint16, 4)
-    assert np.allclose(positions, body.positions, atol=1e-6)
+    positions = read(attributes.POSITION, np.float32, 3).astype(np.float64)
+    weights = read(attributes.WEIGHTS_0, np.float32, 4).astype(np.float64)
+    joints = read(attributes.JOINTS_0, np.uint16, 4).astype(np.int64)
     assert np.allclose(weights.sum(axis=1), 1.0, atol=1e-5) and (weights >= 0).all()
-    assert np.array_equal(joints, body.joints)
+    _, world_p, world_r, inverse_bind = glb_world_positions(path, motion.times - motion.times[0], True)
+    body = shared_body_cache().get(motion.rig)
+    assert np.array_equal(joints, body.joints) and len(positions) == len(body.positions)
+
+    def skinned(vertices, matrices, vertex_joints, vertex_weights) -> np.ndarray:
+        blended = np.einsum("vk,vkij->vij", vertex_weights, matrices[vertex_joints])
+        return np.einsum("vij,vj->vi", blended[:, :3, :3], vertices) + blended[:, :3, 3]
+
+    for frame in (0, motion.frame_count // 2):
+        world = np.tile(np.eye(4), (len(world_p[frame]), 1, 1))
+        world[:, :3, :3], world[:, :3, 3] = world_r[frame], world_p[frame]
+        in_file = skinned(positions, world @ inverse_bind, joints, weights)
+        drawn = pose_body(motion.pose(frame), motion.rig, shared_body_cache())
+        in_viewer = skinned(body.positions.astype(np.float64), drawn.skin.astype(np.float64), body.joints,
+                            body.weights.astype(np.float64))
+        assert np.abs(in_file - in_viewer).max() < 1e-4, (creature, frame)

@@ -18,6 +18,7 @@ from ..spec import CreatureSpec
 from .bvh import write_bvh
 from .formats import export_format
 from .gltf import write_glb
+from .mesh import export_layout
 from .usd import write_usd
 
 
@@ -86,7 +87,8 @@ def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, s
     if motions[0].frame_count == 0:
         raise OutputError(f"{os.fspath(output)}: the clip has no frames at {fps:g} fps; give a longer --seconds "
                           "or --cycles")
-    clips: list[SkeletonClip] = [skeleton_clip(m) for m in motions]
+    # A mesh-carrying file lays its skeletons out as their bodies are (so they skin as drawn).
+    clips: list[SkeletonClip] = [skeleton_clip(m, None if fmt == "bvh" else export_layout(m)) for m in motions]
     seconds_out = (clips[0].frame_count - int(loop)) / fps  # a looped clip's closing frame adds no time
     names = [p.stem.removeprefix(Path(output).stem + "-") for p in bvh_paths(output, cast)]
     if fmt == "bvh":

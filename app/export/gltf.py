@@ -91,9 +91,10 @@ def _ground(motions: list[Motion], blob: _Blob, doc: gl.GLTF2) -> int:
     return len(doc.nodes) - 1
 
 
-def _skinned_mesh(motion: Motion, clip: SkeletonClip, name: str, blob: _Blob, doc: gl.GLTF2) -> int:
-    """The creature's skinned body in the first frame, each vertex bound to up to four
-    joints; the index of the mesh."""
+def _skinned_mesh(motion: Motion, clip: SkeletonClip, name: str, blob: _Blob, doc: gl.GLTF2
+                  ) -> tuple[int, NDArray[np.float64]]:
+    """The creature's skinned body in its bind pose, each vertex bound to up to four
+    joints; the index of the mesh and the joints' bind matrices (J, 4, 4)."""
     mesh = creature_mesh(motion, clip)
     position, normal, color = (a.astype(np.float32) for a in (mesh.positions, mesh.normals, mesh.colors))
     joints0 = mesh.joints.astype(np.uint16)
@@ -110,12 +111,14 @@ def _skinned_mesh(motion: Motion, clip: SkeletonClip, name: str, blob: _Blob, do
             baseColorFactor=[1.0, 1.0, 1.0, 1.0], metallicFactor=0.0, roughnessFactor=0.7)))
     doc.meshes.append(gl.Mesh(name=name, primitives=[gl.Primitive(attributes=attributes, material=0, indices=blob.add(
         indices, gl.SCALAR, gl.UNSIGNED_INT, gl.ELEMENT_ARRAY_BUFFER))]))
-    return len(doc.meshes) - 1
+    return len(doc.meshes) - 1, mesh.bind
 
 
-def _skeleton(clip: SkeletonClip, prefix: str, blob: _Blob, doc: gl.GLTF2) -> tuple[int, int]:
-    """The joints as nodes with the first frame's local transform, and their skin; the
-    index of the first joint's node and of the skin."""
+def _skeleton(clip: SkeletonClip, prefix: str, bind: NDArray[np.float64], blob: _Blob, doc: gl.GLTF2
+              ) -> tuple[int, int]:
+    """The joints as nodes with the first frame's local transform, and their skin (inverse
+    bind matrices from the mesh's ``bind`` (J, 4, 4)); the index of the first joint's node
+    and of the skin."""
     skeleton = clip.skeleton
     first = len(doc.nodes)
     q0 = Rotation.from_matrix(clip.local_rotation[0]).as_quat()
@@ -124,10 +127,7 @@ def _skeleton(clip: SkeletonClip, prefix: str, blob: _Blob, doc: gl.GLTF2) -> tu
         doc.nodes.append(gl.Node(name=prefix + skeleton.names[j],
                                  translation=[float(v) for v in clip.local_translation[0, j]],
                                  rotation=[float(v) for v in q0[j]], children=children or None))
-    world = np.tile(np.eye(4), (skeleton.count, 1, 1))
-    world[:, :3, :3] = clip.world_rotation[0]
-    world[:, :3, 3] = clip.world_position[0]
-    inverse_bind = np.linalg.inv(world).transpose(0, 2, 1).astype(np.float32)  # column-major
+    inverse_bind = np.linalg.inv(bind).transpose(0, 2, 1).astype(np.float32)  # column-major
     doc.skins.append(gl.Skin(name=f"{prefix}skeleton", joints=list(range(first, first + skeleton.count)),
                              skeleton=first, inverseBindMatrices=blob.add(inverse_bind, gl.MAT4, gl.FLOAT)))
     return first, len(doc.skins) - 1
@@ -166,10 +166,10 @@ def gltf_document(motion: Motion | list[Motion], clip: SkeletonClip | list[Skele
     meshes = [_skinned_mesh(m, c, m.rig.name, blob, doc) for m, c in zip(motions, clips)]
     roots = []
     skeletons = []
-    for c, prefix in zip(clips, prefixes):
-        skeletons.append(_skeleton(c, prefix, blob, doc))
+    for c, prefix, (_, bind) in zip(clips, prefixes, meshes):
+        skeletons.append(_skeleton(c, prefix, bind, blob, doc))
         roots.append(skeletons[-1][0])
-    for (_, skin), mesh, m in zip(skeletons, meshes, motions):
+    for (_, skin), (mesh, _), m in zip(skeletons, meshes, motions):
         doc.nodes.append(gl.Node(name=m.rig.name if len(clips) > 1 else "creature", mesh=mesh, skin=skin))
         roots.append(len(doc.nodes) - 1)
     if ground:

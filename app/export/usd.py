@@ -1,9 +1,10 @@
 """USD export (.usda text, .usdc binary) as a UsdSkel skeleton animation.
 
 The stage is Y up in metres at the clip's frame rate. ``/Creature`` is a SkelRoot holding
-the Skeleton (joints as paths, bind and rest transforms from the first frame), its
-SkelAnimation (every joint's local translation and rotation at every frame) and the
-creature's skinned body (up to four joints a vertex) with vertex colours.
+the Skeleton (joints as paths, bind transforms from the body's bind pose, rest transforms
+from the first frame), its SkelAnimation (every joint's local translation and rotation at
+every frame) and the creature's skinned body (the viewer's, up to four joints a vertex)
+with vertex colours.
 Needs Pixar's ``usd-core`` package (``pip install usd-core``, an optional dependency).
 """
 
@@ -105,8 +106,9 @@ def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
     skeleton = UsdSkel.Skeleton.Define(stage, f"{where}/Skeleton")
     paths = joint_paths(clip)
     skeleton.CreateJointsAttr(paths)
+    mesh_data = creature_mesh(motion, clip)  # its bind pose is the skeleton's
     skeleton.CreateBindTransformsAttr(Vt.Matrix4dArray(
-        _matrices(clip.world_rotation[0], clip.world_position[0], Gf)))
+        _matrices(mesh_data.bind[:, :3, :3], mesh_data.bind[:, :3, 3], Gf)))
     skeleton.CreateRestTransformsAttr(Vt.Matrix4dArray(
         _matrices(clip.local_rotation[0], clip.local_translation[0], Gf)))
     animation = UsdSkel.Animation.Define(stage, f"{where}/Skeleton/Motion")
@@ -121,7 +123,6 @@ def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
                                      for q in quat[t]]), t)
     UsdSkel.BindingAPI.Apply(skeleton.GetPrim()).CreateAnimationSourceRel().SetTargets([animation.GetPath()])
 
-    mesh_data = creature_mesh(motion, clip)
     mesh = UsdGeom.Mesh.Define(stage, f"{where}/Body")
     mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.positions.astype(np.float32)))
     mesh.CreateFaceVertexCountsAttr(Vt.IntArray([3] * len(mesh_data.faces)))
