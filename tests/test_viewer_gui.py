@@ -239,7 +239,7 @@ def test_the_file_field_loads_where_no_dialog_opens(display: str, tmp_path: Path
         before = mine.read_text()
         mine.write_text(before + "# the user's own note\n")
         click("save")
-        read_state(dump, until=lambda s: "exists: save again to overwrite it" in (s["error"] or ""))
+        read_state(dump, until=lambda s: "exists: save again to overwrite it" in (s["status"] or ""))
         assert mine.read_text().endswith("# the user's own note\n")  # not yet
         time.sleep(0.3)
         click("save")

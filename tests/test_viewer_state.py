@@ -156,9 +156,13 @@ def test_save_never_overwrites_a_preset_or_a_file_unasked(state: ViewerState, tm
     assert "duty_factor = 0.6\n" in saved.read_text()
     assert saved.stat().st_mode & 0o777 == 0o666 & ~_umask()
     state.set("body.length", 0.61)
-    assert not state.save() and "exists: save again to overwrite it" in state.error and state.overwrite_pending
-    assert "length = 0.61" not in saved.read_text()
-    assert state.save() and "length = 0.61" in saved.read_text()  # asked twice: overwritten
+    assert state.save() and "length = 0.61" in saved.read_text()  # its own file, saved a moment ago: no asking
+    saved.write_text(saved.read_text() + "# someone else's note\n")  # changed since: ask first
+    state.set("body.length", 0.62)
+    assert not state.save() and "exists: save again to overwrite it" in state.status and state.overwrite_pending
+    assert state.error is None  # a question, not an error
+    assert "length = 0.62" not in saved.read_text()
+    assert state.save() and "length = 0.62" in saved.read_text()  # asked twice: overwritten
     assert not state.overwrite_pending
 
 
@@ -178,6 +182,44 @@ def test_reset_everything_asks_first_and_labels_show_edits(state: ViewerState) -
     assert state.spec.leg("hind").femur == 0.3  # nothing lost yet
     assert state.reset_all() and state.spec == state.base and not state.reset_pending
     assert state.creature_label == "dog" and state.gait_label == "walk"
+
+
+def test_an_untouched_preset_is_not_labelled_as_edited() -> None:
+    """The human's file tunes its walk (duty, stride, step height): loaded as it is, its gait
+    reads "walk", not "walk*"; adjusted, "walk*"; another gait picked, that gait's own
+    defaults are the untouched ones."""
+    human = ViewerState(load_creature("human"))
+    assert human.creature_label == "human" and human.gait_label == "walk"
+    human.set("gait.duty_factor", 0.6)
+    assert human.gait_label == "walk*"
+    human.set("gait.preset", "run")
+    assert human.gait_label == "run"
+
+
+def test_record_asks_before_writing_over_a_file_it_did_not_write(state: ViewerState, tmp_path) -> None:
+    state.record.folder = str(tmp_path)
+    target = state.record.path(state.spec.name)
+    assert state.confirm_record()  # nothing there yet
+    target.write_bytes(b"GIF89a someone else's")
+    assert not state.confirm_record() and "record again to overwrite it" in (state.status or "")
+    assert state.confirm_record()  # asked twice: go ahead
+    state.recorded(target)  # written by this viewer: recording it again needs no asking
+    assert state.confirm_record() and state.confirm_record()
+
+
+def test_undo_and_redo_say_what_they_changed(state: ViewerState) -> None:
+    state.set("gait.duty_factor", 0.7)
+    assert state.undo() and state.status.startswith("undone: gait.duty_factor")
+    assert state.redo() and state.status == "redone: gait.duty_factor 0.7"
+
+
+def test_the_description_says_what_no_longer_holds(state: ViewerState) -> None:
+    loaded = state.creature_description
+    assert "edited" not in loaded
+    state.set_leg_type("fore", "unguligrade")
+    assert state.creature_description.startswith(loaded) and "fore legs now unguligrade" in state.creature_description
+    state.set_leg_type("fore", "digitigrade")  # the dog's own again
+    assert state.creature_description == loaded
 
 
 def test_leg_type_button_restores_the_creatures_own_values(state: ViewerState) -> None:

@@ -70,6 +70,8 @@ class StateBase:
         _ghosts: tuple[Any, ...] | None
         _style_check: tuple[Any, ...] | None
         _confirm_overwrite: str | None
+        _confirm_record: str | None
+        _known_files: dict[str, tuple[int, int]]
         _follow_height: float | None
         _heading: float | None
         _follow_ahead: float

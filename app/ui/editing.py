@@ -11,7 +11,7 @@ import numpy as np
 from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
 from ..rigging import apply_style, build_rig
-from ..spec import LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, spec_value, without_adjustment
+from ..spec import LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, override_keys, spec_value, without_adjustment
 from ..styles import DEFAULT_TIMING_FPS, style_heights
 from .base import StateBase
 
@@ -22,6 +22,29 @@ UNDO_MERGE_SECONDS = 0.75  # changes of one control closer together than this ar
 # the resolved number.
 _RESOLVED = {"gait.frequency", "gait.duty_factor", "gait.bias", "gait.step_height", "gait.stride",
              "gait.front_back", "gait.left_right", "motion.bob"}
+
+
+def changed_keys(before: CreatureSpec, after: CreatureSpec, most: int = 3) -> str:
+    """What differs between two creatures, for a message: up to ``most`` dotted keys with
+    their new values ("gait.duty_factor 0.6"), then how many more; a creature of other legs
+    or another name says so."""
+    if [leg.name for leg in before.legs] != [leg.name for leg in after.legs] or before.name != after.name:
+        return f"the creature ({before.name} -> {after.name})"
+    def differs(key: str) -> bool:
+        try:
+            return bool(spec_value(before, key) != spec_value(after, key))
+        except (KeyError, AttributeError):  # a key this creature does not have
+            return False
+
+    keys = [k for k in override_keys(after) if "." in k and differs(k)]
+    if not keys:
+        return "no visible change"
+
+    def shown(value: Any) -> str:
+        return f"{value:.4g}" if isinstance(value, float) else str(value)
+
+    words = [f"{k} {shown(spec_value(after, k))}" for k in keys[:most]]
+    return ", ".join(words) + (f" and {len(keys) - most} more" if len(keys) > most else "")
 
 
 class EditingMixin(StateBase):
@@ -106,9 +129,12 @@ class EditingMixin(StateBase):
 
     @property
     def gait_label(self) -> str:
-        """The gait preset's name, with a * once any of its values is adjusted."""
-        gait = self.spec.gait
-        return gait.preset + ("*" if gait != GaitSpec(preset=gait.preset, wave=gait.wave) else "")
+        """The gait preset's name, with a * once any of its values is adjusted: against the
+        loaded creature's own gait while it is that preset (a file that tunes its walk
+        shows it as loaded, not as edited), against the preset's defaults otherwise."""
+        gait, loaded = self.spec.gait, self.base.gait
+        untouched = loaded if loaded.preset == gait.preset else GaitSpec(preset=gait.preset, wave=gait.wave)
+        return gait.preset + ("*" if gait != untouched else "")
 
     @property
     def gait_is_symmetric(self) -> bool:
@@ -162,7 +188,7 @@ class EditingMixin(StateBase):
             return False
         target.append(current)
         self._last_edit = ("", 0.0)
-        self.status = f"{word}ne"
+        self.status = f"{word}ne: {changed_keys(current, spec)}"
         return True
 
     def set(self, key: str, value: Any) -> bool:
@@ -228,3 +254,14 @@ class EditingMixin(StateBase):
 
     def leg_type(self, pair: str) -> LegType:
         return leg_type(self.spec.leg(pair).ankle_lift)
+
+    @property
+    def creature_description(self) -> str:
+        """The creature's one-line description, with what no longer holds of it said: a
+        leg pair made another type than the loaded creature's ("fore legs now
+        unguligrade")."""
+        text = self.spec.description or self.spec.source
+        loaded = {leg.name: leg_type(leg.ankle_lift) for leg in self.base.legs}
+        changed = [f"{leg.name} legs now {leg_type(leg.ankle_lift)}" for leg in self.spec.legs
+                   if leg.name in loaded and leg_type(leg.ankle_lift) != loaded[leg.name]]
+        return text + (f" (edited: {', '.join(changed)})" if changed else "")

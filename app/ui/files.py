@@ -88,10 +88,45 @@ class FilesMixin(StateBase):
         self.file_path = self._save_path_for(spec)
         if str(name_or_path).endswith(".toml"):
             self._remember_file(spec.source)
+            self._know(spec.source)
         self.status = f"loaded {spec.name}" + (f" from {Path(spec.source).resolve()}"
                                                if str(name_or_path).endswith(".toml") else "")
         self.frame_view()
         return True
+
+    def _know(self, path: str | Path) -> None:
+        """Note a file as this viewer last read or wrote it (its time and size): writing
+        over it again needs no asking while nobody else has changed it."""
+        try:
+            info = Path(path).stat()
+        except OSError:
+            return
+        self._known_files[str(Path(path).resolve())] = (info.st_mtime_ns, info.st_size)
+
+    def _must_ask(self, path: str | Path) -> bool:
+        """True when writing ``path`` would overwrite a file this viewer has not just read or
+        written itself (someone else's, or changed since)."""
+        target = Path(path)
+        if not target.exists():
+            return False
+        info = target.stat()
+        return self._known_files.get(str(target.resolve())) != (info.st_mtime_ns, info.st_size)
+
+    def confirm_record(self) -> bool:
+        """Whether to record now: asks first (once, on the message line) before writing over
+        a file this viewer did not write itself; pressing record again goes ahead."""
+        target = self.record.path(self.spec.name)
+        resolved = str(target.resolve())
+        if self._must_ask(target) and self._confirm_record != resolved:
+            self._confirm_record = resolved
+            self.status = f"{resolved} exists: record again to overwrite it"
+            return False
+        self._confirm_record = None
+        return True
+
+    def recorded(self, path: str | Path) -> None:
+        """A recording was written to ``path``: this viewer's own from now on."""
+        self._know(path)
 
     def _remember_file(self, path: str) -> None:
         full = str(Path(path).resolve())
@@ -112,17 +147,18 @@ class FilesMixin(StateBase):
 
     def save(self, path: str | None = None) -> bool:
         """Save the current creature as TOML (atomically). A shipped preset is never
-        overwritten; an existing file only when *save* is asked twice for it in a row
-        (the first time says so)."""
+        overwritten; an existing file this viewer did not just read or write itself (someone
+        else's, or changed since) only when *save* is asked twice for it in a row (the first
+        time says so)."""
         target = str(path or self.file_path)
         if is_shipped(target):
             self.error = (f"{Path(target).resolve()}: is one of Gaitlab's preset creatures; save under a name of "
                           f"your own, e.g. my{self.spec.name}.toml")
             return False
         resolved = str(Path(target).resolve())
-        if Path(target).exists() and self._confirm_overwrite != resolved:
+        if self._must_ask(target) and self._confirm_overwrite != resolved:
             self._confirm_overwrite = resolved
-            self.error = f"{resolved} exists: save again to overwrite it"
+            self.status = f"{resolved} exists: save again to overwrite it"
             return False
         self._confirm_overwrite = None
         try:
@@ -135,6 +171,7 @@ class FilesMixin(StateBase):
             return False
         self.file_path = str(written)
         self._remember_file(str(written))
+        self._know(written)
         self.status = f"saved {Path(written).resolve()}"
         self.error = None
         return True

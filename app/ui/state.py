@@ -103,6 +103,8 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
         self._ghosts: tuple | None = None
         self._style_check: tuple | None = None
         self._confirm_overwrite: str | None = None  # asked once to overwrite this
+        self._confirm_record: str | None = None  # ... and to record over this
+        self._known_files: dict[str, tuple[int, int]] = {}  # files this viewer read or wrote: (mtime ns, size)
         self._follow_height: float | None = None  # camera target above the root
         self._heading: float | None = None  # path heading last frame (degrees)
         self._follow_ahead = 0.0  # m the camera aims ahead of the root

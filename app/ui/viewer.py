@@ -353,7 +353,8 @@ class Viewer:
         if state.record_requested and self.recording is None:
             state.record_requested = False
             try:
-                self.recording = Recording(state.record_request(), self.ctx)
+                if state.confirm_record():
+                    self.recording = Recording(state.record_request(), self.ctx)
             except GaitlabError as exc:
                 state.error = str(exc)
         if self.recording is None:
@@ -365,6 +366,7 @@ class Viewer:
             if job.finished:
                 result = job.finish()
                 self.recording = None
+                state.recorded(result.path)
                 state.status = (f"wrote {Path(result.path).resolve()}: {result.frames} frames, {result.seconds:.2f} s"
                                 + "".join(f"; note: {note}" for note in result.notes))
                 state.error = None

@@ -43,7 +43,7 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
     _remember(state, "creature")
     if choice_made is not None:
         state.load_preset(choice_made)
-    _wrapped_note(state.spec.description or state.spec.source)
+    _wrapped_note(state.creature_description)
     for pair in (leg.name for leg in state.spec.legs):
         imgui.separator_text("Legs" if pair == "legs" else f"{pair.capitalize()} legs")
         current = state.leg_type(pair)
