@@ -115,7 +115,7 @@ GAIT_PRESETS: dict[str, GaitPreset] = {
                    duty_factor=0.45, cadence=0.45, stride=0.65, step_height=0.14, bob=0.02,
                    front_back=0.25, left_right=0.5, pairs=(2, 2)),
         GaitPreset("trot", "diagonal pairs move together, a short flight between them",
-                   duty_factor=0.40, cadence=0.55, stride=0.70, step_height=0.18, bob=0.035,
+                   duty_factor=0.40, cadence=0.43, stride=0.90, step_height=0.18, bob=0.035,
                    front_back=0.5, left_right=0.5, pairs=(2, 2)),
         GaitPreset("pace", "lateral pairs move together (camel, giraffe, some dogs)",
                    duty_factor=0.40, cadence=0.50, stride=0.70, step_height=0.16, bob=0.03,
