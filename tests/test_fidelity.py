@@ -110,6 +110,17 @@ def test_the_horse_walks_at_a_horse_s_duty_stride_and_nod() -> None:
     assert q["head frequency / stride frequency"] == pytest.approx(2.0, abs=0.2)
 
 
+def test_the_horse_trots_a_trotter_s_stride_and_nods() -> None:
+    """Alexander's relative stride at the trot's Froude number, and the head bowing twice a
+    stride as each fore foot takes the weight."""
+    rig = build_rig(load_creature("horse").with_overrides({"gait.preset": "trot"}))
+    motion, _ = clip_motion(rig, 240.0, cycles=6.0)
+    q = quadruped_measures(motion)
+    assert 2.3 <= q["stride m"] <= 3.0 and 0.65 <= q["cycle s"] <= 0.8
+    assert 3.0 <= q["head vertical cm"] <= 12.0
+    assert q["head frequency / stride frequency"] == pytest.approx(2.0, abs=0.2)
+
+
 @pytest.mark.parametrize("gait", ["rotary-gallop", "bound"])
 def test_a_galloping_dog_flexes_its_back(gait: str) -> None:
     rig = build_rig(load_creature("dog").with_overrides({"gait.preset": gait}))

@@ -31,6 +31,8 @@ TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
 MAX_ROLL = 0.5  # rad
+NOD = 0.06  # rad: a walking quadruped's neck and head bow, either way, for a neck as long as its legs
+NOD_DELAY = 0.15  # of a cycle after a fore foot lands: the head is lowest
 ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
 MAX_END_SLOPE = 0.35  # the trunk's ends beyond the girdles pitch at most this much (rise over run)
 
@@ -227,6 +229,22 @@ def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
     return pos, points, heading, yaw
 
 
+def head_nod(rig: Rig, clock: NDArray[np.float64]) -> NDArray[np.float64] | float:
+    """How far (rad, + down) a walking or trotting quadruped bows its neck and head at
+    cycle time ``clock`` (T,): twice a stride, lowest :data:`NOD_DELAY` of a cycle after
+    each fore foot lands (as it takes the weight: horses and dogs nod so in the walk and
+    trot), by up to :data:`NOD` for a neck as long as the legs. Nothing for upright or
+    sprawled bodies, or where the fore feet do not alternate (gallops, bounds)."""
+    front = np.nonzero(rig.girdle == rig.girdle.max())[0]
+    if rig.body.upright or len(front) != 2 or np.any(rig.knee_out[front]) or rig.leg_count < 4:
+        return 0.0
+    left, right = rig.gait.offsets[front]
+    apart = abs(np.mod(right - left, 1.0) - 0.5)  # 0 when the fore feet alternate
+    weight = float(np.clip(1.0 - apart / 0.15, 0.0, 1.0))
+    size = float(np.clip(rig.body.neck_length / max(rig.hip_height, 1e-6), 0.0, 1.0))
+    return NOD * size * weight * np.cos(4.0 * np.pi * (np.asarray(clock) - left - NOD_DELAY))
+
+
 def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float64], rear: NDArray[np.float64],
                 d_rear: NDArray[np.float64], yaw_rear: NDArray[np.float64], clock: NDArray[np.float64],
                 lag: Mapping[str, NDArray[np.float64]] | None):
@@ -241,9 +259,10 @@ def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float6
         value = lag.get(part)
         return 0.0 if value is None else np.arctan2(value, max(length, 1e-3))
 
-    neck_dir = pitch(d_front, body.neck_angle + follow("neck", body.neck_length))
+    bow = head_nod(rig, clock)
+    neck_dir = pitch(d_front, body.neck_angle + follow("neck", body.neck_length) - bow)
     neck_top = front + body.neck_length * neck_dir
-    head_dir = pitch(d_front, -body.head_angle + follow("head", body.head_length))
+    head_dir = pitch(d_front, -body.head_angle + follow("head", body.head_length) - bow)
     neck = np.stack([front, neck_top], axis=1)
     head = np.stack([neck_top, neck_top + body.head_length * head_dir], axis=1)
     k = np.arange(body.tail_segments)
