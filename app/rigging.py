@@ -223,6 +223,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
         poses=key_poses(spec, hip_height),
         overlap=spec.overlap,
         roll=per_leg("roll"),
+        heel=per_leg("heel"),
     )
     return _with_natural_heights(spec, rig) if _natural(spec) else rig
 

@@ -54,7 +54,7 @@ def style_heights(name: str, hip_height: float) -> tuple[float, float, float, fl
 
 STYLES: dict[str, WalkStyle] = {s.name: s for s in (
     WalkStyle("normal", "down just after contact, up before the next: the everyday walk",
-              (-0.07, -0.085, -0.02, -0.005), stride=0.7, foot_angle=20.0, arm_swing=22.0, torso_lean=3.0),
+              (-0.07, -0.085, -0.02, -0.005), stride=0.7, foot_angle=16.0, arm_swing=22.0, torso_lean=3.0),
     WalkStyle("double-bounce", "two ups and two downs each step: a jaunty, bouncing walk",
               (-0.07, -0.1, -0.02, -0.08), stride=0.65, foot_angle=18.0, arm_swing=26.0, torso_lean=2.0),
     WalkStyle("sneak", "low and long, landing on the toes, leaning in, arms tucked",

@@ -190,7 +190,7 @@ def test_an_untouched_preset_is_not_labelled_as_edited() -> None:
     defaults are the untouched ones."""
     human = ViewerState(load_creature("human"))
     assert human.creature_label == "human" and human.gait_label == "walk"
-    human.set("gait.duty_factor", 0.6)
+    human.set("gait.duty_factor", 0.62)
     assert human.gait_label == "walk*"
     human.set("gait.preset", "run")
     assert human.gait_label == "run"

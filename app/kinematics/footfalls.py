@@ -125,17 +125,20 @@ def plan_footholds(rig: Rig, world: World, s_mid: NDArray[np.float64], legs: NDA
     three times as far (the step longer or shorter: a compromised foothold); raises
     :class:`WorldError` when that is all too steep as well (uneven ground only compromises
     a foothold: ``Footholds.compromised``)."""
-    ideal, _ = neutral_points(rig, world, s_mid, legs)
+    ideal, tangent = neutral_points(rig, world, s_mid, legs)
     front, back, side = footprint(rig)
     search = np.maximum(SEARCH_RADIUS * rig.l_rest[legs], 3.0 * EDGE_MARGIN)
     steepest = foot_max_slope(rig, world.terrain.max_slope)[legs]
-    held = place_feet(world.terrain, ideal, front[legs], back[legs], side[legs], search, steepest)
+    # A rolling sole keeps its heading through the stance; other feet may turn under the body.
+    rigid = ((rig.roll_amount > 0) & (rig.heel_length > 0))[legs]
+    heading = np.where(rigid[:, None], foot_directions(rig, tangent, legs), np.nan)
+    held = place_feet(world.terrain, ideal, front[legs], back[legs], side[legs], search, steepest, heading)
     for wider in WIDER_SEARCH:  # a patch too steep all round: look further, the step longer or shorter
         if held.ok.all():
             break
         redo = np.nonzero(~held.ok)[0]
         again = place_feet(world.terrain, ideal[redo], front[legs[redo]], back[legs[redo]], side[legs[redo]],
-                           wider * search[redo], steepest[redo])
+                           wider * search[redo], steepest[redo], heading[redo])
         held.points[redo], held.normals[redo], held.ok[redo] = again.points, again.normals, again.ok
         held.compromised[redo] = again.ok  # off its stride: counted as compromised
     if not held.ok.all():

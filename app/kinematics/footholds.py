@@ -7,7 +7,9 @@ acceptable one wins. A spot is acceptable when
 - the ground there is no steeper than the terrain's ``max_slope``, and
 - the foot's footprint lies on one plane: probes on a ring around the spot as wide as the
   foot's reach (its toe or heel, whichever is longer, at least ``EDGE_MARGIN``), in
-  every direction — the body may turn the foot while it stands — all sit within a small
+  every direction — the body may turn the foot while it stands — or, for a rigid sole
+  that keeps its heading through the stance, along that sole (toe ahead, heel behind,
+  its half-width across) — all sit within a small
   tolerance of the tangent plane at the spot, plus the bend of ground as curved as
   :data:`WALKABLE_CURVATURE` (a hilltop or a hollow takes a foot; a riser does not). This
   keeps a foot off a riser and away from a step's edge, on any terrain (an exact staircase
@@ -62,27 +64,31 @@ def _candidates(radius: NDArray[np.float64]) -> NDArray[np.float64]:
 
 def place_feet(terrain: Terrain, ideal: NDArray[np.float64], front: NDArray[np.float64],
                back: NDArray[np.float64], side: NDArray[np.float64], search: NDArray[np.float64],
-               max_slope: NDArray[np.float64] | None = None) -> Footholds:
+               max_slope: NDArray[np.float64] | None = None,
+               heading: NDArray[np.float64] | None = None) -> Footholds:
     """Acceptable footholds nearest to ideal ground spots.
 
     ideal (N, 2) x, z; front, back, side (N,) the footprint's reach (m) ahead of the ball
     (toe), behind it (heel) and to each side; search (N,) the largest distance (m) to look
     from the ideal spot; max_slope (N,) rad the steepest ground each foot stands on
-    (default: the terrain's ``max_slope``).
+    (default: the terrain's ``max_slope``); heading (N, 2) the (x, z) unit direction of
+    a foot that keeps it through its stance (a rigid sole: its footprint reaches ``front``
+    ahead and ``back`` behind along it, ``side`` across), NaN (or None for all) for a foot
+    the body may turn while it stands (its footprint is a disc of its longest reach).
     """
     n = ideal.shape[0]
     if n == 0:
         return Footholds(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, dtype=bool), np.zeros(0, dtype=bool))
-    reach = np.maximum.reduce([front, back, side, np.full(n, EDGE_MARGIN)])  # (N,)
     steepest = np.full(n, terrain.max_slope) if max_slope is None else np.asarray(max_slope, dtype=np.float64)
+    probe_offsets = footprint_probes(front, back, side, heading)
     # Most ideal spots are fine as they are: test them first, search only around the rest.
-    points, normals, ok, _, _ = _judge(terrain, ideal[:, None, :], reach, steepest)
+    points, normals, ok, _, _ = _judge(terrain, ideal[:, None, :], probe_offsets, steepest)
     held = Footholds(points=points[:, 0], normals=normals[:, 0], ok=ok[:, 0], compromised=np.zeros(n, dtype=bool))
     redo = np.nonzero(~held.ok)[0]
     if redo.size:
         offsets = _candidates(search[redo])  # (M, C, 2)
-        points, normals, ok, steep_ok, unevenness = _judge(terrain, ideal[redo, None, :] + offsets, reach[redo],
-                                                           steepest[redo])
+        points, normals, ok, steep_ok, unevenness = _judge(terrain, ideal[redo, None, :] + offsets,
+                                                           probe_offsets[redo], steepest[redo])
         distance = np.linalg.norm(offsets, axis=-1) + np.where(ok, 0.0, np.inf)
         best = distance.argmin(axis=1)
         rows = np.arange(redo.size)
@@ -99,23 +105,42 @@ def place_feet(terrain: Terrain, ideal: NDArray[np.float64], front: NDArray[np.f
     return held
 
 
-def _judge(terrain: Terrain, spots: NDArray[np.float64], reach: NDArray[np.float64],
+def footprint_probes(front: NDArray[np.float64], back: NDArray[np.float64], side: NDArray[np.float64],
+                     heading: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+    """Where each footprint is probed, (N, 2P, 2) (x, z) offsets from its ball: a ring at its
+    reach and another at half of it, every reach at least :data:`EDGE_MARGIN`. A foot
+    with a ``heading`` (N, 2) (not NaN) reaches ``front`` ahead, ``back`` behind and
+    ``side`` across it; any other is a disc of its longest reach, in every direction.
+    front, back, side (N,) m."""
+    n = front.shape[0]
+    angles = 2.0 * np.pi * np.arange(PROBES) / PROBES
+    ring = np.stack([np.sin(angles), np.cos(angles)], axis=-1)  # (P, 2): (across, along)
+    reach = np.maximum.reduce([front, back, side, np.full(n, EDGE_MARGIN)])  # (N,)
+    disc = ring[None] * reach[:, None, None]  # (N, P, 2)
+    if heading is not None:
+        along = np.where(ring[None, :, 1] > 0, np.maximum(front, EDGE_MARGIN)[:, None],
+                         np.maximum(back, EDGE_MARGIN)[:, None]) * ring[None, :, 1]  # (N, P)
+        across = np.maximum(side, EDGE_MARGIN)[:, None] * ring[None, :, 0]
+        h = np.nan_to_num(heading)
+        left = np.stack([h[:, 1], -h[:, 0]], axis=-1)  # (x, z) turned a quarter about +Y
+        oriented = along[..., None] * h[:, None, :] + across[..., None] * left[:, None, :]
+        rigid: NDArray[np.bool_] = np.all(np.isfinite(heading), axis=-1)
+        disc = np.where(rigid[:, None, None], oriented, disc)
+    return np.concatenate([disc, 0.5 * disc], axis=1)
+
+
+def _judge(terrain: Terrain, spots: NDArray[np.float64], probe_offsets: NDArray[np.float64],
            max_slope: NDArray[np.float64]):
     """Ground points (N, C, 3), normals (N, C, 3), acceptability (N, C), whether the
     ground is no steeper than ``max_slope`` (N,) rad (N, C) and how uneven the footprint
     is (N, C: the largest excess over the plane tolerance, as a fraction of it) of
-    candidate spots (N, C, 2) for feet reaching ``reach`` (N,) m around their ball."""
+    candidate spots (N, C, 2) for feet probed at ``probe_offsets`` (N, K, 2) m around
+    their ball (:func:`footprint_probes`)."""
     n, count = spots.shape[:2]
     flat_spots = spots.reshape(-1, 2)
     height = terrain.height(flat_spots).reshape(n, count)
     normal = terrain.normal(flat_spots).reshape(n, count, 3)
     steep_ok = normal[..., 1] >= np.cos(max_slope)[:, None] - 1e-12
-    # Footprint probes: a ring of the foot's reach (toe or heel), and half of it, in every
-    # direction, at least EDGE_MARGIN from the ball.
-    angles = 2.0 * np.pi * np.arange(PROBES) / PROBES
-    ring = np.stack([np.sin(angles), np.cos(angles)], axis=-1)  # (P, 2)
-    probe_offsets = np.concatenate([ring[None] * reach[:, None, None], 0.5 * ring[None] * reach[:, None, None]],
-                                   axis=1)  # (N, 2P, 2)
     probe_count = probe_offsets.shape[1]
     probes = spots[:, :, None, :] + probe_offsets[:, None, :, :]  # (N, C, 2P, 2)
     probe_h = terrain.height(probes.reshape(-1, 2)).reshape(n, count, probe_count)

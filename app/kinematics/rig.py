@@ -196,6 +196,7 @@ class Rig:
     poses: KeyPoses = KeyPoses()
     overlap: Overlap = Overlap()
     roll: NDArray[np.float64] | None = None  # (L,) foot roll amount 0..1 (None: all 0)
+    heel: NDArray[np.float64] | None = None  # (L,) m a plantigrade heel reaches behind the ankle (None: all 0)
 
     @property
     def leg_count(self) -> int:
@@ -209,8 +210,11 @@ class Rig:
     @functools.cached_property
     def heel_length(self) -> NDArray[np.float64]:
         """How far (m) behind the ball a foot's heel touches the ground (L,): the flat
-        metatarsus of a plantigrade foot, 0 for feet that stand on their toes."""
-        return np.where(self.ankle_lift < np.radians(PLANTIGRADE_BELOW), self.metatarsus * np.cos(self.ankle_lift), 0.0)
+        metatarsus of a plantigrade foot and its heel behind the ankle
+        (:attr:`heel`), 0 for feet that stand on their toes."""
+        heel = np.zeros(self.leg_count) if self.heel is None else np.asarray(self.heel, dtype=np.float64)
+        return np.where(self.ankle_lift < np.radians(PLANTIGRADE_BELOW), self.metatarsus * np.cos(self.ankle_lift) + heel,
+                        0.0)
 
     @property
     def hip_height(self) -> float:
@@ -270,13 +274,14 @@ class Rig:
         """Each foot's rest position relative to its girdle's centre on the ground, in the
         body frame (x left, z forward), shape (L, 2): the hip's lateral offset plus the
         leg's abducted reach, turned forward or back by its splay (and a rolling
-        plantigrade foot's heel length ahead)."""
+        plantigrade foot's flat metatarsus ahead)."""
         reach = self.sideways_reach
         lateral = self.hip_side * (self.hip_offset + reach * np.cos(self.splay))
         # A rolling plantigrade foot stands with its ankle a little behind the hip at
         # mid-stance, the ball ahead: it strikes with its heel about a third of a stride
         # ahead of the hip and pushes off well behind it, as walkers do.
-        ahead = np.where(self.roll_amount > 0, self.heel_length - STANCE_BACK * 0.5 * self.stride_length, 0.0)
+        ahead = np.where((self.roll_amount > 0) & (self.heel_length > 0),
+                         self.metatarsus * np.cos(self.ankle_lift) - STANCE_BACK * 0.5 * self.stride_length, 0.0)
         return np.stack([lateral, reach * np.sin(self.splay) + ahead], axis=-1)
 
     def with_gait(self, gait: GaitParams) -> Rig:

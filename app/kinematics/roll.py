@@ -42,7 +42,7 @@ STRAIGHT_KNEE = np.radians(3.0)  # a rolling plantigrade stance leg is never str
 SWING_DORSIFLEXION = 0.0  # rad: the swinging plantigrade foot's ankle between lift-off and strike
 LAND = 0.3  # of the swing, before the strike: how long the strike pose builds
 BLEND = 0.4  # of the swing: how long the lift-off pose fades and the strike pose builds
-STRIKE_DROP = 0.5  # of the foot's length: how fast (per swing) a rolling foot meets the ground, so it strikes
+STRIKE_DROP = 1.0  # of the foot's length: how fast (per swing) a rolling foot meets the ground, so it strikes
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ joint markers). :func:`motion_instances` builds a whole clip in one numpy pass;
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import TYPE_CHECKING
 
@@ -186,7 +186,8 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
     r = radii[legs]  # (M, 5)
     color = leg_color[legs]
     hind = rig.girdle[legs] == rig.girdle.max()
-    hip, knee, ankle, ball, toe = (j[:, :, k] for k in range(5))
+    hip, knee, ball, toe = j[:, :, 0], j[:, :, 1], j[:, :, 3], j[:, :, 4]
+    heels = _heels(rig, joints)[:, legs]
     # Thigh (hind) or upper arm (fore): from just above the hip to past the femur's middle.
     # (It starts a little down the bone, so it never shows above the back.)
     top = np.where(hind, 1.85, 1.55) * r[:, 0]
@@ -197,13 +198,14 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
         pick = np.array([k == kind for k in kinds])
         if not pick.any():
             continue
-        a, b, t, rb, c = ankle[:, pick], ball[:, pick], toe[:, pick], r[pick], color[pick]
+        b, t, rb, c = ball[:, pick], toe[:, pick], r[pick], color[pick]
         if kind == "plantigrade":  # a flat sole from heel to toes
-            length = np.linalg.norm(t - a, axis=-1, keepdims=True)
+            heel = heels[:, pick]
+            length = np.linalg.norm(t - heel, axis=-1, keepdims=True)
             radii_e = np.concatenate([np.broadcast_to(1.35 * rb[:, 2:3], length.shape),
                                       np.broadcast_to(0.6 * rb[:, 2:3], length.shape),
                                       0.5 * length + 0.3 * rb[:, 2:3]], axis=-1)
-            ellipsoids.append(_ellipsoids(0.5 * (a + t), t - a, radii_e, c))
+            ellipsoids.append(_ellipsoids(0.5 * (heel + t), t - heel, radii_e, c))
         elif kind == "digitigrade":  # a round paw over the toes
             length = np.linalg.norm(t - b, axis=-1, keepdims=True)
             radii_e = np.concatenate([np.broadcast_to(1.45 * rb[:, 3:4], length.shape),
@@ -215,6 +217,22 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
             radii_e = np.broadcast_to(1.3 * rb[:, 3:4], b.shape)
             ellipsoids.append(_ellipsoids(b, t - b, radii_e, c))
     return capsules, ellipsoids
+
+
+def _heels(rig: Rig, joints: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Where each foot's heel (T, L, 3) reaches behind its ankle (``legs.NAME.heel``, the
+    plantigrade calcaneus), the ankle itself where it has none; the foot's plane is its
+    horizontal direction (ankle to toe tip) and the vertical. joints (T, L, 5, 3)."""
+    from ..kinematics.roll import heel_points
+
+    ankle = joints[..., 2, :]
+    if rig.heel is None or not np.any(rig.heel > 0):
+        return ankle
+    forward = joints[..., 4, :] - ankle
+    forward[..., 1] = 0.0
+    forward /= np.maximum(np.linalg.norm(forward, axis=-1, keepdims=True), 1e-12)
+    heel = heel_points(replace(rig, roll=np.ones(rig.leg_count)), joints, forward, UP)
+    return np.where((rig.heel > 0)[None, :, None], heel, ankle)
 
 
 _ARM_TAPER = np.array([1.0, 0.72, 0.5, 0.42])  # shoulder, elbow, wrist, hand tip (of the arm's radius)

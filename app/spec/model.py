@@ -64,6 +64,7 @@ class LegSpec:
     abduction: float = 0.0
     splay: float = 0.0
     roll: float = 0.0
+    heel: float = 0.0
 
     @property
     def positions(self) -> tuple[float, ...]:
@@ -248,7 +249,7 @@ class CreatureSpec:
         return atomic_write_text(Path(path), text)
 
 
-_LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0, "roll": 0.0}  # left out of saved files
+_LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0, "roll": 0.0, "heel": 0.0}  # left out of saved files
 
 
 def _leg_table(leg: LegSpec) -> dict[str, Any]:

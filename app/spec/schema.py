@@ -99,6 +99,8 @@ LEG_RULES: dict[str, Rule] = {
     "toe": _length("toe length, 0 for hooves", zero_ok=True),
     "ankle_lift": _num(0, 90, unit="deg",
                        doc="metatarsus angle to the ground at rest: ~0 plantigrade, mid digitigrade, ~90 unguligrade"),
+    "heel": _length("how far a plantigrade foot's heel reaches behind its ankle (the calcaneus; 0 puts the "
+                    "heel under the ankle); it strikes first and the foot rolls down about it", zero_ok=True, hi=1.0),
     "natural_bend": _num(0, 0.6, doc="rest length as a fraction below full extension: L_rest = L_max (1 - bend)"),
     "knee": Rule("choice", choices=KNEE_DIRECTIONS,
                   doc="which way the middle joint points: forward (knee), back (elbow), out (up and away from "
