@@ -36,6 +36,7 @@ QUADRUPED_RANGES = {
                         "head vertical cm": (3.0, 12.0), "head frequency / stride frequency": (1.8, 2.2)},
     ("horse", "trot"): {"duty factor": (0.38, 0.47), "stride m": (2.3, 3.0), "cycle s": (0.65, 0.8),
                         "head vertical cm": (3.0, 12.0)},
+    ("horse", "gallop"): {"duty factor": (0.20, 0.30), "head frequency / stride frequency": (0.8, 1.2)},
     ("dog", "rotary-gallop"): {"back flexion deg": (8.0, 20.0)},
     ("dog", "bound"): {"back flexion deg": (8.0, 20.0)},
 }

@@ -116,6 +116,41 @@ def test_the_horse_trots_a_trotter_s_stride_and_nods() -> None:
     assert q["head frequency / stride frequency"] == pytest.approx(2.0, abs=0.2)
 
 
+def _fore_touchdowns(motion) -> list[np.ndarray]:
+    c = motion.contact[:, :2]  # the fore pair (LF, RF)
+    return [np.nonzero(c[1:, k] & ~c[:-1, k])[0] + 1 for k in range(2)]
+
+
+@pytest.mark.parametrize("gait", ["walk", "trot"])
+def test_the_horse_s_head_is_lowest_as_a_fore_foot_takes_the_weight(gait: str) -> None:
+    """Twice a stride, the head's low point (against the withers' own motion: the neck's
+    bow) comes within a fifth of a cycle after a fore foot lands, never before it."""
+    rig = build_rig(load_creature("horse").with_overrides({"gait.preset": gait}))
+    motion, _ = clip_motion(rig, 240.0, cycles=4.0)
+    bow = motion.neck[:, 0, 1] - motion.head[:, 1, 1]  # the nose below the neck's root
+    period = 240.0 / rig.gait.frequency
+    lows = [i for i in range(1, len(bow) - 1) if bow[i] >= bow[i - 1] and bow[i] > bow[i + 1]]
+    assert len(lows) >= 6
+    touchdowns = np.concatenate(_fore_touchdowns(motion))
+    for low in lows[1:-1]:
+        since = (low - touchdowns[touchdowns <= low]).min() / period
+        assert 0.0 < since <= 0.2, (gait, low, since)
+
+
+def test_the_galloping_horse_s_neck_swings_once_a_stride() -> None:
+    """In the gallop the head rises and falls once a stride (the neck swinging with it),
+    lowest while the fore feet bear the weight and highest through the hind stance."""
+    rig = build_rig(load_creature("horse").with_overrides({"gait.preset": "gallop"}))
+    motion, _ = clip_motion(rig, 240.0, cycles=6.0)
+    q = quadruped_measures(motion)
+    assert q["head frequency / stride frequency"] == pytest.approx(1.0, abs=0.2)
+    assert q["head vertical cm"] >= 10.0
+    head = motion.head[:, 1, 1]
+    fore = motion.contact[:, :2].any(axis=1) & ~motion.contact[:, 2:].any(axis=1)
+    hind = motion.contact[:, 2:].any(axis=1) & ~motion.contact[:, :2].any(axis=1)
+    assert head[fore].mean() < head[hind].mean() - 0.05
+
+
 @pytest.mark.parametrize("gait", ["rotary-gallop", "bound"])
 def test_a_galloping_dog_flexes_its_back(gait: str) -> None:
     rig = build_rig(load_creature("dog").with_overrides({"gait.preset": gait}))

@@ -33,6 +33,8 @@ REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full 
 MAX_ROLL = 0.5  # rad
 NOD = 0.06  # rad: a walking quadruped's neck and head bow, either way, for a neck as long as its legs
 NOD_DELAY = 0.15  # of a cycle after a fore foot lands: the head is lowest
+SWING = 0.12  # rad: a galloping quadruped's neck swing, either way, for a neck as long as its legs
+SWING_DELAY = 0.1  # of a cycle after the fore feet's mean touchdown: the galloping head is lowest
 ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
 MAX_END_SLOPE = 0.35  # the trunk's ends beyond the girdles pitch at most this much (rise over run)
 
@@ -230,19 +232,27 @@ def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
 
 
 def head_nod(rig: Rig, clock: NDArray[np.float64]) -> NDArray[np.float64] | float:
-    """How far (rad, + down) a walking or trotting quadruped bows its neck and head at
-    cycle time ``clock`` (T,): twice a stride, lowest :data:`NOD_DELAY` of a cycle after
-    each fore foot lands (as it takes the weight: horses and dogs nod so in the walk and
-    trot), by up to :data:`NOD` for a neck as long as the legs. Nothing for upright or
-    sprawled bodies, or where the fore feet do not alternate (gallops, bounds)."""
-    front = np.nonzero(rig.girdle == rig.girdle.max())[0]
+    """How far (rad, + down) a quadruped bows its neck and head at cycle time ``clock``
+    (T,). Where the fore feet alternate (walk, trot) it nods twice a stride, lowest
+    :data:`NOD_DELAY` of a cycle after each fore foot lands (as it takes the weight), by up
+    to :data:`NOD`; where they land together or in quick succession (gallops, canter,
+    bounds) the neck swings once a stride, lowest :data:`SWING_DELAY` after the fore feet
+    land (the forehand loaded) and highest through the hind stance and the flight, by up
+    to :data:`SWING` (Muybridge's galloping horses; fidelity.md). Both for a neck as long as
+    the legs, less for shorter necks; nothing for upright or sprawled bodies."""
+    front = np.nonzero(rig.girdle == 0)[0]  # the fore pair
     if rig.body.upright or len(front) != 2 or np.any(rig.knee_out[front]) or rig.leg_count < 4:
         return 0.0
     left, right = rig.gait.offsets[front]
     apart = abs(np.mod(right - left, 1.0) - 0.5)  # 0 when the fore feet alternate
-    weight = float(np.clip(1.0 - apart / 0.15, 0.0, 1.0))
+    alternate = float(np.clip(1.0 - apart / 0.15, 0.0, 1.0))
     size = float(np.clip(rig.body.neck_length / max(rig.hip_height, 1e-6), 0.0, 1.0))
-    return NOD * size * weight * np.cos(4.0 * np.pi * (np.asarray(clock) - left - NOD_DELAY))
+    t = np.asarray(clock)
+    nod = NOD * alternate * np.cos(4.0 * np.pi * (t - left - NOD_DELAY))
+    # The fore feet's mean touchdown, on the circle (they may straddle the cycle's start).
+    together = left + 0.5 * (np.mod(right - left + 0.5, 1.0) - 0.5)
+    swing = SWING * (1.0 - alternate) * np.cos(2.0 * np.pi * (t - together - SWING_DELAY))
+    return size * (nod + swing)
 
 
 def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float64], rear: NDArray[np.float64],
