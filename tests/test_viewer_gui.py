@@ -465,6 +465,47 @@ def test_a_click_on_the_ground_adds_a_waypoint_and_the_creature_goes_there(displ
         quit_viewer(display, proc, window)
 
 
+def test_clicks_are_clicks_at_any_frame_rate_and_the_view_holds_still(display: str, tmp_path: Path) -> None:
+    """A press that jitters a few pixels before its release, and a press read in the same
+    frame as the jump to it (a slow frame), are clicks: each adds a waypoint and neither
+    turns the camera. While waypoints are edited the follow camera does not turn."""
+    with running_viewer(display, tmp_path, "dog", "--size", "1024x720") as (proc, dump, window):
+        for header in ("panel.Creature", "panel.Gait", "panel.Path", "path.edit"):
+            click_widget(display, dump, header)
+        before = read_state(dump)["camera"]
+        xdotool(display, "mousemove", "900", "620")
+        time.sleep(0.4)
+        xdotool(display, "mousedown", "1")
+        time.sleep(0.3)
+        xdotool(display, "mousemove", "903", "622")  # a hand's tremor while pressing
+        time.sleep(0.3)
+        xdotool(display, "mouseup", "1")
+        one = read_state(dump, until=lambda s: s["waypoints"] or s["error"])
+        assert one["error"] is None and len(one["waypoints"]) == 1
+        # The jump and the press in one event burst: ImGui reads them in one frame.
+        xdotool(display, "mousemove", "820", "560", "click", "1")
+        two = read_state(dump, until=lambda s: len(s["waypoints"]) >= 2 or s["error"])
+        assert two["error"] is None and len(two["waypoints"]) == 2
+        later = read_state(dump, until=lambda s: s["frame"] >= two["frame"] + 40)["camera"]
+        for camera in (one["camera"], two["camera"], later):
+            assert camera["azimuth"] == pytest.approx(before["azimuth"], abs=1e-6)  # no orbit, no turn
+            assert camera["elevation"] == pytest.approx(before["elevation"], abs=1e-6)
+        quit_viewer(display, proc, window)
+
+
+def test_the_path_panel_shows_the_route_the_creature_walks(display: str, tmp_path: Path) -> None:
+    """Started on a circle from the command line, the Path panel reads circle, with its
+    radius and turn; a waypoint route read from the panel's own combo stays put."""
+    with running_viewer(display, tmp_path, "dog", "--path", "circle:r=3,dir=right", "--size",
+                        "1024x720") as (proc, dump, window):
+        for header in ("panel.Creature", "panel.Gait", "panel.Path"):
+            click_widget(display, dump, header)
+        state = read_state(dump, until=lambda s: "path.kind" in s["widgets"])
+        assert state["path_panel"] == {"kind": "circle", "r": 3.0, "dir": "right"}
+        assert state["path"].startswith("circle:r=3")
+        quit_viewer(display, proc, window)
+
+
 def test_a_herd_scene_opens_and_renders(display: str, tmp_path: Path) -> None:
     from app.resources import scenes_dir
 

@@ -45,6 +45,8 @@ class CreatureSession:
     def __post_init__(self) -> None:
         self.spec = self.base
         self.live = LiveMotion(build_rig(self.base), self.world)  # raises GaitlabError for a world it cannot walk
+        if self.world.path.kind in PATH_KINDS:  # the Path panel shows the route it was started on
+            self.path_kind = self.world.path.kind
 
     @classmethod
     def start(cls, spec: CreatureSpec, world: World, file_path: str = "") -> CreatureSession:
@@ -53,6 +55,9 @@ class CreatureSession:
             return cls(spec, world, file_path=file_path)
         except GaitlabError as exc:
             raise GaitlabError(f"{spec.name}: {exc}") from None
+
+
+PATH_KINDS = ("straight", "circle", "figure-eight", "waypoints")  # the Path panel's kinds
 
 
 class PerCreature(Generic[T]):

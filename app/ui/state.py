@@ -29,7 +29,7 @@ from ..kinematics.herd import Herd
 from ..kinematics.live import LiveMotion
 from ..kinematics.motion import Pose
 from ..kinematics.overlays import FootprintTrail
-from ..kinematics.path import StraightPath
+from ..kinematics.path import CirclePath, FigureEightPath, StraightPath
 from ..kinematics.world import World
 from ..render.camera import Camera
 from ..render.options import RenderOptions
@@ -90,6 +90,10 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
         self.terrain_values: dict[str, dict[str, Any]] = {}
         self.path_values: dict[str, dict[str, Any]] = {
             "straight": {}, "circle": {"r": 2.0, "dir": "left"}, "figure-eight": {"r": 2.0}, "waypoints": {}}
+        if isinstance(world.path, (CirclePath, FigureEightPath)):  # the values of the route it was started on
+            self.path_values[world.path.kind]["r"] = world.path.radius
+        if isinstance(world.path, CirclePath):
+            self.path_values["circle"]["dir"] = world.path.direction
         self.footprints = FootprintTrail()
         self.arcs = ArcTrail()
         self.show_ghosts = False  # the key poses of the current step drawn faintly along the path

@@ -86,7 +86,8 @@ class ViewMixin(StateBase):
 
     def follow_creature(self, pose: Pose | None = None) -> None:
         """Keep the camera on the creature: the target over its root, its height eased
-        towards the root's (stairs, hills), and the view turning with the path's heading."""
+        towards the root's (stairs, hills), and the view turning with the path's heading
+        (not while waypoints are edited)."""
         pose = pose or self.pose()
         root = pose.root[:3, 3]
         _, tangent = self.world.path.sample(np.array([pose.travel]))
@@ -104,8 +105,10 @@ class ViewMixin(StateBase):
         ahead = self._follow_ahead * tangent[0] if not self.world.in_place else np.zeros(2)
         if self.herd is not None:  # aim between the creature and its herd's middle
             ahead = ahead + 0.5 * (self.herd.position.mean(axis=0) - root[[0, 2]])
+        # While waypoints are edited the view does not turn: the ground stays put under the cursor.
+        turning = not (self.world.in_place or self.waypoint_edit)
         camera = replace(self.camera, target=(float(root[0] + ahead[0]), ty, float(root[2] + ahead[1])),
-                         azimuth=self.camera.azimuth + (0.0 if self.world.in_place else turn))
+                         azimuth=self.camera.azimuth + (turn if turning else 0.0))
         if not self.world.terrain.flat and not camera.top_down:
             # Rise over hills that would hide the creature, easing back down after them.
             base = camera.elevation if self._elevation is None else self._elevation

@@ -37,6 +37,8 @@ from .state import ViewerState
 from .style import setup_style
 from .window import GlfwWindow
 
+CLICK_SLOP = 4.0  # px: a press that moves no further than this before its release is a click
+
 
 @dataclass
 class ViewerOptions:
@@ -98,6 +100,7 @@ class Viewer:
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
         self._click_start: tuple[float, float] | None = None  # where the left button went down
+        self._dragging = False  # the left button, down, has moved beyond CLICK_SLOP: an orbit
         self._press: tuple[np.ndarray, int | None, tuple[float, float], int] | None = None  # waypoint press
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
         self.extra_panels: tuple = ()
@@ -149,13 +152,19 @@ class Viewer:
         dx, dy = io.mouse_delta.x, io.mouse_delta.y
         if imgui.is_mouse_clicked(0):
             self._click_start = (io.mouse_pos.x, io.mouse_pos.y)
+            self._dragging = False
+        if imgui.is_mouse_down(0) and not self._dragging:
+            # A press is a click until it moves beyond the slop, however few frames that
+            # takes (a jump read in the press's own frame is not a drag).
+            self._dragging = self._moved_since_press()
+            dx = dy = 0.0
         if state.waypoint_edit and self._edit_waypoints():
             pass  # the mouse edited the route
         elif len(state.names) > 1 and imgui.is_mouse_released(0) and self._click_selects():
             pass  # a click on another creature put it in the panels
         elif imgui.is_mouse_double_clicked(0):
             self._pick = (io.mouse_pos.x, io.mouse_pos.y)
-        elif imgui.is_mouse_down(0) and (dx or dy):
+        elif imgui.is_mouse_down(0) and self._dragging and (dx or dy):
             state.orbit(dx, dy)
         if (imgui.is_mouse_down(1) or imgui.is_mouse_down(2)) and (dx or dy):
             state.pan(dx, dy, view_height)
@@ -180,11 +189,15 @@ class Viewer:
         where = self._mouse_in_view()
         return None if where is None else eye_ray(self.state.camera, where[1], where[0])
 
+    def _moved_since_press(self) -> bool:
+        """Whether the mouse is more than :data:`CLICK_SLOP` pixels from where the left
+        button went down (no press known: it has)."""
+        io, start = imgui.get_io(), self._click_start
+        return start is None or (io.mouse_pos.x - start[0]) ** 2 + (io.mouse_pos.y - start[1]) ** 2 > CLICK_SLOP ** 2
+
     def _click_selects(self) -> bool:
         """A click (no drag) on a scene creature other than the selected one selects it."""
-        io = imgui.get_io()
-        start = self._click_start
-        if start is None or (io.mouse_pos.x - start[0]) ** 2 + (io.mouse_pos.y - start[1]) ** 2 > 16.0:
+        if self._dragging or self._moved_since_press():
             return False  # a drag (orbit), not a click
         ray = self._mouse_ray()
         index = None if ray is None else self.state.pick_creature(*ray)
@@ -244,7 +257,7 @@ class Viewer:
                     return True
             return False
         point, index, start, count = self._press
-        moved = (mouse[0] - start[0]) ** 2 + (mouse[1] - start[1]) ** 2 > 16.0  # more than 4 px
+        moved = (mouse[0] - start[0]) ** 2 + (mouse[1] - start[1]) ** 2 > CLICK_SLOP ** 2
         if imgui.is_mouse_down(0):
             if index is not None and len(state.waypoints) != count:
                 self._press = (point, None, start, count)  # a waypoint was reached meanwhile: the drag ends
@@ -392,6 +405,7 @@ class Viewer:
             "root": [float(v) for v in state.pose().root[:3, 3]], "travel": state.live.travel,
             "terrain": state.world.terrain.describe(), "planted_jump_max": state.planted_jump_max,
             "waypoints": [list(p) for p in state.waypoints], "path": state.world.path.describe(),
+            "path_panel": {"kind": state.path_kind, **state.path_values[state.path_kind]},
             "herd": 1 if state.herd is None else state.herd.count + 1,
             "scene": state.names, "selected": state.selected, "screen": self._creature_screen_points(),
             "arcs": {joint: int(points.shape[0]) for joint, points in state.arcs.trails()[0].items()},
@@ -472,7 +486,8 @@ class Viewer:
             pose = sampled.pose(sampled.frame_count - 1)
         else:
             pose = state.pose()
-        state.follow_creature(pose)
+        if not (state.waypoint_edit and self._press is not None):  # the camera holds still under a waypoint press
+            state.follow_creature(pose)
         state.note_pose(pose)
         if self.options.dump_state is not None:
             self.monitor.measure(state.live.time)  # in step with the dumped state
