@@ -21,7 +21,7 @@ from app.render.camera import frame_points
 from app.render.options import GroundView, RenderOptions
 from app.render.overlays import TARGET_COLOR, Overlays
 from app.render.renderer import SceneRenderer
-from app.render.scene import motion_bounds, motion_instances
+from app.render.scene import motion_bounds, motion_instances, srgb_to_linear
 from app.render.target import OffscreenTarget
 
 
@@ -134,3 +134,46 @@ def test_overlays_draw_on_the_ground(gl_ctx) -> None:
     finally:
         target.release()
         renderer.release()
+
+
+@pytest.mark.gl
+@pytest.mark.parametrize("creature", ["centipede", "ant", "dog"])
+def test_the_path_ribbon_lies_under_the_creature_and_is_its_size(gl_ctx, creature: str) -> None:
+    """The path drawn on a circle never covers the creature (every pixel of it that shows
+    without the path shows with it) and is a line of the walker's own size, however big
+    the scene around it: a horse far off in the same frame leaves it as it was (the
+    ribbon once grew with the scene's bounds and, near a small creature, filled the view)."""
+    from app.kinematics.path import StraightPath
+    from app.kinematics.world import World
+    from app.render.clip import ClipRenderer
+    from app.render.framing import clip_camera
+    from app.render.options import ViewSettings
+    from app.worlds import make_world
+
+    rig = build_rig(load_creature(creature))
+    motion, _ = clip_motion(rig, 25.0, cycles=1.0, world=make_world(f"circle:r={2 * rig.body_length:.3f}", "flat"))
+    horse, _ = clip_motion(build_rig(load_creature("horse")), 25.0, cycles=1.0,
+                           world=World(path=StraightPath(start=(6.0, 0.0))))
+    camera = clip_camera(motion, ViewSettings(size=(320, 240), camera="three-quarter"))
+    renderer = ClipRenderer((320, 240), "off", ctx=gl_ctx)
+    frame = motion.frame_count // 2
+    changed = {}
+    try:
+        for name, motions in (("alone", [motion]), ("scene", [motion, horse])):
+            without = renderer.frame(motions, frame, camera, RenderOptions(path=False)).astype(np.int16)
+            with_path = renderer.frame(motions, frame, camera, RenderOptions(path=True)).astype(np.int16)
+            changed[name] = np.abs(with_path - without).max(axis=-1) > 24
+            if name == "alone":
+                bare = without
+    finally:
+        renderer.release()
+    alone, scene = int(changed["alone"].sum()), int(changed["scene"].sum())
+    assert alone > 50  # the path is drawn
+    assert abs(scene - alone) < 0.3 * alone, (alone, scene)  # the walker's size, not the scene's
+    # Where the creature is (shades of its body colour), the path changes nothing.
+    body = np.sqrt(srgb_to_linear(rig.look.body_color)) * 255
+    scale = (bare @ body) / (body @ body)
+    creature_pixels = np.abs(bare - scale[..., None] * body).max(axis=-1) < 14
+    assert creature_pixels.sum() > 200
+    assert (changed["alone"] & creature_pixels).sum() <= 0.002 * creature_pixels.sum() + 2
+    assert alone < 0.12 * creature_pixels.sum()  # a line beside the creature, not a band

@@ -19,7 +19,7 @@ from .bodies import motion_body
 from .camera import Camera
 from .context import shared_headless_context
 from .fxaa import screen_tiles
-from .options import GroundView, RenderOptions
+from .options import GroundView, RenderOptions, path_half_width
 from .renderer import SceneRenderer
 from .scene import SceneInstances, frame_instances, motion_instances
 from .target import OffscreenTarget
@@ -63,7 +63,8 @@ class ClipRenderer:
         scene = frame_instances([self._instances(m, options).frame(index) for m in motions] + extras)
         lead = motions[0]
         ground = GroundView(terrain=lead.terrain, offset=float(lead.ground_offset[index]),
-                            path=None if lead.in_place else lead.path, travel=float(lead.travel[index]))
+                            path=None if lead.in_place else lead.path, travel=float(lead.travel[index]),
+                            path_width=path_half_width(lead.rig.hip_height, lead.rig.body_length))
         self.scene.draw_instances(scene, ground, camera, self.target.fbo, options)
         tiles = screen_tiles(scene, camera, self.target.size) if self.target.fxaa else None
         return self.target.read(tiles)

@@ -23,6 +23,7 @@ from .uniforms import Uniforms
 
 FLOOR_SEGMENTS = 64
 TERRAIN_CELLS = 72  # the terrain patch around the creature is this many cells across
+PATH_DEPTH_OFFSET = (-2.0, -8.0)  # the path ribbon pulled towards the eye (polygon offset factor, units)
 ELLIPSOID_LAYOUT = ("3f", ("in_pos",), "3f 3f 3f 3f 3f 3f/i",
                     ("in_center", "in_axis_x", "in_axis_y", "in_axis_z", "in_radii", "in_color"), ELLIPSOID_FLOATS)
 
@@ -148,16 +149,19 @@ class GroundPass:
         self._terrain_vao.render(moderngl.TRIANGLES)
 
     def draw_path(self, ground: GroundView, reach: float, radius: float, options: RenderOptions) -> None:
-        """The body's path as a thin ribbon draped over the ground, around the body."""
+        """The body's path as a thin ribbon draped over the ground, around the body, as
+        wide as ``ground.path_width`` (else scaled to the scene's ``radius``) and lifted
+        a fifth of that off the ground: under the creature's feet, never over it."""
         assert ground.path is not None
         terrain = ground.terrain
-        width = 0.012 * radius + 0.004
+        width = 0.012 * radius + 0.004 if ground.path_width is None else ground.path_width
         pts, tangents = ground.path.sample(np.arange(ground.travel - reach, ground.travel + reach, reach / 120.0))
         side = left_of(tangents) * width
         # Draped over the ground: each point as high as the ground around it, so the ribbon
         # never dips under a step between two points.
         step = tangents * (reach / 120.0)
-        y = np.maximum.reduce([terrain.height(pts + k * step) for k in (-1.0, 0.0, 1.0)]) + 0.004 * radius + 0.002
+        lift = 0.004 * radius + 0.002 if ground.path_width is None else 0.1 * width
+        y = np.maximum.reduce([terrain.height(pts + k * step) for k in (-1.0, 0.0, 1.0)]) + lift
         left, right = pts + side, pts - side
         strip = np.empty((2 * len(pts), 3), dtype="f4")
         strip[0::2] = np.column_stack([left[:, 0], y, left[:, 1]])
@@ -165,7 +169,11 @@ class GroundPass:
         if ground.offset:
             strip[:, 2] -= ground.offset
         self.uniforms.set(self.overlay_prog, "u_color", tuple(srgb_to_linear(options.path_color)))
+        # Nearly on the ground (under the feet), drawn over it by a depth offset rather than a
+        # lift that would have to grow with the depth range of the whole scene.
+        self.ctx.polygon_offset = PATH_DEPTH_OFFSET
         self.path.draw(strip)
+        self.ctx.polygon_offset = (0.0, 0.0)
 
     def draw_overlays(self, overlays: Overlays, terrain: Terrain, options: RenderOptions) -> None:
         """Footprints, touchdown targets and the support polygon, on the ground."""

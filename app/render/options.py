@@ -37,12 +37,22 @@ class RenderOptions:
 @dataclass(frozen=True)
 class GroundView:
     """The ground under a frame: the terrain, how far the ground has moved back (in place),
-    and the path to draw around the body's arc length ``travel`` (m) along it."""
+    and the path to draw around the body's arc length ``travel`` (m) along it, as a
+    ribbon ``path_width`` (m, each side of the path) wide scaled to the creature that
+    walks it (:func:`path_half_width`; None: to the scene's bounds)."""
 
     terrain: Terrain = field(default_factory=FlatTerrain)
     offset: float = 0.0
     path: Path | None = None
     travel: float = 0.0
+    path_width: float | None = None
+
+
+def path_half_width(hip_height: float, body_length: float) -> float:
+    """How wide (m, each side) a path ribbon is for a creature whose hips stand
+    ``hip_height`` m high on a body ``body_length`` m long: a line its own size, under
+    its feet (an ant's as a dog's; a long low centipede's still visible far off)."""
+    return 0.02 * hip_height + 0.004 * body_length + 0.0005
 
 
 @dataclass(frozen=True)

@@ -15,7 +15,7 @@ from ..kinematics.overlays import inside_polygon, planted_points, support_polygo
 from ..kinematics.poses import reference_foot
 from ..kinematics.world import World
 from ..render.camera import CHASE_LOOK_AHEAD, clear_elevations, frame_points, look_ahead, point3
-from ..render.options import GroundView, nice_grid_spacing
+from ..render.options import GroundView, nice_grid_spacing, path_half_width
 from ..render.overlays import Overlays
 from ..render.scene import leg_colors
 from .base import StateBase
@@ -146,7 +146,8 @@ class ViewMixin(StateBase):
     def ground(self, pose: Pose) -> GroundView:
         """What the renderer draws under ``pose``."""
         return GroundView(terrain=self.world.terrain, offset=pose.ground_offset,
-                          path=None if self.world.in_place else self.world.path, travel=pose.travel)
+                          path=None if self.world.in_place else self.world.path, travel=pose.travel,
+                          path_width=path_half_width(self.live.rig.hip_height, self.live.rig.body_length))
 
     def ghost_poses(self) -> list[Pose]:
         """The key poses of the step the creature is in, along its path (Key poses panel's
