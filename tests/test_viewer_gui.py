@@ -506,6 +506,22 @@ def test_the_path_panel_shows_the_route_the_creature_walks(display: str, tmp_pat
         quit_viewer(display, proc, window)
 
 
+def test_r_recovers_the_view_of_a_creature_up_a_flight_of_stairs(display: str, tmp_path: Path) -> None:
+    """Once the dog has climbed the stairs, R frames it where it is, not at the foot of
+    the flight: its root is in the window and the camera aims at its height."""
+    with running_viewer(display, tmp_path, "dog", "--terrain", "stairs:rise=0.2,run=0.35,steps=12,start=1",
+                        "--size", "1024x720") as (proc, dump, window):
+        up = read_state(dump, until=lambda s: s["root"][1] > 0.6, timeout=180.0)
+        xdotool(display, "mousemove", "700", "300")
+        xdotool(display, "key", "r")
+        after = read_state(dump, until=lambda s: s["frame"] >= up["frame"] + 40)
+        width, height = after["window"]["size"]
+        x, y = after["screen"][0]
+        assert 0 <= x < width and 0 <= y < height, (x, y)
+        assert abs(after["camera"]["target"][1] - after["root"][1]) < 0.5
+        quit_viewer(display, proc, window)
+
+
 def test_a_herd_scene_opens_and_renders(display: str, tmp_path: Path) -> None:
     from app.resources import scenes_dir
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -315,3 +316,36 @@ def test_export_from_the_viewer_starts_at_the_phase_on_screen(tmp_path) -> None:
     first = clip.positions(names)[0].reshape(len(pose.leg_names), 2, 3)
     shown = pose.joints[:, [0, 3]]
     assert np.abs((first[:, 1] - first[:, 0]) - (shown[:, 1] - shown[:, 0])).max() < 0.01  # feet relative to hips
+
+
+def _in_clear_view(state) -> bool:
+    """The creature's root is inside the view and no ground lies between it and the eye."""
+    root = state.pose().root[:3, 3]
+    clip = np.array(state.camera.view_proj(16 / 9), dtype=np.float64) @ np.append(root, 1.0)
+    ndc = clip[:2] / clip[3]
+    eye = np.asarray(state.camera.eye, dtype=np.float64)
+    line = eye[None] + np.linspace(0.05, 0.95, 60)[:, None] * (root - eye)[None]
+    hidden = np.any(line[:, 1] < state.world.terrain.height(line[:, [0, 2]]) - 1e-3)
+    return bool(clip[3] > 0 and np.all(np.abs(ndc) < 0.95) and not hidden)
+
+
+@pytest.mark.parametrize("creature, terrain", [("dog", "stairs:rise=0.2"), ("human", "stairs"),
+                                               ("spider", "hills:amp=0.3")])
+def test_the_follow_camera_and_r_keep_the_creature_in_view(creature: str, terrain: str) -> None:
+    """Following a creature up a flight of stairs or over hills, the camera keeps it in
+    view with no ground in between; R frames it again where it is (up the flight, not at
+    its foot)."""
+    from app.worlds import make_world
+
+    state = ViewerState(load_creature(creature), make_world("straight", terrain))
+    state.default_view()
+    seen = []
+    for _ in range(30 * 12):
+        state.advance(1 / 30)
+        state.follow_creature()
+        seen.append(_in_clear_view(state))
+    assert np.mean(seen) >= 0.98
+    state.camera = replace(state.camera, target=(0.0, 0.0, 0.0))  # looking elsewhere
+    state.default_view()
+    assert _in_clear_view(state)
+    assert abs(state.camera.target[1] - state.pose().root[1, 3]) < 0.5

@@ -152,7 +152,7 @@ def clear_elevations(targets: NDArray[np.float64], azimuths: NDArray[np.float64]
     el = np.radians(candidates)[None, :]
     direction = np.stack(np.broadcast_arrays(-np.cos(el) * np.cos(az), np.sin(el), np.cos(el) * np.sin(az)),
                          axis=-1)  # (T, C, 3)
-    along = np.linspace(0.2, 1.0, 17)  # from near the target out to the eye
+    along = np.linspace(0.02, 1.0, 40)  # from next to the target (a riser at its feet) out to the eye
     points = targets[:, None, None, :] + distance * along[None, None, :, None] * direction[:, :, None, :]
     ground = height_at(points[..., [0, 2]].reshape(-1, 2)).reshape(points.shape[:-1])
     clear = np.all(points[..., 1] >= ground + margin, axis=-1)  # (T, C)

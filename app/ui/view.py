@@ -46,8 +46,14 @@ class ViewMixin(StateBase):
             heading = float(np.degrees(np.arctan2(root[0, 2], root[2, 2])))
             tx, ty, tz = cam.target
             c, s = np.cos(np.radians(heading)), np.sin(np.radians(heading))
-            target = (float(root[0, 3] + c * tx + s * tz), ty, float(root[2, 3] - s * tx + c * tz))
-            cam = replace(cam, target=target, azimuth=cam.azimuth + heading)
+            # On the ground where the creature is now (a flight of stairs up, a hill down).
+            x, z = float(root[0, 3] + c * tx + s * tz), float(root[2, 3] - s * tx + c * tz)
+            ground = float(self.world.terrain.height(np.array([[root[0, 3], root[2, 3]]]))[0])
+            cam = replace(cam, target=(x, ty + ground, z), azimuth=cam.azimuth + heading)
+            if not self.world.terrain.flat and not cam.top_down:  # over the steps or hills in between
+                need = clear_elevations(np.array([cam.target]), np.array([cam.azimuth]), cam.elevation, cam.distance,
+                                        self.world.terrain.height, margin=0.1 * self.live.rig.hip_height)[0]
+                cam = replace(cam, elevation=max(cam.elevation, float(need)))
         if self.herd is not None:  # back off so the group behind the creature is in view
             extent = float(np.abs(self.herd.slot).max()) + length
             cam = replace(cam, distance=cam.distance * max(1.0, 0.4 * extent / length))
@@ -113,9 +119,16 @@ class ViewMixin(StateBase):
             # Rise over hills that would hide the creature, easing back down after them.
             base = camera.elevation if self._elevation is None else self._elevation
             self._elevation = base
-            need = clear_elevations(np.array([camera.target]), np.array([camera.azimuth]), base, camera.distance,
-                                    self.world.terrain.height, margin=0.1 * self.live.rig.hip_height)[0]
-            camera = replace(camera, elevation=camera.elevation + (max(base, need) - camera.elevation) * 0.08)
+            # The sight line to the creature's body (not only to the target above it) clears the ground.
+            hip = self.live.rig.hip_height
+            body = np.array([[camera.target[0], min(camera.target[1], float(root[1])), camera.target[2]]])
+            need = clear_elevations(body, np.array([camera.azimuth]), base, camera.distance,
+                                    self.world.terrain.height, margin=0.1 * hip)[0]
+            # Up at once where the ground would come between (a step rising into the view),
+            # easing back down after it.
+            goal = max(base, need)
+            rate = 1.0 if goal > camera.elevation else 0.08
+            camera = replace(camera, elevation=camera.elevation + (goal - camera.elevation) * rate)
         self.camera = camera
 
     def overlays(self, pose: Pose) -> Overlays | None:
