@@ -43,6 +43,10 @@ DEFAULT_ANTIALIAS: Antialias = "fxaa"
 # What the viewer can draw on the ground besides the creature (View panel, --overlays).
 Overlay = Literal["footprints", "targets", "support"]
 OVERLAYS: tuple[str, ...] = get_args(Overlay)
+# The viewer's sidebar panels, top to bottom (``gaitlab view --panels`` opens them by these
+# names, lower case with hyphens: key-poses).
+PANEL_TITLES: tuple[str, ...] = ("Creature", "Gait", "Key poses", "Body", "View", "Terrain", "Path", "Playback",
+                                 "Plots", "Record", "File")
 
 # Joints whose paths over a cycle can be drawn as arcs (render --arcs, the viewer's View panel).
 ArcJoint = Literal["toe", "heel", "knee", "hip", "hand", "head", "tail"]

@@ -191,3 +191,17 @@ def test_existing_output_survives_a_failed_render(tmp_path: Path) -> None:
     out = gaitlab("render", "dog", "--set", "gait.duty_factor=2", "-o", "x.gif", cwd=tmp_path)
     assert out.returncode == 2
     assert keep.read_bytes() == b"previous"
+
+
+def test_view_panels_names_every_sidebar_panel() -> None:
+    """``gaitlab view --panels`` takes each sidebar panel by name and nothing else."""
+    import argparse
+
+    from app.choices import PANEL_TITLES
+    from app.cli.options import panels
+    from app.ui.panels import PANELS
+
+    assert tuple(title for title, _, _ in PANELS) == PANEL_TITLES
+    assert panels("plots,key-poses,Path") == ("Plots", "Key poses", "Path")
+    with pytest.raises(argparse.ArgumentTypeError, match="expected a comma-separated list of creature"):
+        panels("plot")

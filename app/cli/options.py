@@ -13,7 +13,7 @@ import argparse
 from collections.abc import Callable
 from pathlib import Path
 
-from ..choices import MAX_CRF, MAX_HERD, MAX_SIZE, OVERLAYS
+from ..choices import MAX_CRF, MAX_HERD, MAX_SIZE, OVERLAYS, PANEL_TITLES
 from ..gaits import GAIT_PRESETS
 from ..limits import MAX_FPS, MAX_SECONDS, MAX_SPEED
 from ..numbers import NumberProblem, Range
@@ -89,6 +89,16 @@ def overlays(text: str) -> tuple[str, ...]:
     if unknown or not names:
         raise argparse.ArgumentTypeError(f"{text!r}: expected a comma-separated list of {', '.join(OVERLAYS)}")
     return names
+
+
+def panels(text: str) -> tuple[str, ...]:
+    """Panel titles from a comma-separated list of their names (``plots,key-poses``)."""
+    by_name = {title.lower().replace(" ", "-"): title for title in PANEL_TITLES}
+    names = [n.strip().lower() for n in text.split(",") if n.strip()]
+    unknown = [n for n in names if n not in by_name]
+    if unknown or not names:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a comma-separated list of {', '.join(by_name)}")
+    return tuple(dict.fromkeys(by_name[n] for n in names))
 
 
 def herd(text: str) -> int:

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from ..choices import OVERLAYS
 from ..errors import GaitlabError
-from .options import add_creature, add_world, herd, overlays, samples, size
+from .options import add_creature, add_world, herd, overlays, panels, samples, size
 
 EPILOG = """\
 examples:
@@ -51,6 +51,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                              "where swinging feet will land, the planted feet's support polygon with the trunk's "
                              "centre in it (e.g. --overlays footprints,support)")
     window.add_argument("--hide-ui", action="store_true", help="start with the panels hidden (Tab shows them)")
+    window.add_argument("--panels", metavar="LIST", type=panels, default=(),
+                        help="open these sidebar panels at start, e.g. --panels plots,key-poses (creature, gait, "
+                             "key-poses, body, view, terrain, path, playback, plots, record, file)")
     window.add_argument("--report-fps", action="store_true", help="print the frame rate and time split at exit")
     window.add_argument("--dump-state", metavar="PATH", type=Path, help=argparse.SUPPRESS)
 
@@ -75,5 +78,6 @@ def run(args: argparse.Namespace) -> int:
 
     options = ViewerOptions(size=args.size, vsync=not args.no_vsync, samples=args.msaa, frames=args.frames,
                             screenshot=args.screenshot, hide_ui=args.hide_ui, report_fps=args.report_fps,
-                            dump_state=args.dump_state, presets=preset_creature_names(), overlays=args.overlays)
+                            dump_state=args.dump_state, presets=preset_creature_names(), overlays=args.overlays,
+                            panels=args.panels)
     return run_viewer(cast, options)

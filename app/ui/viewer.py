@@ -54,6 +54,7 @@ class ViewerOptions:
     dump_state: Path | None = None  # write the viewer state as JSON (automation, tests)
     presets: list[str] = field(default_factory=list)
     overlays: tuple[str, ...] = ()  # turned on at start: footprints, targets, support
+    panels: tuple[str, ...] = ()  # sidebar panels opened at start (titles)
 
 
 def _ema(old: float, new: float, k: float = 0.1) -> float:
@@ -96,7 +97,8 @@ class Viewer:
             self.state.frame_view()
         self.monitor = GaitMonitor()
         self.panel = PanelContext(presets=options.presets, scale=self.scale, icons=icons, monitor=self.monitor,
-                                  file_dialog=FileDialog(), dialogs_available=dialogs_available())
+                                  file_dialog=FileDialog(), dialogs_available=dialogs_available(),
+                                  open_at_start=options.panels)
         self.recording: Recording | None = None
         self._pick: tuple[float, float] | None = None
         self._click_start: tuple[float, float] | None = None  # where the left button went down

@@ -49,6 +49,8 @@ def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     imgui.text_disabled("F1 help  -  Tab hide UI")
     for title, draw, default_open in (*PANELS, *extra_panels):
         flag = imgui.TreeNodeFlags_.default_open if default_open else 0
+        if title in pc.open_at_start:
+            imgui.set_next_item_open(True, imgui.Cond_.once)
         opened = imgui.collapsing_header(title, flag)
         _remember(state, f"panel.{title}")
         if opened:

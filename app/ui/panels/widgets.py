@@ -78,6 +78,7 @@ class PanelContext:
     monitor: GaitMonitor | None = None  # the live gait measurement
     file_dialog: FileDialog | None = None  # the File panel's native dialog
     dialogs_available: bool = False
+    open_at_start: tuple[str, ...] = ()  # panel titles opened on the first frame (``--panels``)
 
 
 # -- small helpers ------------------------------------------------------------------------
