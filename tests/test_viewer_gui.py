@@ -522,6 +522,25 @@ def test_r_recovers_the_view_of_a_creature_up_a_flight_of_stairs(display: str, t
         quit_viewer(display, proc, window)
 
 
+def test_the_layout_holds_still(display: str, tmp_path: Path) -> None:
+    """Closing panels (the sidebar no longer overflows) keeps every slider's width: the
+    scrollbar's room is reserved; a description that gains a line (fore legs now
+    unguligrade) moves nothing below it."""
+    with running_viewer(display, tmp_path, "dog", "--size", "1024x720") as (proc, dump, window):
+        before = read_state(dump)
+        first, lift = before["widgets"], before["creature"]["legs"]["fore"]["ankle_lift"]
+        click_widget(display, dump, "leg_type.fore.unguligrade")
+        hooves = read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["ankle_lift"] != lift)
+        moved = hooves["widgets"]
+        for key in ("legs.fore.ankle_lift", "legs.hind.femur", "body.length"):
+            assert moved[key][1] == pytest.approx(first[key][1], abs=0.5), key  # same row, same place
+        for header in ("panel.Creature", "panel.Gait"):
+            click_widget(display, dump, header)
+        short = read_state(dump)["widgets"]
+        assert short["phase"][2] - short["phase"][0] == pytest.approx(first["phase"][2] - first["phase"][0], abs=0.5)
+        quit_viewer(display, proc, window)
+
+
 def test_a_herd_scene_opens_and_renders(display: str, tmp_path: Path) -> None:
     from app.resources import scenes_dir
 

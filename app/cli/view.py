@@ -52,8 +52,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                              "centre in it (e.g. --overlays footprints,support)")
     window.add_argument("--hide-ui", action="store_true", help="start with the panels hidden (Tab shows them)")
     window.add_argument("--panels", metavar="LIST", type=panels, default=(),
-                        help="open these sidebar panels at start, e.g. --panels plots,key-poses (creature, gait, "
-                             "key-poses, body, view, terrain, path, playback, plots, record, file)")
+                        help="start with these sidebar panels open and the others closed, e.g. --panels "
+                             "plots,key-poses (creature, gait, key-poses, body, view, terrain, path, playback, plots, "
+                             "record, file)")
     window.add_argument("--report-fps", action="store_true", help="print the frame rate and time split at exit")
     window.add_argument("--dump-state", metavar="PATH", type=Path, help=argparse.SUPPRESS)
 

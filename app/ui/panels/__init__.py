@@ -39,8 +39,10 @@ def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     width = SIDEBAR_WIDTH * pc.scale
     imgui.set_next_window_pos(imgui.ImVec2(0, 0))
     imgui.set_next_window_size(imgui.ImVec2(width, io.display_size.y))
+    # The scrollbar's room is always kept: panels opening never change the sliders' width.
     flags = (imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize | imgui.WindowFlags_.no_collapse
-             | imgui.WindowFlags_.no_title_bar | imgui.WindowFlags_.no_background)
+             | imgui.WindowFlags_.no_title_bar | imgui.WindowFlags_.no_background
+             | imgui.WindowFlags_.always_vertical_scrollbar)
     # No ImGui background: the viewer clears the sidebar's rectangle to SIDEBAR_COLOR, which
     # is much cheaper than a blended full-height quad on a software rasteriser.
     imgui.begin("Gaitlab", None, flags)
@@ -49,8 +51,8 @@ def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     imgui.text_disabled("F1 help  -  Tab hide UI")
     for title, draw, default_open in (*PANELS, *extra_panels):
         flag = imgui.TreeNodeFlags_.default_open if default_open else 0
-        if title in pc.open_at_start:
-            imgui.set_next_item_open(True, imgui.Cond_.once)
+        if pc.open_at_start:  # --panels: these open at start, the others closed
+            imgui.set_next_item_open(title in pc.open_at_start, imgui.Cond_.once)
         opened = imgui.collapsing_header(title, flag)
         _remember(state, f"panel.{title}")
         if opened:

@@ -25,6 +25,8 @@ from .widgets import (
     slider,
 )
 
+DESCRIPTION_LINES = 3  # a creature's or gait's description keeps this much room, however long it is now
+
 
 def creature_panel(state: ViewerState, pc: PanelContext) -> None:
     names = state.names
@@ -43,7 +45,7 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
     _remember(state, "creature")
     if choice_made is not None:
         state.load_preset(choice_made)
-    _wrapped_note(state.creature_description)
+    _wrapped_note(state.creature_description, lines=DESCRIPTION_LINES)
     for pair in (leg.name for leg in state.spec.legs):
         imgui.separator_text("Legs" if pair == "legs" else f"{pair.capitalize()} legs")
         current = state.leg_type(pair)
@@ -84,7 +86,7 @@ def gait_panel(state: ViewerState, pc: PanelContext) -> None:
     _remember(state, "gait")
     if chosen is not None:
         state.set_gait(chosen)
-    _wrapped_note(GAIT_PRESETS[state.spec.gait.preset].describe(state.spec.pair_count))
+    _wrapped_note(GAIT_PRESETS[state.spec.gait.preset].describe(state.spec.pair_count), lines=DESCRIPTION_LINES)
     if _begin_rows("gait", pc):
         slider(state, pc, "gait.frequency", "frequency", 0.1, 6.0, "%.2f Hz")
         # Rows that do not apply stay, disabled, so the layout never moves under the cursor.

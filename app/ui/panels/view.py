@@ -155,8 +155,10 @@ def plots_panel(state: ViewerState, pc: PanelContext) -> None:
     if len(times) > 1:
         t = (times - times[-1]).astype(np.float64)
         heights = monitor.heights() * 100.0
-        if implot.begin_plot("foot heights (cm)", imgui.ImVec2(width, 150 * pc.scale)):
-            implot.setup_axes("seconds", "", implot.AxisFlags_.no_label, 0)
+        if implot.begin_plot("foot heights", imgui.ImVec2(width, 170 * pc.scale)):
+            implot.setup_axes("time (s)", "height (cm)")
+            # The legend beside the curves, never over them.
+            implot.setup_legend(implot.Location_.east, implot.LegendFlags_.outside)
             implot.setup_axis_limits(implot.ImAxis_.x1, -monitor.seconds, 0.0, implot.Cond_.always)
             # The height axis fits the data (a gallop or a high step is never clipped).
             low, high = float(np.nanmin(heights)), float(np.nanmax(heights))
@@ -166,9 +168,9 @@ def plots_panel(state: ViewerState, pc: PanelContext) -> None:
                 implot.plot_line(name, t, np.ascontiguousarray(heights[:, i]))
             implot.end_plot()
         contact = monitor.contact()
-        if implot.begin_plot("gait diagram (stance)", imgui.ImVec2(width, 110 * pc.scale),
+        if implot.begin_plot("gait diagram (stance)", imgui.ImVec2(width, 130 * pc.scale),
                              implot.Flags_.no_legend | implot.Flags_.no_mouse_text):
-            implot.setup_axes("", "", implot.AxisFlags_.no_label, implot.AxisFlags_.invert)
+            implot.setup_axes("time (s)", "", 0, implot.AxisFlags_.invert)
             implot.setup_axis_limits(implot.ImAxis_.x1, -monitor.seconds, 0.0, implot.Cond_.always)
             implot.setup_axis_limits(implot.ImAxis_.y1, -0.6, len(names) - 0.4, implot.Cond_.always)
             implot.setup_axis_ticks(implot.ImAxis_.y1, 0.0, len(names) - 1.0, len(names), list(names))

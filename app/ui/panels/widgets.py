@@ -78,7 +78,7 @@ class PanelContext:
     monitor: GaitMonitor | None = None  # the live gait measurement
     file_dialog: FileDialog | None = None  # the File panel's native dialog
     dialogs_available: bool = False
-    open_at_start: tuple[str, ...] = ()  # panel titles opened on the first frame (``--panels``)
+    open_at_start: tuple[str, ...] = ()  # panel titles open on the first frame, the others closed (``--panels``)
 
 
 # -- small helpers ------------------------------------------------------------------------
@@ -131,11 +131,16 @@ def _combo(name: str, items: list[str], current: str, preview: str) -> str | Non
     return chosen
 
 
-def _wrapped_note(text: str) -> None:
-    """Greyed text wrapped at the panel's edge (never cut)."""
+def _wrapped_note(text: str, lines: int = 0) -> None:
+    """Greyed text wrapped at the panel's edge (never cut), taking at least ``lines``
+    lines' height: a text that changes (a description) then does not move what is below."""
+    top = imgui.get_cursor_pos_y()
     imgui.push_text_wrap_pos(0.0)
     imgui.text_disabled(text)
     imgui.pop_text_wrap_pos()
+    short = top + lines * imgui.get_text_line_height_with_spacing() - imgui.get_cursor_pos_y()
+    if short > 0:
+        imgui.dummy(imgui.ImVec2(1.0, short))
 
 
 def _begin_rows(name: str, pc: PanelContext) -> bool:
