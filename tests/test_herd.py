@@ -195,3 +195,41 @@ def test_a_herd_keeps_up_with_a_driven_leader() -> None:
     gap = np.linalg.norm(state.herd.position.mean(axis=0) - point)
     assert gap < 8.0 * state.live.rig.body_length
     assert state.herd.rig.gait.preset == "gallop"  # the herd's cycle follows the leader's gait
+
+
+def test_a_herd_is_a_loose_group_not_a_parade() -> None:
+    """Places scattered over the group (no rows or columns: most lateral quarter-spacings
+    are taken), room between neighbours, headings that differ at the start, and places
+    that drift as the group goes (it mills)."""
+    herd = Herd(build_rig(load_creature("dog")), 30)
+    home, spacing = herd.home, herd.spacing
+    lateral = home[:, 0]
+    columns = np.floor((lateral - lateral.min()) / (0.25 * spacing)).astype(int)
+    assert len(set(columns)) >= 0.6 * (columns.max() + 1)
+    gaps = np.linalg.norm(home[:, None] - home[None], axis=-1) + np.diag(np.full(len(home), np.inf))
+    assert gaps.min() >= 0.5 * spacing
+    assert np.degrees(np.std(herd.heading)) > 5.0
+    start = herd.slot.copy()
+    for _ in range(60):
+        herd.step(1 / 30, np.zeros(2), 0.0)
+    drift = np.linalg.norm(herd.slot - start, axis=-1)
+    assert 0.02 * spacing < np.median(drift) < 0.7 * spacing
+
+
+def test_the_viewer_marks_the_herd_s_leader() -> None:
+    """With a herd, the creature the panels edit stands in a gold ring on the ground."""
+    from app.render.overlays import LEADER_COLOR
+    from app.ui.state import ViewerState
+
+    state = ViewerState(load_creature("dog"))
+    assert state.overlays(state.pose()) is None
+    state.set_herd(8)
+    overlays = state.overlays(state.pose())
+    assert overlays is not None and overlays.leader is not None
+    centre = state.pose().root[:3, 3]
+    assert np.linalg.norm(overlays.leader[[0, 2]] - centre[[0, 2]]) < 1e-9
+    rows = overlays.markers(np.ones(3))
+    gold = np.all(np.abs(rows[:, 15:18] - LEADER_COLOR) < 1e-6, axis=1)
+    assert gold.sum() >= 12
+    ring = np.linalg.norm(rows[gold][:, [0, 2]] - centre[[0, 2]], axis=1)
+    assert np.allclose(ring, overlays.leader_radius)

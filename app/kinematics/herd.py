@@ -53,6 +53,40 @@ class HerdVariation:
     speed: float = 0.10
 
 
+HEADING_SPREAD = 20.0  # degrees: how far an animal's heading may differ from the leader's at the start
+GROUP_ASPECT = 1.6  # a group is this much longer (behind the leader) than it is wide
+CANDIDATES = 24  # places tried for each animal
+MIN_GAP = 0.8  # of the spacing: the least room a place must have to be taken at once
+WANDER = 0.12  # of the spacing: how far an animal's place drifts in the group, either way
+WANDER_HZ = (0.02, 0.06)  # how fast it drifts (each animal its own, on each axis)
+
+
+def loose_group(count: int, spacing: float, rng: np.random.Generator) -> NDArray[np.float64]:
+    """Places (count, 2) in a loose group behind its leader (metres to the leader's left
+    and ahead): scattered over a half-ellipse about ``spacing`` apart (each animal takes
+    the farthest from the others of :data:`CANDIDATES` random spots, best-candidate
+    sampling), the group :data:`GROUP_ASPECT` times as long as it is wide, thinning out
+    towards its edges. No rows, no columns: a herd, not a parade."""
+    area = count * (spacing * 0.9) ** 2  # each animal's share of the ground
+    half_width = math.sqrt(area / (math.pi * GROUP_ASPECT / 2.0))
+    depth = GROUP_ASPECT * half_width
+    places = np.zeros((0, 2))
+    for _ in range(count):  # at start only: never in the frame path
+        r = np.sqrt(rng.uniform(0.0, 1.0, CANDIDATES))
+        a = rng.uniform(0.0, np.pi, CANDIDATES)
+        spots = np.column_stack([half_width * r * np.cos(a), -0.5 * spacing - depth * r * np.sin(a)])
+        if len(places):
+            gap = np.min(np.linalg.norm(spots[:, None, :] - places[None, :, :], axis=-1), axis=1)
+            # The first random spot with room enough (some close, some far: clumps and
+            # gaps, as herds have), else the roomiest.
+            room = np.flatnonzero(gap >= MIN_GAP * spacing)
+            spot = spots[int(room[0]) if len(room) else int(np.argmax(gap))]
+        else:
+            spot = spots[int(np.argmin(np.linalg.norm(spots, axis=-1)))]  # the first close behind the leader
+        places = np.vstack([places, spot])
+    return places
+
+
 def _wrap(angle: NDArray[np.float64]) -> NDArray[np.float64]:
     return (angle + np.pi) % (2.0 * np.pi) - np.pi
 
@@ -78,20 +112,19 @@ class Herd:
         self.phase = rng.uniform(0.0, 1.0, count)
         self.rate = self.pace.copy()
         self.set_rig(rig)
-        # Places in the group: rows of animals behind and beside the leader, jittered.
         spacing = 1.6 * max(rig.body_length, rig.body.width * 3.0)
-        per_row = max(1, int(math.ceil(math.sqrt(count))))
-        index = np.arange(count)
-        row, col = index // per_row, index % per_row
-        lateral = (col - (per_row - 1) / 2.0) * spacing * 0.8
-        back = -(row + 1) * spacing  # all behind the leader
-        self.slot = np.column_stack([lateral, back]) + rng.uniform(-0.12, 0.12, (count, 2)) * spacing
+        self.home = loose_group(count, spacing, rng)  # each one's own place in the group
+        self.slot = self.home.copy()  # ... where it is now, drifting about it
+        self.wander_rate = 2.0 * np.pi * rng.uniform(*WANDER_HZ, (count, 2))  # rad/s
+        self.wander_phase = rng.uniform(0.0, 2.0 * np.pi, (count, 2))
+        self.time = 0.0
         self.spacing = spacing
         c, s = math.cos(heading), math.sin(heading)
         leader_xz = np.asarray(leader, dtype=np.float64)
         self.position = leader_xz + np.column_stack([c * self.slot[:, 0] + s * self.slot[:, 1],
                                                      -s * self.slot[:, 0] + c * self.slot[:, 1]])
-        self.heading = np.full(count, float(heading))
+        # Each one looking its own way a little; they turn to their places as they go.
+        self.heading = float(heading) + np.radians(HEADING_SPREAD) * rng.uniform(-1.0, 1.0, count)
         self.rng = rng
 
     def set_rig(self, rig: Rig) -> None:
@@ -121,6 +154,9 @@ class Herd:
         # changes gait too: the owner re-solves the cycle then, see set_rig).
         follow = 1.0 if leader_speed is None else float(np.clip(leader_speed / max(self.cycle_speed, 1e-9),
                                                                   0.25, 4.0))
+        # Places drift slowly about their homes: the group mills as it goes.
+        self.time += dt
+        self.slot = self.home + WANDER * self.spacing * np.sin(self.wander_rate * self.time + self.wander_phase)
         c, s = math.cos(leader_heading), math.sin(leader_heading)
         target = np.asarray(leader, dtype=np.float64) + np.column_stack(
             [c * self.slot[:, 0] + s * self.slot[:, 1], -s * self.slot[:, 0] + c * self.slot[:, 1]])

@@ -24,6 +24,8 @@ STABLE_COLOR = np.array([0.20, 0.75, 0.30]) ** 2
 UNSTABLE_COLOR = np.array([0.90, 0.20, 0.15]) ** 2
 SUPPORT_COLOR = np.array([0.30, 0.30, 0.34]) ** 2
 WAYPOINT_COLOR = np.array([0.23, 0.49, 0.85]) ** 2  # the path's blue
+LEADER_COLOR = np.array([0.98, 0.80, 0.20]) ** 2  # gold: the herd's leader (the creature being edited)
+LEADER_DOTS = 20
 
 
 @dataclass(frozen=True)
@@ -40,6 +42,8 @@ class Overlays:
     support: NDArray[np.float64] | None = None  # (K, 2) the polygon's corners (x, z), in order
     centre: NDArray[np.float64] | None = None  # (2,) the trunk's centre on the ground (x, z)
     stable: bool = False  # the centre lies inside the support polygon
+    leader: NDArray[np.float64] | None = None  # (3,) under a herd's leader: a gold ring
+    leader_radius: float = 0.0  # m, the ring's outer radius
 
     def markers(self, ground_color: NDArray[np.float64], terrain: Terrain | None = None) -> NDArray[np.float32]:
         """Flat ellipsoid rows (M, 18) for footprints, targets and the centre dot, on
@@ -55,6 +59,11 @@ class Overlays:
         if len(self.waypoints):
             rows.append(_discs(self.waypoints, terrain, 1.1 * s, 0.03 * s, WAYPOINT_COLOR * 0.3))
             rows.append(_discs(self.waypoints, terrain, 0.8 * s, 0.06 * s, WAYPOINT_COLOR))
+        if self.leader is not None and self.leader_radius > 0:  # a ring of gold dots (the grid shows through)
+            r = self.leader_radius
+            a = np.linspace(0.0, 2.0 * np.pi, LEADER_DOTS, endpoint=False)
+            ring = self.leader[None, :] + r * np.column_stack([np.cos(a), np.zeros_like(a), np.sin(a)])
+            rows.append(_discs(ring, terrain, 0.09 * r, 0.01 * r, LEADER_COLOR))
         if self.centre is not None:
             c = np.array([[self.centre[0], 0.0, self.centre[1]]])
             rows.append(_discs(c, terrain, 0.35 * s, 0.04 * s, STABLE_COLOR if self.stable else UNSTABLE_COLOR))

@@ -137,7 +137,7 @@ class ViewMixin(StateBase):
         the support polygon with the trunk's centre."""
         o = self.options
         marks = self.waypoints if (self.waypoint_edit or self.path_kind == "waypoints") else []
-        if not (o.footprints or o.targets or o.support or marks):
+        if not (o.footprints or o.targets or o.support or marks or self.herd is not None):
             return None
         rig = self.live.rig
         size = 0.12 * float(np.mean(rig.l_rest))
@@ -154,6 +154,10 @@ class ViewMixin(StateBase):
             parts.update(support=hull, centre=centre, stable=inside_polygon(centre, hull))
         if marks:
             parts["waypoints"] = np.column_stack([np.array(marks)[:, 0], np.zeros(len(marks)), np.array(marks)[:, 1]])
+        if self.herd is not None:  # the one the panels edit, leading its herd: a ring around its feet
+            centre = trunk_centre(pose)
+            parts.update(leader=np.array([centre[0], 0.0, centre[2]]),
+                         leader_radius=0.6 * max(rig.body_length, rig.hip_height))
         return Overlays(size=size, **parts)
 
     def ground(self, pose: Pose) -> GroundView:
