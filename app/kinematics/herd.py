@@ -131,6 +131,10 @@ class Herd:
         """A new creature (edited in the panels): re-solve the cycle every animal plays."""
         self.rig = rig
         self.cycle = cycle_motion(rig)
+        # How far apart (m, at size 1) its feet stand along and across the body: the corners
+        # whose ground an animal stands on.
+        feet = np.abs(self.cycle.joints[:, :, 3][..., [0, 2]]).max(axis=(0, 1))
+        self.reach = (max(2.0 * float(feet[1]), 1e-3), max(2.0 * float(feet[0]), 1e-3))
         self.frequency = rig.gait.frequency
         travel = self.cycle.travel
         frames = len(travel)
@@ -204,11 +208,27 @@ class Herd:
         take the in-place cycle's pose to the world (on ground of height
         ``ground_height((N, 2)) -> (N,)`` under each animal, default flat)."""
         c, s = np.cos(self.heading), np.sin(self.heading)
-        rot = np.zeros((self.count, 3, 3))
-        rot[:, 0, 0], rot[:, 0, 2] = c, s
-        rot[:, 1, 1] = 1.0
-        rot[:, 2, 0], rot[:, 2, 2] = -s, c
-        y = np.zeros(self.count) if ground_height is None else ground_height(self.position)
+        forward = np.column_stack([s, np.zeros(self.count), c])
+        left = np.column_stack([c, np.zeros(self.count), -s])
+        if ground_height is None:
+            y = np.zeros(self.count)
+        else:
+            # Each animal stands on the plane through the ground under its four corners
+            # (girdles and sides): pitched up a hill, rolled across a slope.
+            half_length = 0.5 * self.reach[0] * self.size
+            half_width = 0.5 * self.reach[1] * self.size
+            xz_f, xz_l = forward[:, [0, 2]], left[:, [0, 2]]
+            corners = np.stack([self.position + xz_f * half_length[:, None], self.position - xz_f * half_length[:, None],
+                                self.position + xz_l * half_width[:, None], self.position - xz_l * half_width[:, None]])
+            h = ground_height(corners.reshape(-1, 2)).reshape(4, self.count)
+            y = ground_height(self.position)
+            forward[:, 1] = (h[0] - h[1]) / (2.0 * half_length)
+            left[:, 1] = (h[2] - h[3]) / (2.0 * half_width)
+            forward /= np.linalg.norm(forward, axis=1, keepdims=True)
+            up = np.cross(forward, left)
+            up /= np.linalg.norm(up, axis=1, keepdims=True)
+            left = np.cross(up, forward)
+        rot = np.stack([left, np.cross(forward, left), forward], axis=-1)  # columns: local x, y, z in the world
         return self.size, rot, np.column_stack([self.position[:, 0], y, self.position[:, 1]])
 
     def joints(self, ground_height=None) -> NDArray[np.float64]:
