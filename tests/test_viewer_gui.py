@@ -541,6 +541,40 @@ def test_the_layout_holds_still(display: str, tmp_path: Path) -> None:
         quit_viewer(display, proc, window)
 
 
+def test_ticking_an_overlay_moves_no_row(display: str, tmp_path: Path) -> None:
+    """The footprint count's slider is always there (greyed while footprints are off):
+    ticking footprints moves nothing below it."""
+    with running_viewer(display, tmp_path, "dog", "--panels", "view", "--size", "1024x720") as (proc, dump, window):
+        before = read_state(dump, until=lambda s: "overlay.footprints" in s["widgets"])
+        below = [key for key in before["widgets"] if key.startswith("arc")]
+        assert below
+        click_widget(display, dump, "overlay.footprints")
+        after = read_state(dump, until=lambda s: s["frame"] > before["frame"] + 40)
+        for key in below:
+            assert after["widgets"][key][1] == pytest.approx(before["widgets"][key][1], abs=0.5), key
+        quit_viewer(display, proc, window)
+
+
+def test_picking_another_terrain_moves_no_panel(display: str, tmp_path: Path) -> None:
+    """The Terrain panel keeps room for the kind with the most rows: from flat to stairs
+    (five sliders) the Path panel below stays where it was."""
+    with running_viewer(display, tmp_path, "dog", "--panels", "terrain,path", "--size",
+                        "1024x720") as (proc, dump, window):
+        before = read_state(dump, until=lambda s: "path.kind" in s["widgets"])
+        xdotool(display, "mousemove", *centre(before["widgets"]["terrain.kind"]), "click", "1")
+        time.sleep(0.5)
+        # The kinds' list opens below the combo: flat, slope, hills, stairs, ...
+        x0, y0, x1, y1 = before["widgets"]["terrain.kind"]
+        from app.worlds.kinds import TERRAIN_KINDS
+        index = list(TERRAIN_KINDS).index("stairs")
+        row = y1 - y0
+        xdotool(display, "mousemove", str(int((x0 + x1) / 2)), str(int(y1 + (index + 0.5) * row)), "click", "1")
+        after = read_state(dump, until=lambda s: s["terrain"].startswith("stairs"))
+        after = read_state(dump, until=lambda s: s["frame"] > after["frame"] + 40)
+        assert after["widgets"]["path.kind"][1] == pytest.approx(before["widgets"]["path.kind"][1], abs=0.5)
+        quit_viewer(display, proc, window)
+
+
 def test_a_herd_scene_opens_and_renders(display: str, tmp_path: Path) -> None:
     from app.resources import scenes_dir
 

@@ -73,12 +73,12 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     changed_u, support = _checkbox(state, "overlay.support", "support", options.support,
                                    "The polygon of the planted feet and the trunk's centre dropped onto the ground:\n"
                                    "green inside (statically stable), red outside.")
-    count = options.footprint_count
-    if options.footprints:
-        imgui.set_next_item_width(-1)
-        _changed_n, count = imgui.slider_int("##footprint-count", options.footprint_count, 2, 200,
-                                            "%d footprints")
-        _remember(state, "overlay.footprint_count")
+    # Always there, greyed out while footprints are off: ticking them inserts no row.
+    imgui.begin_disabled(not options.footprints)
+    imgui.set_next_item_width(-1)
+    _changed_n, count = imgui.slider_int("##footprint-count", options.footprint_count, 2, 200, "%d footprints")
+    _remember(state, "overlay.footprint_count")
+    imgui.end_disabled()
     if changed_f or changed_t or changed_u or count != options.footprint_count:
         state.options = replace(options, footprints=footprints, targets=targets, support=support,
                                 footprint_count=int(count))

@@ -25,6 +25,7 @@ def terrain_panel(state: ViewerState, pc: PanelContext) -> None:
         state.terrain_kind = kinds[index]  # pick the file first, then load
     kind = TERRAIN_KINDS[state.terrain_kind]
     values = state.terrain_values[kind.name]
+    top = imgui.get_cursor_pos_y()
     if kind.name in from_file:
         imgui.set_next_item_width(-70 * pc.scale)
         _, values["file"] = imgui.input_text_with_hint("##terrain-file", "image or mesh file path", values["file"])
@@ -53,6 +54,14 @@ def terrain_panel(state: ViewerState, pc: PanelContext) -> None:
             elif changed:
                 values[key.name] = value
         imgui.end_table()
+    # Room for the kind with the most rows: picking another kind moves nothing below.
+    style = imgui.get_style()
+    row = imgui.get_frame_height() + 2.0 * style.cell_padding.y
+    most = max(len([k for k in other.keys if k.slider is not None]) + (other.name in from_file)
+               for other in TERRAIN_KINDS.values())
+    short = top + most * row - imgui.get_cursor_pos_y()
+    if short > 0:
+        imgui.dummy(imgui.ImVec2(1.0, short))
     imgui.text_disabled(f"now: {state.world.terrain.describe()}"[:60])
 
 
