@@ -157,3 +157,71 @@ def test_analyze_a_single_stride_clip_prints_the_note(tmp_path) -> None:
     assert out.returncode == 0, out.stderr
     assert "note         the clip holds a single stride" in out.stdout
     assert "gait         run" in out.stdout
+
+
+# -- a folder of clips ---------------------------------------------------------------------
+
+
+def _clip_folder(tmp_path: Path, corrupt: bool) -> Path:
+    folder = tmp_path / "clips"
+    (folder / "dogs").mkdir(parents=True)
+    for clip in DATA.glob("human_*.bvh"):
+        (folder / clip.name).write_bytes(clip.read_bytes())
+    for clip in DATA.glob("dog_*.bvh"):
+        (folder / "dogs" / clip.name).write_bytes(clip.read_bytes())
+    (folder / "notes.txt").write_text("not a clip")  # other files are left alone
+    if corrupt:
+        (folder / "dogs" / "broken.bvh").write_text("HIERARCHY\nROOT Hips\n{\n")
+    return folder
+
+
+def test_a_folder_of_clips_is_a_row_each_in_parallel(tmp_path: Path) -> None:
+    """``analyze DIR --csv --jobs 2``: one row per clip in the folder's sorted order, the
+    same numbers as each clip analysed alone; a corrupt clip is a row with its error, the
+    rest are analysed, and the exit status says not every clip was read."""
+    import csv
+
+    folder = _clip_folder(tmp_path, corrupt=True)
+    table = tmp_path / "table.csv"
+    result = gaitlab("analyze", folder, "--csv", table, "--jobs", "2")
+    assert result.returncode == 2
+    assert result.stderr.strip().splitlines()[-1].startswith("gaitlab analyze: 1 of 5 clips could not be analysed")
+    rows = list(csv.DictReader(table.open()))
+    assert [Path(r["source"]).name for r in rows] == ["broken.bvh", "dog_trot_tencent_walkrun001_f960-1156.bvh",
+                                                      "dog_walk_tencent_walkrun005_f120-419.bvh",
+                                                      "human_run_cmu_09_01.bvh", "human_walk_cmu_12_01.bvh"]
+    broken, *good = rows
+    assert "truncated BVH" in broken["error"] and broken["gait"] == "" and broken["cycle_s"] == ""
+    for row in good:
+        assert row["error"] == ""
+        alone = json.loads(gaitlab("analyze", row["source"], "--json").stdout)
+        assert row["gait"] == alone["gait_match"]
+        assert float(row["cycle_s"]) == pytest.approx(alone["cycle_seconds"], abs=1e-4)
+        for foot in alone["feet"]:
+            assert 0.0 < float(row[f"duty_{foot['name']}"]) < 1.0
+            assert float(row[f"duty_{foot['name']}"]) == pytest.approx(foot["duty_factor"], abs=1e-4)
+            assert float(row[f"phase_{foot['name']}"]) == pytest.approx(foot["phase"], abs=1e-4)
+    assert "walk" in result.stdout and "error: " in result.stdout  # the terminal's table
+
+
+def test_a_folder_of_good_clips_exits_0(tmp_path: Path) -> None:
+    folder = _clip_folder(tmp_path, corrupt=False)
+    result = gaitlab("analyze", folder, "--csv", tmp_path / "t.csv", "--jobs", "1")
+    assert result.returncode == 0, result.stderr
+    assert "wrote" in result.stderr and len((tmp_path / "t.csv").read_text().splitlines()) == 5
+
+
+@pytest.mark.parametrize("case", ["empty", "jobs0", "plot", "jobs-file", "creature-option"])
+def test_a_folder_s_bad_input_is_one_line(tmp_path: Path, case: str) -> None:
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    folder = _clip_folder(tmp_path, corrupt=False)
+    argv = {"empty": [empty],
+            "jobs0": [folder, "--jobs", "0"],
+            "plot": [folder, "--plot", tmp_path / "p.png"],
+            "jobs-file": [DATA / "human_walk_cmu_12_01.bvh", "--jobs", "2"],
+            "creature-option": [folder, "--gait", "trot"]}[case]
+    result = gaitlab("analyze", *argv, "--csv", tmp_path / "t.csv")
+    assert result.returncode == 2
+    assert len(result.stderr.strip().splitlines()) == 1 and "Traceback" not in result.stderr
+    assert not (tmp_path / "t.csv").exists()  # nothing written

@@ -10,7 +10,7 @@ import sys
 from pathlib import Path
 
 from ..errors import GaitlabError
-from .options import add_creature, add_speed, add_world, positive
+from .options import add_creature, add_speed, add_world, jobs, positive
 
 EPILOG = """\
 examples:
@@ -20,6 +20,7 @@ examples:
   gaitlab analyze walk.bvh --plot walk.png        motion capture (feet found by joint names)
   gaitlab analyze dog.bvh --feet LH=b_LeftAnkle:b_LeftToe,RH=b_RightAnkle:b_RightToe,...
   gaitlab analyze feet.csv --json                 CSV columns: time, NAME_x, NAME_y, NAME_z [, NAME_toe_x ...]
+  gaitlab analyze clips/ --csv table.csv --jobs 2 every .bvh and .csv under a folder: one row per clip
 
 Phases follow Hildebrand: the left hind foot (the left foot of a biped, the rearmost left
 foot of a many-legged creature) touches down at 0.
@@ -54,6 +55,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     files.add_argument("--units", choices=("auto", "m", "cm", "mm", "in", "ft", "cmu"), default="auto",
                        help="length units of the file (default: detected from the hip height; CSV: m)")
     files.add_argument("--up", choices=("auto", "y", "z"), default="auto", help="up axis (default: detected; CSV: y)")
+    folder = parser.add_argument_group("for a folder of clips (SOURCE is a folder)")
+    folder.add_argument("--jobs", metavar="N", type=jobs,
+                        help="processes analysing clips side by side (default: one per core); --csv then writes "
+                             "one row per clip (source, gait, cycle, speed, duty and phase per foot, notes, error)")
 
 
 def _check_outputs(args: argparse.Namespace) -> None:
@@ -116,12 +121,51 @@ def _creature_tracks(args: argparse.Namespace):
             requested)
 
 
+def _run_folder(args: argparse.Namespace) -> int:
+    """Every clip under a folder, one row each; exit 2 when any could not be analysed."""
+    from tqdm import tqdm
+
+    from ..analysis.batch import analyse_folder, clips_under, default_jobs, table_csv, table_text
+    from ..output import atomic_write_text
+
+    given = [flag for flag, name in _CREATURE_ONLY if getattr(args, name)]
+    given += ["--plot"] if args.plot is not None else []
+    if given:
+        raise GaitlabError(f"{', '.join(given)}: for one creature or clip, not a folder of clips")
+    folder = Path(args.creature)
+    clips = clips_under(folder)
+    jobs = args.jobs or default_jobs()
+    with tqdm(total=len(clips), unit="clip", desc="analysing", disable=None, file=sys.stderr) as bar:
+        rows = analyse_folder(clips, jobs, feet=args.feet, units=args.units, up=args.up,
+                              progress=lambda row: bar.update(1))
+    if args.csv is not None:
+        atomic_write_text(args.csv, table_csv(rows))
+    if args.json:
+        print(json.dumps([{"source": r.source, "gait": r.gait, "cycle_seconds": r.cycle, "speed": r.speed,
+                           "duty": r.duty, "phase": r.phase, "notes": list(r.notes), "error": r.error or None}
+                          for r in rows], indent=2))
+    else:
+        print(table_text(rows, folder))
+    failed = [r for r in rows if not r.ok]
+    if failed:
+        print(f"gaitlab analyze: {len(failed)} of {len(rows)} clips could not be analysed"
+              + (f" (see the error column of {args.csv})" if args.csv is not None else ""), file=sys.stderr)
+        return 2
+    if args.csv is not None:
+        print(f"wrote {args.csv}: {len(rows)} clips", file=sys.stderr)
+    return 0
+
+
 def run(args: argparse.Namespace) -> int:
     from ..analysis import analyze_tracks
     from ..analysis.plot import write_plot
     from ..analysis.report import format_table, write_events_csv
 
     _check_outputs(args)
+    if Path(args.creature).is_dir():
+        return _run_folder(args)
+    if args.jobs is not None:
+        raise GaitlabError("--jobs: for a folder of clips (give a folder as SOURCE)")
     suffix = Path(args.creature).suffix.lower()
     if suffix not in ("", ".toml", ".bvh", ".csv"):
         raise GaitlabError(f"{args.creature}: unknown file type {suffix!r}; analyze reads a creature (preset name "

@@ -57,6 +57,14 @@ def positive(name: str, upper: float) -> Callable[[str], float]:
     return parse
 
 
+def jobs(text: str) -> int:
+    """A number of worker processes, 1 to 64."""
+    try:
+        return int(Range(1, 64, integer=True).check(text))
+    except NumberProblem:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected a whole number of processes from 1 to 64") from None
+
+
 def seconds_from_zero(text: str) -> float:
     """A finite number of seconds >= 0."""
     try:

@@ -1,0 +1,59 @@
+"""A folder of clips analysed with one process and with two (``gaitlab analyze DIR --jobs N``).
+
+    python bench/bench_batch.py            # 20 clips: the real BVH clips in tests/data, five times each
+
+Prints the wall time of the whole command (start-up and imports included: about 0.9 s of
+it is importing the analysis, most of that scipy.signal) and of the analysis alone, in
+this process (``analyse_folder``), for --jobs 1 and 2; medians of three runs.
+"""
+
+from __future__ import annotations
+
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+
+from app.analysis.batch import analyse_folder, clips_under
+
+
+def main() -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        sources = sorted((ROOT / "tests" / "data").glob("*.bvh"))
+        for copy in range(1, 6):
+            for source in sources:
+                shutil.copy(source, folder / f"{source.stem}_{copy}.bvh")
+        clips = clips_under(folder)
+        print(f"# {len(clips)} clips ({', '.join(s.name for s in sources)}, five times each)")
+        analyse_folder(clips[:1], 1)  # imports loaded, caches warm
+        whole: dict[int, float] = {}
+        alone: dict[int, float] = {}
+        for jobs in (1, 2):
+            runs = []
+            for _ in range(3):
+                start = time.perf_counter()
+                subprocess.run([sys.executable, "-m", "app", "analyze", str(folder), "--jobs", str(jobs)],
+                               cwd=ROOT, capture_output=True, check=False)
+                runs.append(time.perf_counter() - start)
+            whole[jobs] = statistics.median(runs)
+            runs = []
+            for _ in range(3):
+                start = time.perf_counter()
+                analyse_folder(clips, jobs)
+                runs.append(time.perf_counter() - start)
+            alone[jobs] = statistics.median(runs)
+        for jobs in (1, 2):
+            print(f"--jobs {jobs}: whole command {whole[jobs]:.2f} s, analysis alone {alone[jobs]:.2f} s")
+        print(f"ratio --jobs 2 / --jobs 1: whole command {whole[2] / whole[1]:.2f}, "
+              f"analysis alone {alone[2] / alone[1]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
