@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from app.analysis import analyze_tracks
@@ -11,6 +12,7 @@ from app.analysis.metrics import cyclic_distance
 from app.analysis.sources import load_tracks
 
 DATA = Path(__file__).parent / "data"
+CMU_WALK_PATH = DATA / "human_walk_cmu_12_01.bvh"
 
 
 def test_cmu_human_walk() -> None:
@@ -82,3 +84,52 @@ def test_cmu_walk_arms_swing_against_the_legs() -> None:
     assert cyclic_distance(report.arm_phase["R"], 0.0) < 0.15
     dog, _ = load_tracks(str(DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"))
     assert dog.hands is None and analyze_tracks(dog).arm_phase is None
+
+
+NAMING = {  # convention: (left ankle, left toe, right ankle, right toe)
+    "Mixamo, any prefix": ("mixamorig7:LeftFoot", "mixamorig7:LeftToeBase", "mixamorig7:RightFoot",
+                           "mixamorig7:RightToeBase"),
+    "L_Foot/L_ToeBase": ("L_Foot", "L_ToeBase", "R_Foot", "R_ToeBase"),
+    "ASF lfoot/ltoes": ("lfoot", "ltoes", "rfoot", "rtoes"),
+    "3ds Max Biped": ("Bip01_L_Foot", "Bip01_L_Toe0", "Bip01_R_Foot", "Bip01_R_Toe0"),
+    "Blender foot.L": ("foot.L", "toe.L", "foot.R", "toe.R"),
+    "lFoot/rFoot": ("lFoot", "lToes", "rFoot", "rToes"),
+}
+
+
+@pytest.mark.parametrize("convention", list(NAMING))
+def test_feet_are_found_under_every_usual_naming(tmp_path: Path, convention: str) -> None:
+    """The CMU walk with its foot joints renamed as other tools name them: the same feet
+    are found and the same gait measured, without --feet."""
+    from app.analysis import analyze_tracks
+    from app.analysis.sources import load_tracks
+
+    text = CMU_WALK_PATH.read_text()
+    for old, new in zip(("LeftFoot", "LeftToeBase", "RightFoot", "RightToeBase"), NAMING[convention]):
+        text = text.replace(f"JOINT {old}\n", f"JOINT {new}\n")
+    renamed = tmp_path / "walk.bvh"
+    renamed.write_text(text)
+    ours = analyze_tracks(load_tracks(str(renamed))[0])
+    theirs = analyze_tracks(load_tracks(str(CMU_WALK_PATH))[0])
+    assert [f.name for f in ours.feet] == ["L", "R"]
+    for a, b in zip(ours.feet, theirs.feet):
+        assert a.duty_factor == pytest.approx(b.duty_factor, abs=1e-9)
+        assert a.phase == pytest.approx(b.phase, abs=1e-9)
+
+
+def test_feet_may_name_namespaced_joints_and_end_sites(tmp_path: Path) -> None:
+    """``--feet`` takes a namespaced joint (colons and all) and an End Site (JOINT/End) as
+    the toe."""
+    from app.analysis.sources import load_tracks
+
+    text = CMU_WALK_PATH.read_text()
+    for old in ("LeftFoot", "LeftToeBase", "RightFoot", "RightToeBase"):
+        text = text.replace(f"JOINT {old}\n", f"JOINT ns:{old}\n")
+    renamed = tmp_path / "walk.bvh"
+    renamed.write_text(text)
+    tracks, note = load_tracks(str(renamed), feet="L=ns:LeftFoot:ns:LeftToeBase,R=ns:RightFoot:ns:RightToeBase")
+    assert "L=ns:LeftFoot:ns:LeftToeBase" in note
+    tracks, note = load_tracks(str(CMU_WALK_PATH), feet="L=LeftFoot:LeftToeBase/End,R=RightFoot:RightToeBase/End")
+    assert "LeftToeBase/End" in note and tracks.toe.shape[1] == 2
+    ends = tracks.toe[:, 0] - tracks.heel[:, 0]
+    assert np.median(np.linalg.norm(ends, axis=-1)) > 0.1  # the toe's tip, well ahead of the ankle

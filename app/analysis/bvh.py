@@ -37,6 +37,7 @@ class BvhJoint:
     offset: NDArray[np.float64]
     channels: list[str] = field(default_factory=list)
     first_channel: int = 0  # column of its first channel in the frame data
+    end_site: bool = False  # an End Site: the tip of its parent's bone, named PARENT/End, no channels
 
 
 @dataclass
@@ -188,9 +189,12 @@ def _hierarchy(tokens: _Tokens) -> list[BvhJoint]:
             tokens.expect("Site")
             tokens.expect("{")
             tokens.expect("OFFSET")
-            for axis in "xyz":
-                tokens.number(f"End Site OFFSET {axis}")
+            tip = np.array([tokens.number(f"End Site OFFSET {axis}") for axis in "xyz"])
             tokens.expect("}")
+            parent = stack[-1]
+            after = joints[-1].first_channel + len(joints[-1].channels)  # no channels of its own
+            joints.append(BvhJoint(name=f"{joints[parent].name}/End", parent=parent, offset=tip, first_channel=after,
+                                   end_site=True))
         elif tok == "}":
             stack.pop()
         else:

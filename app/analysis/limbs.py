@@ -84,10 +84,10 @@ def foremost_strikes(ankle: NDArray[np.float64], root: NDArray[np.float64], forw
 def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -> Legs:
     """Every leg of a BVH clip with its strikes (from ``analyze``'s events)."""
     from . import analyze_tracks
-    from .sources import FootMap, _leading_jumps, _to_y_up, detect_up, find_feet, tracks_from_bvh
+    from .sources import FootMap, _leading_jumps, _to_y_up, detect_up, find_feet, resolve_feet, tracks_from_bvh
 
     clip = read_bvh(path)
-    mapping = FootMap(feet, "given with --feet") if feet else find_feet(clip.names, path)
+    mapping = FootMap(resolve_feet(feet, clip.names), "given with --feet") if feet else find_feet(clip.names, path)
     chains = {}
     for foot, (ankle, toe) in mapping.feet.items():
         if ankle.endswith("_ball") and clip.joints[clip.index(ankle)].parent >= 0:  # a Gaitlab export's foot

@@ -67,6 +67,63 @@ def parse_feet(text: str) -> dict[str, tuple[str, str | None]]:
     return feet
 
 
+# A biped's foot joints by their usual names, whatever the tool: the name without its
+# namespace (mixamorig7:, Armature|) and separators, in lower case, is a side word (left,
+# right, l, r) before or after a part word (Bip01 L Foot, L_Foot, lfoot, foot.L, foot_l).
+_SIDES = (("left", "L"), ("right", "R"), ("l", "L"), ("r", "R"))
+_ANKLE_WORDS = ("foot", "ankle")  # in order of preference
+_TOE_WORDS = ("toebase", "toe", "toes", "toe0", "toe1", "ball", "toetip")
+_PREFIXES = re.compile(r"^(bip0*1|biped|b)(?=l|r)")  # 3ds Max Biped, b_ rigs
+
+
+def _side_and_part(name: str) -> tuple[str, str] | None:
+    bare = re.split(r"[:|]", name)[-1]
+    key = _PREFIXES.sub("", re.sub(r"[^a-z0-9]", "", bare.lower()))
+    for word, side in _SIDES:
+        for part in (*_ANKLE_WORDS, *_TOE_WORDS):
+            if key in (word + part, part + word):
+                return side, part
+    return None
+
+
+def _named_biped(names: list[str]) -> FootMap | None:
+    """Left and right ankle and toe joints found by :func:`_side_and_part` (a toe that is
+    not named: the ankle's End Site, when it has one)."""
+    found: dict[tuple[str, str], str] = {}
+    for name in names:
+        hit = _side_and_part(name)
+        if hit is not None and hit not in found:
+            found[hit] = name
+    feet: dict[str, tuple[str, str | None]] = {}
+    for side in ("L", "R"):
+        ankle = next((found[(side, w)] for w in _ANKLE_WORDS if (side, w) in found), None)
+        if ankle is None:
+            return None
+        toe = next((found[(side, w)] for w in _TOE_WORDS if (side, w) in found), None)
+        if toe is None and f"{ankle}/End" in names:
+            toe = f"{ankle}/End"
+        feet[side] = (ankle, toe)
+    return FootMap(feet, "biped (by joint names)")
+
+
+def resolve_feet(feet: dict[str, tuple[str, str | None]], names: list[str]) -> dict[str, tuple[str, str | None]]:
+    """``--feet`` items whose names hold colons themselves (namespaces: mixamorig7:LeftFoot)
+    split where both halves are joints of the clip; the rest as given."""
+    present = set(names)
+    out: dict[str, tuple[str, str | None]] = {}
+    for foot, (ankle, toe) in feet.items():
+        text = ankle if toe is None else f"{ankle}:{toe}"
+        if ankle in present and (toe is None or toe in present):
+            out[foot] = (ankle, toe)
+            continue
+        if text in present:
+            out[foot] = (text, None)
+            continue
+        splits = [(text[:i], text[i + 1:]) for i, c in enumerate(text) if c == ":"]
+        out[foot] = next(((a, t) for a, t in splits if a in present and t in present), (ankle, toe))
+    return out
+
+
 def find_feet(names: list[str], path: str) -> FootMap:
     """The feet of a skeleton with one of the known naming schemes (see KNOWN_RIGS)."""
     present = set(names)
@@ -83,6 +140,10 @@ def find_feet(names: list[str], path: str) -> FootMap:
     exported = [n[:-5] for n in names if n.endswith("_ball") and f"{n[:-5]}_toe" in present]
     if exported:
         return FootMap({foot: (f"{foot}_ball", f"{foot}_toe") for foot in exported}, "Gaitlab export")
+    biped = _named_biped(names)
+    if biped is not None:
+        return biped
+    names = [n for n in names if not n.endswith("/End")]  # End Sites are no joints to name here
     ankles = [n for n in names if re.search(r"(foot|ankle|toe|hand|paw|hoof)", n, re.IGNORECASE)]
     shown = ", ".join(ankles[:12] or names[:12]) + (" ..." if len(ankles or names) > 12 else "")
     raise InputError(f"{path}: no feet recognised among the joints ({shown}); map them with "
@@ -162,7 +223,7 @@ def tracks_from_bvh(path: str, feet: dict[str, tuple[str, str | None]] | None = 
     """Foot tracks of a BVH clip and a note on what was detected. The ankle joint is the
     heel proxy; without a toe joint the ankle stands for both."""
     clip = read_bvh(path)
-    mapping = FootMap(feet, "given with --feet") if feet else find_feet(clip.names, path)
+    mapping = FootMap(resolve_feet(feet, clip.names), "given with --feet") if feet else find_feet(clip.names, path)
     for foot, (ankle, toe_joint) in mapping.feet.items():
         for joint in (ankle, toe_joint):
             if joint is not None and joint not in clip.names:

@@ -51,7 +51,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     add_world(parser)
     files = parser.add_argument_group("for a BVH or CSV file")
     files.add_argument("--feet", metavar="MAP", help="BVH foot joints: NAME=ANKLE[:TOE],... e.g. "
-                                                     "L=LeftFoot:LeftToeBase,R=RightFoot:RightToeBase")
+                                                     "L=LeftFoot:LeftToeBase,R=RightFoot:RightToeBase; namespaced "
+                                                     "names keep their colons (L=mixamorig7:LeftFoot:mixamorig7:"
+                                                     "LeftToeBase) and JOINT/End is a joint's End Site (a toe tip). "
+                                                     "Without it, biped feet are found by the usual names (CMU, "
+                                                     "Mixamo, ASF lfoot/ltoes, L_Foot, Bip01 L Foot, foot.L)")
     files.add_argument("--units", choices=("auto", "m", "cm", "mm", "in", "ft", "cmu"), default="auto",
                        help="length units of the file (default: detected from the hip height; CSV: m)")
     files.add_argument("--up", choices=("auto", "y", "z"), default="auto", help="up axis (default: detected; CSV: y)")
