@@ -133,3 +133,36 @@ def test_feet_may_name_namespaced_joints_and_end_sites(tmp_path: Path) -> None:
     assert "LeftToeBase/End" in note and tracks.toe.shape[1] == 2
     ends = tracks.toe[:, 0] - tracks.heel[:, 0]
     assert np.median(np.linalg.norm(ends, axis=-1)) > 0.1  # the toe's tip, well ahead of the ankle
+
+
+def _rescaled_bvh(source: Path, factor: float, out: Path) -> Path:
+    """``source`` with every length multiplied by ``factor``: OFFSETs and position channels."""
+    lines = source.read_text().splitlines()
+    motion = next(i for i, line in enumerate(lines) if line.strip().upper() == "MOTION")
+    channels: list[bool] = []  # per channel: a position?
+    for line in lines[:motion]:
+        words = line.split()
+        if words and words[0] == "CHANNELS":
+            channels += [w.lower().endswith("position") for w in words[2:]]
+    text = []
+    for i, line in enumerate(lines):
+        words = line.split()
+        if i < motion and words and words[0] == "OFFSET":
+            line = "OFFSET " + " ".join(f"{float(w) * factor:.6f}" for w in words[1:])
+        elif i > motion + 2 and len(words) == len(channels):
+            line = " ".join(f"{float(w) * factor:.6f}" if pos else w for w, pos in zip(words, channels))
+        text.append(line)
+    out.write_text("\n".join(text) + "\n")
+    return out
+
+
+def test_inches_are_told_from_centimetres_by_the_stride(tmp_path: Path) -> None:
+    """A person in inches has the hip height (~36 units) of a small animal in centimetres;
+    the stride's period tells them apart. The dog in centimetres stays in centimetres."""
+    inches = _rescaled_bvh(CMU_WALK_PATH, 0.056444 / 0.0254, tmp_path / "walk_in.bvh")
+    tracks, note = load_tracks(str(inches))
+    original, _ = load_tracks(str(CMU_WALK_PATH))
+    assert "units in" in note
+    assert tracks.hip_height == pytest.approx(original.hip_height, rel=1e-3)
+    _, dog_note = load_tracks(str(DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"))
+    assert "units cm" in dog_note

@@ -188,6 +188,30 @@ def _leading_jumps(points: np.ndarray, limit: int = 5) -> int:
     return skip
 
 
+INCH_HIPS = (25.0, 60.0)  # hip heights (file units) that read as a small animal in cm or a person in inches
+STRIDE_TIME = 3.2  # a stride's period in units of sqrt(hip height / g): walks ~3.4, trots and runs ~2.6
+
+
+def _centimetres_or_inches(times, names, heel, toe, body, hip: float, reason: str) -> tuple[str, str]:
+    """Centimetres or inches for a hip height both could be (a 36 cm dog, a 36 in person),
+    by dynamic similarity: the one that makes the stride's period nearer to an animal's of
+    that size (:data:`STRIDE_TIME` times sqrt(h / g)); centimetres when the clip has no
+    clear stride."""
+    from .events import AnalysisError, clip_period
+
+    try:
+        period = clip_period(FootTracks(times=np.asarray(times, dtype=np.float64), names=tuple(names), heel=heel,
+                                        toe=toe, body=body, source="", hip_height=hip))
+    except AnalysisError:
+        return "cm", reason
+    misfit = {unit: abs(np.log(period * np.sqrt(9.81 / (hip * UNIT_SCALE[unit])) / STRIDE_TIME))
+              for unit in ("cm", "in")}
+    if misfit["in"] < misfit["cm"]:
+        return "in", (f"hip height {hip:.0f} units with a {period:.2f} s stride reads as inches (in centimetres the "
+                      "stride would be too slow for so small an animal)")
+    return "cm", reason
+
+
 def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis,
             hands=None) -> tuple[FootTracks, str]:
     for what, values in (("foot", heel), ("toe", toe), ("body", body)):
@@ -204,6 +228,8 @@ def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis,
     notes = []
     if units == "auto":
         detected, reason = detect_units(abs(hip))
+        if detected == "cm" and INCH_HIPS[0] <= abs(hip) <= INCH_HIPS[1]:
+            detected, reason = _centimetres_or_inches(times, names, heel, toe, body, abs(hip), reason)
         notes.append(f"units {detected} ({reason}; --units to override)")
         scale = UNIT_SCALE[detected]
     else:
