@@ -166,3 +166,20 @@ def test_inches_are_told_from_centimetres_by_the_stride(tmp_path: Path) -> None:
     assert tracks.hip_height == pytest.approx(original.hip_height, rel=1e-3)
     _, dog_note = load_tracks(str(DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"))
     assert "units cm" in dog_note
+
+
+@pytest.mark.parametrize("clip", ["human_walk_cmu_12_01.bvh", "human_run_cmu_09_01.bvh"])
+def test_a_leading_rest_pose_changes_nothing(tmp_path: Path, clip: str) -> None:
+    """The CMU clips open on a T-pose frame: with it dropped by hand the analysis is the same."""
+    lines = (DATA / clip).read_text().splitlines()
+    motion = next(i for i, line in enumerate(lines) if line.strip().upper() == "MOTION")
+    frames = int(lines[motion + 1].split()[-1])
+    trimmed = tmp_path / clip
+    trimmed.write_text("\n".join(lines[:motion + 1] + [f"Frames: {frames - 1}", lines[motion + 2]]
+                                 + lines[motion + 4:]) + "\n")
+    full, cut = (analyze_tracks(load_tracks(str(p))[0]) for p in (DATA / clip, trimmed))
+    assert full.gait_match == cut.gait_match
+    assert cut.cycle_seconds == pytest.approx(full.cycle_seconds, rel=0.01)
+    for a, b in zip(full.feet, cut.feet):
+        assert b.duty_factor == pytest.approx(a.duty_factor, abs=0.01)
+        assert cyclic_distance(b.phase, a.phase) < 0.01
