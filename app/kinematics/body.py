@@ -31,6 +31,8 @@ TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
 MAX_ROLL = 0.5  # rad
+MAX_STEEP_ROLL = 1.0  # rad: how far a girdle rolls on where both sides' feet could not reach otherwise
+STEEP_ROLL_PASSES = 4
 NOD = 0.06  # rad: a walking quadruped's neck and head bow, either way, for a neck as long as its legs
 NOD_DELAY = 0.15  # of a cycle after a fore foot lands: the head is lowest
 SWING = 0.12  # rad: a galloping quadruped's neck swing, either way, for a neck as long as its legs
@@ -134,26 +136,47 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     sway = rig.motion.sway * (bob_lift[:, 1::2] - bob_lift[:, 0::2])  # (T, G) m to the left
     point = point + sway[..., None] * left[..., [0, 2]]
 
-    # Never higher than lets a planted foot reach its ball (or a rolling foot's ankle):
-    # each hip sits beside the centre, turned and tilted with the girdle.
-    side = (rig.hip_side * rig.hip_offset)[None, :, None]
-    hip_offset = lateral[:, rig.girdle] * side  # (T, L, 3) from the centre
-    hip_xz = point[:, rig.girdle] + hip_offset[..., [0, 2]]
-    far = np.linalg.norm(reach_point[..., [0, 2]] - hip_xz, axis=-1)
-    allowed = reach_point[..., 1] + np.sqrt(np.maximum(farthest ** 2 - far ** 2, 0.0)) - hip_offset[..., 1]
-    horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
-    allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
-    # ... nor so low that a planted foot comes nearer than the leg can fold (the uphill foot
-    # on a slope), nor crouched below MIN_CROUCH.
-    near = ball[..., 1] + np.sqrt(np.maximum((1.02 * rig.l_min) ** 2 - horizontal ** 2, 0.0))
-    near = near - (1.0 - planted) * 2.0 * rig.l_max
-    if reach is not None:  # ... nor nearer its foot's ankle than femur and tibia can fold
-        fold = 1.02 * np.abs(rig.femur - rig.tibia)
-        near = np.maximum(near, reach_point[..., 1] + np.sqrt(np.maximum(fold ** 2 - far ** 2, 0.0))
-                          - (1.0 - planted) * 2.0 * rig.l_max)
-    lowest = np.maximum(ground + np.maximum(MIN_CROUCH * rest, 1.05 * np.maximum(rig.l_min[0::2], rig.l_min[1::2])),
-                        np.maximum(near[:, 0::2], near[:, 1::2]))
-    height = np.maximum(np.minimum(height, np.minimum(allowed[:, 0::2], allowed[:, 1::2])), lowest)
+    floor = ground + np.maximum(MIN_CROUCH * rest, 1.05 * np.maximum(rig.l_min[0::2], rig.l_min[1::2]))
+
+    def limits(lateral: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The highest and the lowest each girdle may stand (T, G) with its hips along
+        ``lateral`` (T, G, 3): never higher than lets a planted foot reach its ball (or a
+        rolling foot's ankle), each hip beside the centre, turned and tilted with the
+        girdle; nor so low that a planted foot comes nearer than the leg can fold (the
+        uphill foot on a slope), nor crouched below MIN_CROUCH."""
+        side = (rig.hip_side * rig.hip_offset)[None, :, None]
+        hip_offset = lateral[:, rig.girdle] * side  # (T, L, 3) from the centre
+        hip_xz = point[:, rig.girdle] + hip_offset[..., [0, 2]]
+        far = np.linalg.norm(reach_point[..., [0, 2]] - hip_xz, axis=-1)
+        allowed = reach_point[..., 1] + np.sqrt(np.maximum(farthest ** 2 - far ** 2, 0.0)) - hip_offset[..., 1]
+        horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
+        allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
+        near = ball[..., 1] + np.sqrt(np.maximum((1.02 * rig.l_min) ** 2 - horizontal ** 2, 0.0))
+        near = near - (1.0 - planted) * 2.0 * rig.l_max
+        if reach is not None:  # ... nor nearer its foot's ankle than femur and tibia can fold
+            fold = 1.02 * np.abs(rig.femur - rig.tibia)
+            near = np.maximum(near, reach_point[..., 1] + np.sqrt(np.maximum(fold ** 2 - far ** 2, 0.0))
+                              - (1.0 - planted) * 2.0 * rig.l_max)
+        return allowed, np.maximum(floor, np.maximum(near[:, 0::2], near[:, 1::2]))
+
+    allowed, lowest = limits(lateral)
+    highest = np.minimum(allowed[:, 0::2], allowed[:, 1::2])
+    # Where no height lets both sides' planted feet reach (across a steep slope, the
+    # downhill foot too far below, the uphill one too near), the girdle rolls on towards
+    # the downhill side (the side that lets it stand less high): its hips come down by
+    # the roll, closing the gap.
+    pair = 0.5 * (rig.hip_offset[0::2] + rig.hip_offset[1::2])[None, :]
+    for _ in range(STEEP_ROLL_PASSES):  # (tilting the hips also moves them across: a few passes)
+        short = lowest - highest
+        if not np.any(short > 1e-6):
+            break
+        lower_right = np.where(allowed[:, 1::2] < allowed[:, 0::2], 1.0, -1.0)  # + rolls the right hip down
+        extra = np.arcsin(np.clip(np.maximum(short, 0.0) / np.maximum(pair, 1e-9), 0.0, 1.0))
+        roll = np.clip(roll + lower_right * extra, -MAX_STEEP_ROLL, MAX_STEEP_ROLL)
+        lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
+        allowed, lowest = limits(lateral)
+        highest = np.minimum(allowed[:, 0::2], allowed[:, 1::2])
+    height = np.maximum(np.minimum(height, highest), lowest)
     centre = np.stack([point[..., 0], height, point[..., 1]], axis=-1)
     return Girdles(centre=centre, heading=heading, lateral=lateral, yaw=yaw, s=s_g)
 
