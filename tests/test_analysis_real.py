@@ -94,6 +94,7 @@ NAMING = {  # convention: (left ankle, left toe, right ankle, right toe)
     "3ds Max Biped": ("Bip01_L_Foot", "Bip01_L_Toe0", "Bip01_R_Foot", "Bip01_R_Toe0"),
     "Blender foot.L": ("foot.L", "toe.L", "foot.R", "toe.R"),
     "lFoot/rFoot": ("lFoot", "lToes", "rFoot", "rToes"),
+    "SMPL L_Ankle/L_Foot": ("L_Ankle", "L_Foot", "R_Ankle", "R_Foot"),
 }
 
 
@@ -159,11 +160,12 @@ def _rescaled_bvh(source: Path, factor: float, out: Path) -> Path:
 def test_inches_are_told_from_centimetres_by_the_stride(tmp_path: Path) -> None:
     """A person in inches has the hip height (~36 units) of a small animal in centimetres;
     the stride's period tells them apart. The dog in centimetres stays in centimetres."""
-    inches = _rescaled_bvh(CMU_WALK_PATH, 0.056444 / 0.0254, tmp_path / "walk_in.bvh")
-    tracks, note = load_tracks(str(inches))
-    original, _ = load_tracks(str(CMU_WALK_PATH))
-    assert "units in" in note
-    assert tracks.hip_height == pytest.approx(original.hip_height, rel=1e-3)
+    for clip in (CMU_WALK_PATH, DATA / "human_run_cmu_09_01.bvh"):  # a walk and a run (strides 1.3 and 0.75 s)
+        inches = _rescaled_bvh(clip, 0.056444 / 0.0254, tmp_path / f"{clip.stem}_in.bvh")
+        tracks, note = load_tracks(str(inches))
+        original, _ = load_tracks(str(clip))
+        assert "units in" in note, clip.name
+        assert tracks.hip_height == pytest.approx(original.hip_height, rel=1e-3)
     _, dog_note = load_tracks(str(DATA / "dog_walk_tencent_walkrun005_f120-419.bvh"))
     assert "units cm" in dog_note
 

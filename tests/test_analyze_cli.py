@@ -205,10 +205,16 @@ def test_a_folder_of_clips_is_a_row_each_in_parallel(tmp_path: Path) -> None:
 
 
 def test_a_folder_of_good_clips_exits_0(tmp_path: Path) -> None:
+    """... and again with its own table and an events CSV written into the folder: analyze's
+    own CSVs are no clips."""
     folder = _clip_folder(tmp_path, corrupt=False)
-    result = gaitlab("analyze", folder, "--csv", tmp_path / "t.csv", "--jobs", "1")
-    assert result.returncode == 0, result.stderr
-    assert "wrote" in result.stderr and len((tmp_path / "t.csv").read_text().splitlines()) == 5
+    table = folder / "table.csv"
+    for _ in range(2):
+        result = gaitlab("analyze", folder, "--csv", table, "--jobs", "1")
+        assert result.returncode == 0, result.stderr
+        assert "wrote" in result.stderr and len(table.read_text().splitlines()) == 5
+    gaitlab("analyze", DATA / "human_walk_cmu_12_01.bvh", "--csv", folder / "events.csv")
+    assert gaitlab("analyze", folder, "--csv", table, "--jobs", "1").returncode == 0
 
 
 @pytest.mark.parametrize("case", ["empty", "jobs0", "plot", "jobs-file", "creature-option"])

@@ -254,3 +254,16 @@ def test_herd_animals_stand_on_the_plane_of_the_hill_under_them() -> None:
     assert np.median(error) < 0.025 and np.quantile(error, 0.95) < 0.09  # upright on the hill: 39 and 126 mm
     flat = herd.transforms()[1]
     assert np.allclose(flat[:, 1], [0.0, 1.0, 0.0])  # on flat ground, upright
+
+
+@pytest.mark.parametrize("count", [2, 3, 14])
+def test_no_follower_walks_into_its_leader(count: int) -> None:
+    """Every follower keeps at least a body length from the leader (its places start a
+    spacing behind it), however few the herd."""
+    rig = build_rig(load_creature("horse"))
+    herd = Herd(rig, count)
+    for k in range(600):
+        herd.step(1 / 30, np.array([0.0, rig.ground_speed * k / 30]), 0.0)
+        if k > 120:
+            leader = np.array([0.0, rig.ground_speed * k / 30])
+            assert np.linalg.norm(herd.position - leader, axis=1).min() > rig.body_length, k

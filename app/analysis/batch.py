@@ -41,12 +41,31 @@ class ClipRow:
         return not self.error
 
 
-def clips_under(folder: Path) -> list[Path]:
-    """Every motion file (.bvh, .csv) under ``folder``, sorted by path; one line when
+OWN_TABLES = ("source,gait,cycle_s", "foot,kind,time")  # headers of analyze's own CSVs: no clips
+
+
+def _is_clip(path: Path, skip: Path | None) -> bool:
+    if not path.is_file() or path.suffix.lower() not in CLIP_SUFFIXES:
+        return False
+    if skip is not None and path.resolve() == skip.resolve():
+        return False
+    if path.suffix.lower() == ".csv":
+        try:
+            with path.open("rb") as fh:
+                head = fh.read(64).decode("utf-8", errors="replace")
+        except OSError:
+            return True  # a row saying it cannot be read
+        return not head.lstrip("\ufeff").startswith(OWN_TABLES)
+    return True
+
+
+def clips_under(folder: Path, skip: Path | None = None) -> list[Path]:
+    """Every motion file (.bvh, .csv) under ``folder``, sorted by path, but for ``skip``
+    (the table being written) and analyze's own tables and events CSVs; one line when
     there is none."""
     if not folder.is_dir():
         raise GaitlabError(f"{folder}: not a folder")
-    found = sorted(p for p in folder.rglob("*") if p.is_file() and p.suffix.lower() in CLIP_SUFFIXES)
+    found = sorted(p for p in folder.rglob("*") if _is_clip(p, skip))
     if not found:
         raise GaitlabError(f"{folder}: no .bvh or .csv clips under it")
     return found
@@ -93,7 +112,10 @@ def analyse_folder(clips: Iterable[Path], jobs: int, feet: str | None = None, un
         with ProcessPoolExecutor(max_workers=min(jobs, len(paths))) as pool:
             futures = {pool.submit(analyse_clip, path, feet, units, up): path for path in paths}
             for future in as_completed(futures):
-                row = future.result()
+                try:
+                    row = future.result()
+                except Exception as exc:  # a worker that died (killed, out of memory): that clip's row says so
+                    row = ClipRow(source=futures[future], error=f"the worker analysing it stopped: {exc}"[:300])
                 rows[futures[future]] = row
                 if progress:
                     progress(row)

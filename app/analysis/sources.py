@@ -71,7 +71,7 @@ def parse_feet(text: str) -> dict[str, tuple[str, str | None]]:
 # namespace (mixamorig7:, Armature|) and separators, in lower case, is a side word (left,
 # right, l, r) before or after a part word (Bip01 L Foot, L_Foot, lfoot, foot.L, foot_l).
 _SIDES = (("left", "L"), ("right", "R"), ("l", "L"), ("r", "R"))
-_ANKLE_WORDS = ("foot", "ankle")  # in order of preference
+_ANKLE_WORDS = ("ankle", "foot")  # in order of preference (SMPL: L_Ankle, then L_Foot below it)
 _TOE_WORDS = ("toebase", "toe", "toes", "toe0", "toe1", "ball", "toetip")
 _PREFIXES = re.compile(r"^(bip0*1|biped|b)(?=l|r)")  # 3ds Max Biped, b_ rigs
 
@@ -100,6 +100,8 @@ def _named_biped(names: list[str]) -> FootMap | None:
         if ankle is None:
             return None
         toe = next((found[(side, w)] for w in _TOE_WORDS if (side, w) in found), None)
+        if toe is None and ankle != found.get((side, "foot"), ankle):
+            toe = found[(side, "foot")]  # an ankle with a foot joint below it
         if toe is None and f"{ankle}/End" in names:
             toe = f"{ankle}/End"
         feet[side] = (ankle, toe)
@@ -189,22 +191,30 @@ def _leading_jumps(points: np.ndarray, limit: int = 5) -> int:
 
 
 INCH_HIPS = (25.0, 60.0)  # hip heights (file units) that read as a small animal in cm or a person in inches
-STRIDE_TIME = 3.2  # a stride's period in units of sqrt(hip height / g): walks ~3.4, trots and runs ~2.6
+STRIDE_TIME = {"walk": 3.4, "run": 2.6}  # a stride's period in units of sqrt(hip height / g)
 
 
 def _centimetres_or_inches(times, names, heel, toe, body, hip: float, reason: str) -> tuple[str, str]:
     """Centimetres or inches for a hip height both could be (a 36 cm dog, a 36 in person),
     by dynamic similarity: the one that makes the stride's period nearer to an animal's of
-    that size (:data:`STRIDE_TIME` times sqrt(h / g)); centimetres when the clip has no
-    clear stride."""
-    from .events import AnalysisError, clip_period
+    that size walking or running as the clip does (:data:`STRIDE_TIME` times sqrt(h / g);
+    a walk when the feet are down more than half the time); centimetres when the clip has
+    no clear stride."""
+    from . import analyze_tracks
+    from .events import AnalysisError
 
+    provisional = FootTracks(times=np.asarray(times, dtype=np.float64), names=tuple(names), heel=heel * 0.01,
+                             toe=toe * 0.01, body=body * 0.01, source="", hip_height=hip * 0.01)
     try:
-        period = clip_period(FootTracks(times=np.asarray(times, dtype=np.float64), names=tuple(names), heel=heel,
-                                        toe=toe, body=body, source="", hip_height=hip))
+        report = analyze_tracks(provisional)
     except AnalysisError:
         return "cm", reason
-    misfit = {unit: abs(np.log(period * np.sqrt(9.81 / (hip * UNIT_SCALE[unit])) / STRIDE_TIME))
+    period = float(report.cycle_seconds)
+    duties = [f.duty_factor for f in report.feet if f.duty_factor is not None and np.isfinite(f.duty_factor)]
+    if not (np.isfinite(period) and period > 0 and duties):
+        return "cm", reason
+    expected = STRIDE_TIME["walk" if float(np.mean(duties)) > 0.5 else "run"]
+    misfit = {unit: abs(np.log(period * np.sqrt(9.81 / (hip * UNIT_SCALE[unit])) / expected))
               for unit in ("cm", "in")}
     if misfit["in"] < misfit["cm"]:
         return "in", (f"hip height {hip:.0f} units with a {period:.2f} s stride reads as inches (in centimetres the "

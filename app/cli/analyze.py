@@ -137,7 +137,7 @@ def _run_folder(args: argparse.Namespace) -> int:
     if given:
         raise GaitlabError(f"{', '.join(given)}: for one creature or clip, not a folder of clips")
     folder = Path(args.creature)
-    clips = clips_under(folder)
+    clips = clips_under(folder, skip=args.csv)
     jobs = args.jobs or default_jobs()
     with tqdm(total=len(clips), unit="clip", desc="analysing", disable=None, file=sys.stderr) as bar:
         rows = analyse_folder(clips, jobs, feet=args.feet, units=args.units, up=args.up,

@@ -174,7 +174,7 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
         # Rolling lowers one side's hips as much as it raises the other's: it gains only
         # up to half the difference between the sides (none on level ground).
         gain = np.minimum(np.maximum(short, 0.0), 0.5 * np.abs(allowed[:, 0::2] - allowed[:, 1::2]))
-        extra = np.arcsin(np.clip(gain / np.maximum(pair, 1e-9), 0.0, 1.0))
+        extra = np.where(pair > 1e-6, np.arcsin(np.clip(gain / np.maximum(pair, 1e-9), 0.0, 1.0)), 0.0)
         roll = np.clip(roll + lower_right * extra, -MAX_STEEP_ROLL, MAX_STEEP_ROLL)
         lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
         allowed, lowest = limits(lateral)

@@ -63,7 +63,8 @@ WANDER_HZ = (0.02, 0.06)  # how fast it drifts (each animal its own, on each axi
 
 def loose_group(count: int, spacing: float, rng: np.random.Generator) -> NDArray[np.float64]:
     """Places (count, 2) in a loose group behind its leader (metres to the leader's left
-    and ahead): scattered over a half-ellipse about ``spacing`` apart (each animal takes
+    and ahead, none nearer its tail than ``spacing``): scattered over a half-ellipse about
+    ``spacing`` apart (each animal takes
     the farthest from the others of :data:`CANDIDATES` random spots, best-candidate
     sampling), the group :data:`GROUP_ASPECT` times as long as it is wide, thinning out
     towards its edges. No rows, no columns: a herd, not a parade."""
@@ -74,7 +75,7 @@ def loose_group(count: int, spacing: float, rng: np.random.Generator) -> NDArray
     for _ in range(count):  # at start only: never in the frame path
         r = np.sqrt(rng.uniform(0.0, 1.0, CANDIDATES))
         a = rng.uniform(0.0, np.pi, CANDIDATES)
-        spots = np.column_stack([half_width * r * np.cos(a), -0.5 * spacing - depth * r * np.sin(a)])
+        spots = np.column_stack([half_width * r * np.cos(a), -spacing - depth * r * np.sin(a)])  # clear of the leader
         if len(places):
             gap = np.min(np.linalg.norm(spots[:, None, :] - places[None, :, :], axis=-1), axis=1)
             # The first random spot with room enough (some close, some far: clumps and

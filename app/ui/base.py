@@ -76,6 +76,7 @@ class StateBase:
         _heading: float | None
         _follow_ahead: float
         _elevation: float | None
+        _lowering_in: int
 
         @property
         def session(self) -> CreatureSession: ...

@@ -20,6 +20,8 @@ from ..render.overlays import Overlays
 from ..render.scene import leg_colors
 from .base import StateBase
 
+LOWER_AFTER = 30  # frames the follow camera holds a raised view before easing down (no juddering over bumps)
+
 
 class ViewMixin(StateBase):
     """Cameras, overlays, ghosts and the ground under the creatures."""
@@ -30,6 +32,8 @@ class ViewMixin(StateBase):
         own projection: perspective, unless ``ortho``."""
         from ..kinematics.clip import clip_motion
         from ..render.scene import motion_bounds
+
+        preset_elevation = 0.0
 
         preset = preset or self.camera_preset
         if preset not in CAMERA_PRESETS:
@@ -50,6 +54,7 @@ class ViewMixin(StateBase):
             x, z = float(root[0, 3] + c * tx + s * tz), float(root[2, 3] - s * tx + c * tz)
             ground = float(self.world.terrain.height(np.array([[root[0, 3], root[2, 3]]]))[0])
             cam = replace(cam, target=(x, ty + ground, z), azimuth=cam.azimuth + heading)
+            preset_elevation = cam.elevation
             if not self.world.terrain.flat and not cam.top_down:  # over the steps or hills in between
                 need = clear_elevations(np.array([cam.target]), np.array([cam.azimuth]), cam.elevation, cam.distance,
                                         self.world.terrain.height, margin=0.1 * self.live.rig.hip_height)[0]
@@ -59,7 +64,8 @@ class ViewMixin(StateBase):
             cam = replace(cam, distance=cam.distance * max(1.0, 0.4 * extent / length))
         self.camera = replace(cam, ortho=ortho)
         self._follow_height = None
-        self._elevation = self.camera.elevation
+        # The follow camera eases back to the preset's own elevation once the ground allows.
+        self._elevation = preset_elevation if not self.world.in_place else self.camera.elevation
         self.options = replace(self.options, grid_spacing=nice_grid_spacing(self.live.rig.hip_height * 1.6))
 
     def default_view(self) -> None:
@@ -127,8 +133,13 @@ class ViewMixin(StateBase):
             # Up at once where the ground would come between (a step rising into the view),
             # easing back down after it.
             goal = max(base, need)
-            rate = 1.0 if goal > camera.elevation else 0.08
-            camera = replace(camera, elevation=camera.elevation + (goal - camera.elevation) * rate)
+            if goal > camera.elevation - 1e-9:
+                self._lowering_in = LOWER_AFTER  # risen: hold a moment before easing down again
+                camera = replace(camera, elevation=goal)
+            elif self._lowering_in > 0:
+                self._lowering_in -= 1
+            else:
+                camera = replace(camera, elevation=camera.elevation + (goal - camera.elevation) * 0.08)
         self.camera = camera
 
     def overlays(self, pose: Pose) -> Overlays | None:
