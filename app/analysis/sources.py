@@ -100,8 +100,8 @@ def _named_biped(names: list[str]) -> FootMap | None:
         if ankle is None:
             return None
         toe = next((found[(side, w)] for w in _TOE_WORDS if (side, w) in found), None)
-        if toe is None and ankle != found.get((side, "foot"), ankle):
-            toe = found[(side, "foot")]  # an ankle with a foot joint below it
+        if toe is None and (side, "ankle") in found and (side, "foot") in found:
+            toe = found[(side, "foot")]  # an ankle with a foot joint below it (SMPL)
         if toe is None and f"{ankle}/End" in names:
             toe = f"{ankle}/End"
         feet[side] = (ankle, toe)

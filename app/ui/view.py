@@ -33,8 +33,6 @@ class ViewMixin(StateBase):
         from ..kinematics.clip import clip_motion
         from ..render.scene import motion_bounds
 
-        preset_elevation = 0.0
-
         preset = preset or self.camera_preset
         if preset not in CAMERA_PRESETS:
             self.error = f"unknown camera {preset!r}"
@@ -43,6 +41,7 @@ class ViewMixin(StateBase):
         motion, _ = clip_motion(self.live.rig, 30.0, cycles=1.0, world=World(in_place=True))
         length = self.live.rig.body_length
         cam = frame_points(look_ahead(motion_bounds(motion), preset, length), preset, aspect=self.aspect)
+        preset_elevation = cam.elevation  # before any rise over the ground in between
         # The chase camera aims ahead of the creature (the framed box reaches forward).
         self._follow_ahead = 0.5 * CHASE_LOOK_AHEAD * length if preset == "chase" else 0.0
         if not self.world.in_place:
@@ -54,7 +53,6 @@ class ViewMixin(StateBase):
             x, z = float(root[0, 3] + c * tx + s * tz), float(root[2, 3] - s * tx + c * tz)
             ground = float(self.world.terrain.height(np.array([[root[0, 3], root[2, 3]]]))[0])
             cam = replace(cam, target=(x, ty + ground, z), azimuth=cam.azimuth + heading)
-            preset_elevation = cam.elevation
             if not self.world.terrain.flat and not cam.top_down:  # over the steps or hills in between
                 need = clear_elevations(np.array([cam.target]), np.array([cam.azimuth]), cam.elevation, cam.distance,
                                         self.world.terrain.height, margin=0.1 * self.live.rig.hip_height)[0]
@@ -65,7 +63,7 @@ class ViewMixin(StateBase):
         self.camera = replace(cam, ortho=ortho)
         self._follow_height = None
         # The follow camera eases back to the preset's own elevation once the ground allows.
-        self._elevation = preset_elevation if not self.world.in_place else self.camera.elevation
+        self._elevation = preset_elevation
         self.options = replace(self.options, grid_spacing=nice_grid_spacing(self.live.rig.hip_height * 1.6))
 
     def default_view(self) -> None:
