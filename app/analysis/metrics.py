@@ -277,6 +277,9 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
     if tracks.compromised:
         notes.append(f"{tracks.compromised} stance(s) stood on compromised footholds: uneven ground with no "
                      "acceptable spot in reach, so the least-bad one")
+    if tracks.cut_short:
+        notes.append(f"{tracks.cut_short} stance end(s) cut short where the leg could not reach its foothold: "
+                     "the foot lifted early or landed late")
     single = len(strikes.get(ref, [])) < 2
     if single:
         # A single stride (a short mocap take): each foot's one contact, the cycle from a

@@ -32,6 +32,7 @@ class FootTracks:
     exact: bool = False
     hands: NDArray[np.float64] | None = None  # (T, 2, 3) m, left and right hand tips (bipeds with arms)
     compromised: int = 0  # stances on compromised footholds (Gaitlab's own motion on uneven ground)
+    cut_short: int = 0  # stances that lifted early or landed late where the leg could not reach (idem)
 
     @property
     def frame_count(self) -> int:
@@ -90,7 +91,7 @@ def tracks_from_motion(motion: Motion) -> FootTracks:
             points[..., 1] -= motion.terrain.height(points[..., [0, 2]])
     return FootTracks(times=motion.times - motion.times[0], names=tuple(motion.leg_names), heel=heel, toe=toe,
                       body=body, source=f"gaitlab:{motion.rig.name}", hip_height=motion.rig.hip_height, exact=True,
-                      hands=hands, compromised=_compromised_stances(motion))
+                      hands=hands, compromised=_compromised_stances(motion), cut_short=_cut_short_stances(motion))
 
 
 def _compromised_stances(motion: Motion) -> int:
@@ -102,3 +103,14 @@ def _compromised_stances(motion: Motion) -> int:
     starts = contact.copy()
     starts[1:] &= ~contact[:-1]
     return int(np.count_nonzero(starts & bad))
+
+
+def _cut_short_stances(motion: Motion) -> int:
+    """How many stances lifted early or landed late out of reach (each run of lifted
+    frames is one stance's end)."""
+    if motion.lifted is None:
+        return 0
+    lifted = motion.lifted
+    starts = lifted.copy()
+    starts[1:] &= ~lifted[:-1]
+    return int(np.count_nonzero(starts))

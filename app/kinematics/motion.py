@@ -38,6 +38,8 @@ from .world import World, WorldError
 
 TIGHTEST_TURN = 0.2  # body lengths: the smallest turning radius a path may ask for
 REACH_TOLERANCE = 0.01  # m a planted foot may miss its foothold before the ground counts as out of reach
+REACHED = 1e-6  # m: a foot this near its foothold stands on it
+MAX_LIFT_MISS = 0.2  # of L_max: the farthest a foot lifts early or lands late short of its foothold
 
 
 _POINTS = {"points": True}  # a field holding world positions (they move with the creature, or the ground)
@@ -110,6 +112,7 @@ class Motion(_BodyParts):
     gaits: tuple[str, ...] = ()  # per frame, for speed-driven clips (empty otherwise)
     reach_error: NDArray[np.float64] | None = None  # (T, L) m between each ball and its target
     compromised: NDArray[np.bool_] | None = None  # (T, L) the foot stands on (or swings to) uneven ground
+    lifted: NDArray[np.bool_] | None = None  # (T, L) planned stance where the leg could not reach: off the ground
 
     @property
     def frame_count(self) -> int:
@@ -133,8 +136,10 @@ class Motion(_BodyParts):
         values = {name: getattr(self, name)[first:] for name in per_frame}
         if self.reach_error is not None:
             values["reach_error"] = self.reach_error[first:]
-        if self.compromised is not None:
-            values["compromised"] = self.compromised[first:]
+        for name in ("compromised", "lifted"):
+            value = getattr(self, name)
+            if value is not None:
+                values[name] = value[first:]
         if self.gaits:
             values["gaits"] = self.gaits[first:]
         return replace(self, **values)
@@ -308,6 +313,8 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     heel = heel_points(rig, joints, forward, up)
     root = root_frames(spine)
     reach_error = np.linalg.norm(joints[:, :, 3] - ball, axis=-1)
+    lifted = stance_ends_out_of_reach(plan.contact, reach_error, plan.phase / np.maximum(plan.duty, 1e-9),
+                                      MAX_LIFT_MISS * rig.l_max)
 
     # 5. Arms, swinging against the legs of the rearmost pair.
     if rig.arms is not None:
@@ -332,11 +339,39 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
         spine_pts, neck, head, tail = (a + shift[:, None, :] for a in (spine_pts, neck, head, tail))
         root = root.copy()
         root[:, 2, 3] -= inputs.travel
-    return Motion(times=inputs.times, clock=inputs.clock, joints=joints, contact=plan.contact, phase=plan.phase,
+    return Motion(times=inputs.times, clock=inputs.clock, joints=joints, contact=plan.contact & ~lifted,
+                  phase=plan.phase,
                   spine=spine_pts, spine_tangent=spine_tan, spine_radius=spine.radius, neck=neck, head=head,
                   tail=tail, root=root, ground_offset=ground_offset, travel=inputs.travel,
                   leg_names=rig.leg_names, fps=fps, rig=rig, heel=heel, arms=arms, ear_lag=ear_lag, world=world,
-                  reach_error=reach_error, compromised=plan.compromised)
+                  reach_error=reach_error, compromised=plan.compromised, lifted=lifted)
+
+
+def stance_ends_out_of_reach(contact: NDArray[np.bool_], reach_error: NDArray[np.float64],
+                             progress: NDArray[np.float64], farthest: NDArray[np.float64] | float = np.inf,
+                             ) -> NDArray[np.bool_]:
+    """The frames (T, L) at either end of a stance in which the leg cannot reach its
+    foothold (``reach_error`` (T, L) m beyond :data:`REACHED`): there the foot lifts early
+    (the leg at full stretch behind, as a real stance ends at its leg's limit) or lands
+    late (full stretch ahead, down into a hollow): a late landing within the stance's
+    first half, an early lift within its second (``progress`` (T, L): 0 at touchdown, 1
+    at lift-off). A miss between frames that reach, beyond the stance's half, or through
+    a whole stance (as far as the clip holds it), or by more than ``farthest`` (L,) m,
+    stays a planted foot that misses, for :func:`check_reach` to judge. Vectorised over
+    frames and legs."""
+    frames = contact.shape[0]
+    good = contact & (reach_error <= REACHED)
+    index = np.arange(frames)[:, None]
+    # Nearest frame before/after (inclusive) that reaches, and that is not in stance.
+    prev_good = np.maximum.accumulate(np.where(good, index, -1), axis=0)
+    prev_swing = np.maximum.accumulate(np.where(contact, -1, index), axis=0)
+    next_good = np.minimum.accumulate(np.where(good, index, frames)[::-1], axis=0)[::-1]
+    next_swing = np.minimum.accumulate(np.where(contact, frames, index)[::-1], axis=0)[::-1]
+    leading = prev_good <= prev_swing  # no reaching frame since the stance began (or the clip)
+    trailing = next_good >= next_swing  # none until it ends (or the clip does)
+    early_lift = trailing & (progress > 0.5)
+    late_landing = leading & (progress < 0.5)
+    return contact & ~good & ~(leading & trailing) & (early_lift | late_landing) & (reach_error <= farthest)
 
 
 def frame_count(seconds: float, fps: float) -> int:
@@ -372,7 +407,9 @@ def check_world(rig: Rig, world: World) -> None:
 
 def check_reach(motion: Motion) -> None:
     """Refuse ground that asks more than the legs can reach: a planted foot that misses its
-    foothold by more than a centimetre (steps too high, hills too steep for the creature)."""
+    foothold by more than a centimetre (steps too high, hills too steep for the creature).
+    A stance's ends out of reach are no refusal: there the foot lifts early or lands late
+    (:func:`stance_ends_out_of_reach`)."""
     if motion.reach_error is None:
         return
     miss = np.where(motion.contact, motion.reach_error, 0.0)
