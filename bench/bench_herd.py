@@ -41,8 +41,16 @@ SIZES = (1, 10, 100)
 
 
 def kinematics(frames: int = 300) -> None:
+    from app.worlds import make_world
+
     rig = build_rig(load_creature("dog"))
-    print("kinematics per frame (steering, clocks, joints, instance rows), median of", frames, "frames:")
+    hills = make_world("straight", "hills").terrain.height
+    for ground, where in ((None, "flat ground"), (hills, "the default hills (legs set down on the ground)")):
+        _kinematics(rig, frames, ground, where)
+
+
+def _kinematics(rig, frames: int, ground, where: str) -> None:
+    print(f"kinematics per frame on {where} (steering, clocks, joints, instance rows), median of", frames, "frames:")
     for n in SIZES:
         herd = Herd(rig, n)
         rows = HerdInstances(herd)
@@ -54,9 +62,9 @@ def kinematics(frames: int = 300) -> None:
             t0 = time.perf_counter()
             herd.step(dt, leader, 0.0)
             t1 = time.perf_counter()
-            herd.joints()
+            herd.joints(ground)
             t2 = time.perf_counter()
-            rows.frame(herd)
+            rows.frame(herd, ground)
             t3 = time.perf_counter()
             times["step"].append(t1 - t0)
             times["joints"].append(t2 - t1)

@@ -10,6 +10,11 @@ An animal's planted feet stand still on the ground when it walks straight: its b
 moves at exactly the speed the cycle's feet sweep back at (size x rate x the cycle's
 speed). Turning, they slide by the turn's angle about the body (a herd's animals turn
 gently; the creature being edited, outside the herd, keeps every foot planted).
+
+On uneven ground each animal stands on the plane of the ground under it, and then each
+leg reaches down or folds up to the ground under its own foot (:func:`legs_to_ground`):
+the foot moves straight up or down, the knee bends in the leg's own plane, every bone
+keeps its length. One vectorised solve for every leg of every animal.
 """
 
 from __future__ import annotations
@@ -28,6 +33,8 @@ from .rig import Rig
 from .world import IN_PLACE
 
 CYCLE_FRAMES = 64  # frames of the solved cycle; poses between them are blended
+SETTLE_PASSES = 3  # how often an animal settles lower for a planted foot out of reach
+UP = np.array([0.0, 1.0, 0.0])
 
 
 def check_herd_size(n: int) -> int:
@@ -233,13 +240,105 @@ class Herd:
         return self.size, rot, np.column_stack([self.position[:, 0], y, self.position[:, 1]])
 
     def joints(self, ground_height=None) -> NDArray[np.float64]:
-        """Every animal's leg joints in the world, (N, L, 5, 3)."""
+        """Every animal's leg joints in the world, (N, L, 5, 3): on uneven ground (given
+        ``ground_height``) each foot set down on the ground under it."""
+        return self.legs(ground_height)[0]
+
+    def legs(self, ground_height=None) -> tuple[NDArray[np.float64], LegAdjustment | None]:
+        """Every animal's leg joints in the world (N, L, 5, 3) and, on uneven ground, how
+        each leg was set down on it (None on flat ground, where the cycle's feet stand)."""
         f0, f1, w = self.blend()
         # In place, the body stays at the origin and planted feet sweep back with the
         # ground: in the body's frame, which is what each animal carries along.
         local = self.cycle.joints[f0] * (1.0 - w)[:, None, None, None] + self.cycle.joints[f1] * w[:, None, None, None]
         scale, rot, move = self.transforms(ground_height)
-        return np.einsum("nij,nlkj->nlki", rot, local * scale[:, None, None, None]) + move[:, None, None, :]
+        joints = np.einsum("nij,nlkj->nlki", rot, local * scale[:, None, None, None]) + move[:, None, None, :]
+        if ground_height is None:
+            return joints, None
+        lift = local[:, :, 3, 1] * scale[:, None]  # each ball's height above the cycle's ground (m)
+        adjusted = legs_to_ground(joints, ground_height, lift)
+        return adjusted.joints, adjusted
+
+
+@dataclass(frozen=True)
+class LegAdjustment:
+    """How :func:`legs_to_ground` set each leg (N animals, L legs) down: the new joints
+    (N, L, 5, 3); the thigh's rotation about the hip and the shin's about the knee
+    (N, L, 3, 3), the knee's move and the foot's (ankle, ball and toe) move (N, L, 3) m
+    from where the animal's settling left them; short (N, L) m by which each foot still
+    misses its ground; lowered (N,) m how far each animal settled below the plane it
+    stands on, for a planted foot in a hollow."""
+
+    joints: NDArray[np.float64]
+    thigh: NDArray[np.float64]
+    shin: NDArray[np.float64]
+    knee_move: NDArray[np.float64]
+    foot_move: NDArray[np.float64]
+    short: NDArray[np.float64]
+    lowered: NDArray[np.float64]
+
+
+def _rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The smallest rotation (..., 3, 3) taking unit vectors a to b (..., 3) (Rodrigues)."""
+    v = np.cross(a, b)
+    c = np.sum(a * b, axis=-1)[..., None, None]
+    k = np.zeros(a.shape[:-1] + (3, 3))
+    k[..., 0, 1], k[..., 0, 2], k[..., 1, 2] = -v[..., 2], v[..., 1], -v[..., 0]
+    k = k - np.swapaxes(k, -1, -2)
+    return np.eye(3) + k + (k @ k) / np.maximum(1.0 + c, 1e-9)
+
+
+def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.float64]) -> LegAdjustment:
+    """Set each foot of ``joints`` (N, L, 5, 3: hip, knee, ankle, ball, toe) down on the
+    ground: its ball ``lift`` (N, L) m above ``ground_height((K, 2)) -> (K,)`` under it
+    (0 for a planted foot). The foot (ankle, ball, toe) moves straight up or down; the
+    hip stays, unless a planted foot lies beyond the leg's reach (in a hollow): then the
+    whole animal settles lower until it reaches (up to SETTLE_PASSES tries); the knee is
+    re-solved in the plane of hip, knee and ankle (two-bone IK, bending the same way). A
+    foot the leg still cannot reach stops at the leg's full stretch towards it, one too
+    near at its full fold. Bone lengths are kept exactly."""
+    n, legs = joints.shape[:2]
+    ground = ground_height(joints[:, :, 3][..., [0, 2]].reshape(-1, 2)).reshape(n, legs)
+    knee_from_hip = joints[:, :, 1] - joints[:, :, 0]
+    femur = np.linalg.norm(knee_from_hip, axis=-1)
+    tibia = np.linalg.norm(joints[:, :, 2] - joints[:, :, 1], axis=-1)
+    longest, shortest = femur + tibia - 1e-9, np.abs(femur - tibia) + 1e-9
+    # Where each ankle must go (the foot moved up or down to its ground): fixed in the world.
+    target = joints[:, :, 2].copy()
+    target[..., 1] += ground + lift - joints[:, :, 3, 1]
+    planted = lift < 1e-6
+    lowered = np.zeros(n)
+    for attempt in range(SETTLE_PASSES + 1):
+        hip = joints[:, :, 0] - lowered[:, None, None] * UP
+        to_target = target - hip
+        reach = np.linalg.norm(to_target, axis=-1)
+        along = to_target / np.maximum(reach, 1e-12)[..., None]
+        beyond = np.where(planted, reach - longest, 0.0)  # (N, L)
+        worst = beyond.argmax(axis=1)
+        over = beyond[np.arange(n), worst]
+        if attempt == SETTLE_PASSES or not np.any(over > 1e-9):
+            break
+        # Lowering the hip by h brings a foot straight below nearer by h, one out to the side less.
+        steep = np.maximum(-along[np.arange(n), worst, 1], 0.3)
+        lowered += np.where(over > 1e-9, over / steep + 1e-9, 0.0)
+    d = np.clip(reach, shortest, longest)
+    new_ankle = hip + along * d[..., None]
+    # The knee bends towards where it was, across the hip-ankle line.
+    bend = knee_from_hip - np.sum(knee_from_hip * along, axis=-1, keepdims=True) * along
+    bend = bend / np.maximum(np.linalg.norm(bend, axis=-1, keepdims=True), 1e-12)
+    cos_a = np.clip((femur ** 2 + d ** 2 - tibia ** 2) / np.maximum(2.0 * femur * d, 1e-12), -1.0, 1.0)
+    new_knee = hip + femur[..., None] * (cos_a[..., None] * along + np.sqrt(1.0 - cos_a ** 2)[..., None] * bend)
+    shift = lowered[:, None, None] * UP  # (N, 1, 3) the animal's settling
+    knee, ankle = joints[:, :, 1] - shift, joints[:, :, 2] - shift  # the leg as it was, settled with the body
+    foot_move = new_ankle - ankle
+    out = joints - shift[:, :, None, :]
+    out[:, :, 1] = new_knee
+    out[:, :, 2:] += foot_move[:, :, None, :]
+    unit = lambda v: v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+    thigh = _rotation_between(unit(knee - hip), unit(new_knee - hip))
+    shin = _rotation_between(unit(ankle - knee), unit(new_ankle - new_knee))
+    return LegAdjustment(joints=out, thigh=thigh, shin=shin, knee_move=new_knee - knee, foot_move=foot_move,
+                         short=np.linalg.norm(target - new_ankle, axis=-1), lowered=lowered)
 
 
 @dataclass(frozen=True)

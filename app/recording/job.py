@@ -142,7 +142,7 @@ class Recording:
             if herd is not None:
                 animals, track, instances = herd
                 extra.append(instances.frame(track.apply(animals, min(index, len(track.phase) - 1)),
-                                             motion.terrain.height))
+                                             None if motion.terrain.flat else motion.terrain.height))
         if self._arcs is not None:
             extra.append(self._arc_shapes(index))
         return self._renderer.frame(self.motions, index, self.cameras[index], self.options, extra)

@@ -4,7 +4,9 @@
 (:func:`app.render.scene.motion_instances`); per frame it blends each animal's two cycle
 frames and moves the rows to the animal's place, size and heading, for all animals at
 once. The renderer then draws the whole herd with the same four instanced draw calls as
-one creature.
+one creature. On uneven ground each animal's legs are set down on the ground under its
+feet (:func:`app.kinematics.herd.legs_to_ground`): the leg shapes are built from those
+joints, and a skinned body's thigh, shin and foot bones turn and move with them.
 """
 
 from __future__ import annotations
@@ -13,10 +15,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..choices import BodyStyle
-from ..kinematics.herd import Herd
+from ..kinematics.herd import Herd, LegAdjustment
 from ..kinematics.motion import Motion
+from ..kinematics.skeleton import LEG_JOINTS, skeleton_points
 from .bodies import BodyDraw, motion_body, shared_body_cache
-from .scene import SceneInstances, motion_instances
+from .scene import SceneInstances, leg_instances, motion_instances
 
 
 class HerdInstances:
@@ -28,8 +31,10 @@ class HerdInstances:
         self.body = body
         self.by_side = by_side
         self._cycle: Motion | None = None
-        self._rows: SceneInstances | None = None
+        self._rows: SceneInstances | None = None  # with the legs (flat ground)
+        self._body_rows: SceneInstances | None = None  # without them (legs set down on uneven ground)
         self._skins: BodyDraw | None = None
+        self._leg_bones: NDArray[np.int64] | None = None  # (L, 5) skeleton joint of each leg joint
         self._update(herd)
 
     def matches(self, show_joints: bool, body: BodyStyle, by_side: bool) -> bool:
@@ -43,17 +48,32 @@ class HerdInstances:
             # On skinned bodies a herd shows no joint markers (inside the skin, and many).
             self._rows = motion_instances(herd.cycle, show_joints=self.show_joints and not skin, parts=not skin,
                                           by_side=self.by_side)
+            self._body_rows = motion_instances(herd.cycle, show_joints=False, parts=not skin, by_side=self.by_side,
+                                               legs=False)
             self._skins = motion_body(herd.cycle, shared_body_cache()) if skin else None
+            if skin:
+                assert self._skins is not None
+                names = skeleton_points(herd.cycle.frames(0), self._skins.body.layout)[0].names
+                self._leg_bones = np.array([[names.index(f"{leg}_{part}") for part in LEG_JOINTS]
+                                            for leg in herd.cycle.leg_names])
 
     def frame(self, herd: Herd, ground_height=None) -> SceneInstances:
         """Every animal's capsules (N * C, 11) and ellipsoids (N * E, 18), the shadow
         casters (each animal's skull) first."""
         self._update(herd)
-        assert self._rows is not None
+        assert self._rows is not None and self._body_rows is not None
         f0, f1, w = herd.blend()
         scale, rot, move = herd.transforms(ground_height)
-        caps = _blend(self._rows.capsules, f0, f1, w)  # (N, C, 11)
-        ells = _blend(self._rows.ellipsoids, f0, f1, w)  # (N, E, 18)
+        legs: LegAdjustment | None = None
+        rows = self._rows
+        if ground_height is not None:
+            legs = herd.legs(ground_height)[1]
+            assert legs is not None
+            move = move.copy()
+            move[:, 1] -= legs.lowered
+            rows = self._body_rows
+        caps = _blend(rows.capsules, f0, f1, w)  # (N, C, 11)
+        ells = _blend(rows.ellipsoids, f0, f1, w)  # (N, E, 18)
         out_c = caps.copy()
         for k in (0, 3):  # the two end points
             out_c[..., k:k + 3] = _place(caps[..., k:k + 3], scale, rot, move)
@@ -66,8 +86,13 @@ class HerdInstances:
         casters = self._rows.ellipsoid_casters
         n = herd.count
         width = out_e.shape[-1]
-        ellipsoids = np.concatenate([out_e[:, :casters].reshape(n * casters, width),
-                                     out_e[:, casters:].reshape(-1, width)])
+        parts = [out_e[:, :casters].reshape(n * casters, width), out_e[:, casters:].reshape(-1, width)]
+        out_caps = out_c.reshape(-1, caps.shape[-1])
+        if legs is not None and self._skins is None:  # the legs' shapes from the joints set down
+            leg_rows = leg_instances(legs.joints, herd.rig, show_joints=self.show_joints, by_side=self.by_side)
+            out_caps = np.concatenate([out_caps, leg_rows.capsules.reshape(-1, caps.shape[-1])])
+            parts.append(leg_rows.ellipsoids.reshape(-1, width))
+        ellipsoids = np.concatenate(parts)
         bodies: tuple[BodyDraw, ...] = ()
         if self._skins is not None:  # each animal's body: its blended skin, placed
             skins = self._skins.skin.astype(np.float64)
@@ -75,10 +100,34 @@ class HerdInstances:
             place = np.tile(np.eye(4), (n, 1, 1))
             place[:, :3, :3] = rot * scale[:, None, None]
             place[:, :3, 3] = move
-            posed = np.einsum("nab,njbc->njac", place, skin).astype(np.float32)
+            posed = np.einsum("nab,njbc->njac", place, skin)
+            if legs is not None:
+                assert self._leg_bones is not None
+                posed = _set_down(posed, self._leg_bones, legs)
+            posed = posed.astype(np.float32)
             bodies = tuple(BodyDraw(self._skins.body, posed[k]) for k in range(n))
-        return SceneInstances(out_c.reshape(-1, caps.shape[-1]).astype(np.float32),
-                              ellipsoids.astype(np.float32), n * casters, bodies)
+        return SceneInstances(out_caps.astype(np.float32), ellipsoids.astype(np.float32), n * casters, bodies)
+
+
+def _set_down(posed: NDArray[np.float64], bones: NDArray[np.int64], legs: LegAdjustment) -> NDArray[np.float64]:
+    """Skinning matrices (N, J, 4, 4) with each leg's bones (``bones`` (L, 5): hip, knee,
+    ankle, ball, toe joints) set down as ``legs`` says: the thigh turned about the hip,
+    the shin turned and moved with the knee, the foot moved."""
+    out = posed.copy()
+    hip, knee = legs.joints[:, :, 0], legs.joints[:, :, 1] - legs.knee_move  # where they were
+    n, count = legs.thigh.shape[:2]
+    for rotation, pivot, move, column in ((legs.thigh, hip, np.zeros_like(hip), 0),
+                                          (legs.shin, knee, legs.knee_move, 1)):
+        # p -> R (p - pivot) + pivot + move, for every leg of every animal at once
+        delta = np.tile(np.eye(4), (n, count, 1, 1))
+        delta[..., :3, :3] = rotation
+        delta[..., :3, 3] = pivot + move - np.einsum("nlij,nlj->nli", rotation, pivot)
+        joint = bones[:, column]
+        out[:, joint] = delta @ posed[:, joint]
+    foot = bones[:, 2:]  # ankle, ball, toe: moved with the foot
+    translation = out[..., :3, 3]  # (N, J, 3), a view
+    translation[:, foot] += legs.foot_move[:, :, None, :]
+    return out
 
 
 def _blend(rows: NDArray[np.float32], f0: NDArray[np.int64], f1: NDArray[np.int64],

@@ -293,30 +293,55 @@ def _joint_markers(joints: NDArray[np.float64], radii: NDArray[np.float64],
                            np.broadcast_to(joint_color, inner.shape)], axis=-1)
 
 
+def _leg_rows(joints: NDArray[np.float64], rig: Rig, show_joints: bool, parts: bool = True,
+              by_side: bool = True) -> tuple[list[NDArray[np.float64]], list[NDArray[np.float64]], list[NDArray[np.float64]]]:
+    """The legs' shapes from joints (T, L, 5, 3): capsule rows, foot ellipsoid rows and
+    joint-marker rows (lists of (T, K, 11 / 18) arrays; only the markers when not ``parts``)."""
+    frames = joints.shape[0]
+    body_color = srgb_to_linear(rig.look.body_color)
+    leg_color = leg_colors(rig) if by_side else np.broadcast_to(body_color, (rig.leg_count, 3))
+    radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
+    markers = [_joint_markers(joints, radii, leg_color)] if show_joints else []
+    if not parts:
+        return [], [], markers
+    # Four tapered bones each, then muscle and feet.
+    legs = _capsules(joints[:, :, :-1], joints[:, :, 1:], radii[:, :-1], radii[:, 1:],
+                     leg_color[:, None, :]).reshape(frames, -1, CAPSULE_FLOATS)
+    leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color)
+    return [legs, *leg_parts], list(foot_parts), markers
+
+
+def leg_instances(joints: NDArray[np.float64], rig: Rig, show_joints: bool = True, parts: bool = True,
+                  by_side: bool = True) -> SceneInstances:
+    """Only the legs' shapes of poses with joints (T, L, 5, 3) (what :func:`motion_instances`
+    leaves out with ``legs=False``): capsules (T, N, 11), ellipsoids (T, M, 18)."""
+    capsules, feet, markers = _leg_rows(joints, rig, show_joints, parts, by_side)
+    frames = joints.shape[0]
+    caps = np.concatenate(capsules, axis=1) if capsules else np.zeros((frames, 0, CAPSULE_FLOATS))
+    ells = np.concatenate(feet + markers, axis=1) if feet or markers else np.zeros((frames, 0, ELLIPSOID_FLOATS))
+    return SceneInstances(capsules=caps.astype(np.float32), ellipsoids=ells.astype(np.float32))
+
+
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
                show_joints: bool, arms: NDArray[np.float64] | None = None,
-               ear_lag: NDArray[np.float64] | None = None, parts: bool = True, by_side: bool = True) -> SceneInstances:
+               ear_lag: NDArray[np.float64] | None = None, parts: bool = True, by_side: bool = True,
+               legs: bool = True) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
     array has a leading frame axis T. ``parts`` False leaves only what sits on a skinned
-    body (the eyes, the joint markers); ``by_side`` colours legs and arms by side."""
+    body (the eyes, the joint markers); ``by_side`` colours legs and arms by side;
+    ``legs`` False leaves the legs out (see :func:`leg_instances`)."""
     look = rig.look
     head_radius = rig.body.head_radius
     ear_length = rig.body.ear_length
     frames = joints.shape[0]
     body_color = srgb_to_linear(look.body_color)
-    leg_color = leg_colors(rig) if by_side else np.broadcast_to(body_color, (rig.leg_count, 3))
     arm_color = side_colors(rig) if by_side else np.broadcast_to(body_color, (2, 3))
-    radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
+    leg_caps, foot_parts, markers = _leg_rows(joints, rig, show_joints, parts, by_side) if legs else ([], [], [])
     if not parts:  # a skinned body is drawn instead: only the eyes and the joint markers
         skull, head_dir = _skull(head, rig)
-        on_skin = [_eyes(skull, head_dir, rig)] + ([_joint_markers(joints, radii, leg_color)] if show_joints else [])
+        on_skin = [_eyes(skull, head_dir, rig)] + markers
         return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
                               ellipsoids=np.concatenate(on_skin, axis=1).astype(np.float32), ellipsoid_casters=0)
-
-    # Legs: four tapered bones each.
-    legs = _capsules(joints[:, :, :-1], joints[:, :, 1:], radii[:, :-1], radii[:, 1:],
-                     leg_color[:, None, :]).reshape(frames, -1, CAPSULE_FLOATS)
-    leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color)
 
     # Trunk: a tube of tapered capsules through the segment centres, capped past both ends.
     r = spine_radius
@@ -341,7 +366,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
     arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, arm_color)
-    capsule_parts = [legs, *leg_parts, *arm_caps, trunk, neck_c, muzzle, tail_c]
+    capsule_parts = [*leg_caps, *arm_caps, trunk, neck_c, muzzle, tail_c]
     if ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
             + sides * hx[:, None] * 0.55 * head_radius
@@ -352,19 +377,18 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
 
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
-    ellipsoid_parts = [skull_e, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells]
-    if show_joints:
-        ellipsoid_parts.append(_joint_markers(joints, radii, leg_color))
+    ellipsoid_parts = [skull_e, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells, *markers]
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),
                           ellipsoids=np.concatenate(ellipsoid_parts, axis=1).astype(np.float32))
 
 
 def motion_instances(motion: Motion, show_joints: bool = True, parts: bool = True,
-                     by_side: bool = True) -> SceneInstances:
+                     by_side: bool = True, legs: bool = True) -> SceneInstances:
     """Instances of every frame of a clip: capsules (T, N, 11), ellipsoids (T, M, 18)
-    (``parts``, ``by_side``: see :func:`_instances`)."""
+    (``parts``, ``by_side``, ``legs``: see :func:`_instances`)."""
     return _instances(motion.joints, motion.spine, motion.spine_tangent, motion.spine_radius, motion.neck,
-                      motion.head, motion.tail, motion.rig, show_joints, motion.arms, motion.ear_lag, parts, by_side)
+                      motion.head, motion.tail, motion.rig, show_joints, motion.arms, motion.ear_lag, parts, by_side,
+                      legs)
 
 
 def pose_instances(pose: Pose, rig: Rig, show_joints: bool = True, parts: bool = True,

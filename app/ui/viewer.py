@@ -325,7 +325,8 @@ class Viewer:
             if cached is None or not cached.matches(joints, options.body, by_side):
                 cached = self._herd_instances[id(session.herd)] = HerdInstances(session.herd, joints, options.body,
                                                                                 by_side)
-            parts.append(cached.frame(session.herd, session.world.terrain.height))
+            terrain = session.world.terrain
+            parts.append(cached.frame(session.herd, None if terrain.flat else terrain.height))
         parts += [ghost_instances(ghost, state.live.rig, color)
                   for ghost, color in zip(state.ghost_poses(), KEY_POSE_COLORS)]
         if state.options.arcs:
