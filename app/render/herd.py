@@ -91,7 +91,7 @@ class HerdInstances:
         if legs is not None and self._skins is None:  # the legs' shapes from the joints set down
             leg_rows = leg_instances(legs.joints, herd.rig, show_joints=self.show_joints, by_side=self.by_side)
             out_caps = np.concatenate([out_caps, leg_rows.capsules.reshape(-1, caps.shape[-1])])
-            parts.append(leg_rows.ellipsoids.reshape(-1, width))
+            parts.append(leg_rows.ellipsoids.reshape(-1, width).astype(np.float64))
         ellipsoids = np.concatenate(parts)
         bodies: tuple[BodyDraw, ...] = ()
         if self._skins is not None:  # each animal's body: its blended skin, placed
