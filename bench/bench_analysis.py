@@ -83,6 +83,34 @@ def live_measurement() -> None:
               f"{max(sample_costs) * 1e3:.2f} ms ({reports} reports in 8 s)")
 
 
+def plots_cost() -> None:
+    """What the Plots panel adds to a viewer frame's simulation: stepping at 240 Hz and
+    solving the samples in one call (the frame's pose is the last sample) against one
+    step and one pose a frame, at 60 fps."""
+    from app import load_creature
+    from app.ui.monitor import GaitMonitor
+    from app.ui.state import ViewerState
+
+    for creature in ("dog", "human", "centipede"):
+        cost = {}
+        for fine in (False, True):
+            state = ViewerState(load_creature(creature))
+            state.fine_sampling = fine
+            monitor = GaitMonitor()
+            times = []
+            for _ in range(600):
+                t0 = time.perf_counter()
+                state.advance(1 / 60)
+                sampled = monitor.record_samples(state.live.rig, state.world, state.take_samples(),
+                                                 state.live.frequency) if fine else None
+                _ = sampled.pose(sampled.frame_count - 1) if sampled is not None else state.pose()
+                times.append(time.perf_counter() - t0)
+            monitor.close()
+            cost[fine] = statistics.median(times[60:]) * 1e3
+        print(f"simulate per frame, {creature:9}  Plots closed {cost[False]:5.2f} ms, open {cost[True]:5.2f} ms "
+              f"(+{cost[True] - cost[False]:.2f} ms)")
+
+
 def child(tree: Path, repeats: int) -> dict:
     out = subprocess.run([sys.executable, __file__, "--child", "--repeats", str(repeats)], capture_output=True,
                          text=True, env={**os.environ, "PYTHONPATH": str(tree)}, check=True)
@@ -108,6 +136,7 @@ def main() -> None:
         print(f"analyze (median of {args.repeats})     {median:.2f} s  ({r['frames'] / median:,.0f} frames/s; "
               f"gait {r['gait']})")
         live_measurement()
+        plots_cost()
         return
     old_times, new_times = [], []
     for _ in range(2):  # alternate, so load on the machine drifts over both

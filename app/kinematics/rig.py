@@ -154,6 +154,12 @@ class SpeedGaits:
         return tuple(name for name, _ in self.ladder)
 
 
+def _frozen(values: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``values``, read-only: a rig's derived arrays are computed once and shared."""
+    values.flags.writeable = False
+    return values
+
+
 @dataclass(frozen=True)
 class Rig:
     """Per-leg arrays (shape (L,) unless noted) and the per-creature values.
@@ -230,26 +236,26 @@ class Rig:
         """The mean leg rest length (m): the unit of the gait's stride."""
         return float(self.l_rest.mean())
 
-    @property
+    @functools.cached_property
     def stride_length(self) -> NDArray[np.float64]:
         """Fore-aft travel of each planted foot relative to its hip (m), shape (L,).
 
         One length for all feet (the gait's stride times the mean rest length) so that
         every planted foot moves at the same ground speed.
         """
-        return np.full(self.leg_count, self.gait.stride * self.leg_scale)
+        return _frozen(np.full(self.leg_count, self.gait.stride * self.leg_scale))
 
-    @property
+    @functools.cached_property
     def step_height(self) -> NDArray[np.float64]:
         """Swing height of each foot (m), shape (L,): step height times the leg's L_rest."""
-        return self.gait.step_height * self.l_rest
+        return _frozen(self.gait.step_height * self.l_rest)
 
     @property
     def ground_speed(self) -> float:
         """Travel speed (m/s): the planted feet's speed relative to the body."""
         return float(ground_speed(self.gait.stride * self.leg_scale, self.gait.duty_factor, self.gait.frequency))
 
-    @property
+    @functools.cached_property
     def sideways_reach(self) -> NDArray[np.float64]:
         """How far (m) each foot's rest spot lies out from its hip, (L,): the abducted rest
         length, brought in where a stride from there would need more than the leg can
@@ -261,7 +267,7 @@ class Rig:
         # The farthest a planted foot gets, horizontally: r^2 + half^2 + 2 r half |sin splay|.
         limit = (SPRAWL_MARGIN * self.l_max) ** 2 - low ** 2 - half ** 2
         room = -half * lean + np.sqrt(np.maximum((half * lean) ** 2 + limit, 0.0))
-        return np.clip(np.minimum(reach, room), 0.0, None)
+        return _frozen(np.clip(np.minimum(reach, room), 0.0, None))
 
     def stance_extent(self, half_stride: NDArray[np.float64]) -> NDArray[np.float64]:
         """The farthest (m) a planted foot gets from its hip horizontally, for planted feet
@@ -269,7 +275,7 @@ class Rig:
         reach = self.sideways_reach
         return np.sqrt(reach ** 2 + half_stride ** 2 + 2.0 * reach * half_stride * np.abs(np.sin(self.splay)))
 
-    @property
+    @functools.cached_property
     def neutral_feet(self) -> NDArray[np.float64]:
         """Each foot's rest position relative to its girdle's centre on the ground, in the
         body frame (x left, z forward), shape (L, 2): the hip's lateral offset plus the
@@ -282,7 +288,7 @@ class Rig:
         # ahead of the hip and pushes off well behind it, as walkers do.
         ahead = np.where((self.roll_amount > 0) & (self.heel_length > 0),
                          self.metatarsus * np.cos(self.ankle_lift) - STANCE_BACK * 0.5 * self.stride_length, 0.0)
-        return np.stack([lateral, reach * np.sin(self.splay) + ahead], axis=-1)
+        return _frozen(np.stack([lateral, reach * np.sin(self.splay) + ahead], axis=-1))
 
     def with_gait(self, gait: GaitParams) -> Rig:
         return replace(self, gait=gait)
