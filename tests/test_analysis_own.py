@@ -59,3 +59,26 @@ def test_report_json_has_the_documented_shape() -> None:
     assert kinds == {"lift", "liftoff", "strike", "landing", "stance"}
     times = [e["time"] for e in foot["events"]]
     assert times == sorted(times)
+
+
+def test_a_stance_found_twice_is_one_contact_and_a_swing_dip_is_no_stance(tmp_path) -> None:
+    """A person with a short thigh and a high step (the CMU walker's first fit): the heel
+    strike and the flat foot were two "strikes" of one stance (duty 3.5, half the cycle),
+    and a toe dipping in mid-swing a stance of no length. One step per contact, from its
+    first strike to its last liftoff; no contact shorter than 8 % of a stride."""
+    import numpy as np
+
+    spec = load_creature("human").with_overrides({
+        "legs.legs.femur": 0.3408, "legs.legs.tibia": 0.4454, "legs.legs.metatarsus": 0.1124,
+        "gait.frequency": 0.7843, "gait.duty_factor": 0.5833, "gait.step_height": 0.1036, "gait.stride": 0.8099,
+        "poses.contact_height": -0.0572, "poses.down_height": -0.0694, "poses.pass_height": -0.0163,
+        "poses.up_height": -0.0041})
+    rig = build_rig(spec)
+    motion, _ = clip_motion(rig, 157.0, cycles=5.0)
+    report = analyze_tracks(tracks_from_motion(motion))
+    assert report.cycle_seconds == pytest.approx(1.0 / rig.gait.frequency, rel=0.01)
+    for foot in report.feet:
+        assert foot.duty_factor == pytest.approx(rig.gait.duty_factor, abs=0.01)
+    for events in report.foot_events:
+        strikes = [s.strike for s in events.steps]
+        assert len(strikes) == len(set(strikes)) and all(np.diff(strikes) > 0.5 * 157 / rig.gait.frequency)

@@ -40,6 +40,7 @@ LIFT_LEVEL = 0.10  # the search span ends at 10% of the curve's maximum height
 SPEED_CHANGE = 0.50  # the forward-speed check: more than 50% away from the stance speed
 CONTACT_SPEED = 0.5  # a contact point's foot moves at under half its typical speed when it is down
 STATIC_SPEED = 0.25  # a foot slower than this fraction of the body's speed stands still
+MIN_STANCE = 0.08  # of a stride: a shorter contact within the clip is a toe or heel dipping in swing, not a stance
 
 
 class AnalysisError(GaitlabError):
@@ -254,14 +255,32 @@ def _plateau_centres(score: NDArray, peaks: NDArray[np.intp], spread: float, tol
 
 
 def _one_per_contact(steps: list[Step], score: NDArray) -> list[Step]:
-    """A long flat stance can hold two score minima: keep one step per ground contact
-    (same strike and liftoff), at its firmest frame."""
-    unique: dict[tuple[int, int], Step] = {}
-    for step in steps:
-        key = (step.strike, step.liftoff)
-        if key not in unique or score[step.stance] < score[unique[key].stance]:
-            unique[key] = step
-    return sorted(unique.values(), key=lambda s: s.stance)
+    """A long flat stance can hold two score minima, found as two steps of one contact
+    (the same strike and liftoff, or overlapping: a heel strike and a later flat-foot
+    "strike" before one liftoff): keep one step per ground contact, from its first strike
+    to its last liftoff, standing at its firmest frame."""
+    merged: list[Step] = []
+    for step in sorted(steps, key=lambda s: (s.strike, s.liftoff)):
+        if merged and step.strike <= merged[-1].liftoff:
+            last = merged[-1]
+            late = step if step.liftoff > last.liftoff else last
+            firm = step if score[step.stance] < score[last.stance] else last
+            stance = min(max(firm.stance, last.landing), late.lift)
+            merged[-1] = Step(strike=last.strike, landing=min(last.landing, stance), stance=stance,
+                              lift=max(late.lift, stance), liftoff=late.liftoff,
+                              complete=last.complete and step.complete)
+        else:
+            merged.append(step)
+    return merged
+
+
+def _long_enough(steps: list[Step], frames: int, count: int) -> list[Step]:
+    """Drop contacts shorter than MIN_STANCE of a stride (``frames``) that lie wholly
+    inside the clip (``count`` frames): a toe or heel dipping near the ground in mid-swing
+    (they would halve the cycle). A contact cut by the clip's first or last frame keeps."""
+    shortest = MIN_STANCE * frames
+    return [s for s in steps
+            if s.liftoff - s.strike >= shortest or s.strike <= 0 or s.liftoff >= count - 1]
 
 
 @dataclass(frozen=True)
@@ -391,5 +410,5 @@ def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> Foot
     landing = np.where((z_down >= 0) & (z_down > landing), np.minimum(z_down, stances), landing)
     steps = [Step(strike=int(strike[i]), landing=int(landing[i]), stance=int(stances[i]), lift=int(lift[i]),
                   liftoff=int(liftoff[i]), complete=bool(found[i])) for i in range(len(stances))]
-    return FootEvents(name=tracks.names[f], steps=tuple(_one_per_contact(steps, score)), heel_height=a_heel,
-                      toe_height=a_toe)
+    steps = _long_enough(_one_per_contact(steps, score), frames, tracks.frame_count)
+    return FootEvents(name=tracks.names[f], steps=tuple(steps), heel_height=a_heel, toe_height=a_toe)

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from .angles import LegAngles, leg_angles, strikes_from_contact
 from .bvh import BvhClip, InputError, read_bvh
+from .sources import FootMap, find_feet, resolve_feet
 
 
 @dataclass(frozen=True)
@@ -81,12 +82,11 @@ def foremost_strikes(ankle: NDArray[np.float64], root: NDArray[np.float64], forw
     return peaks.astype(np.intp) if len(peaks) >= 2 else events
 
 
-def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -> Legs:
-    """Every leg of a BVH clip with its strikes (from ``analyze``'s events)."""
-    from . import analyze_tracks
-    from .sources import FootMap, _leading_jumps, _to_y_up, detect_up, find_feet, resolve_feet, tracks_from_bvh
-
-    clip = read_bvh(path)
+def leg_chains(clip: BvhClip, path: str, feet: dict[str, tuple[str, str | None]] | None = None
+               ) -> tuple[FootMap, dict[str, tuple[str, str, str, str]]]:
+    """Each foot's joints in a BVH clip, foot name -> (hip, knee, ankle, toe): the feet
+    as ``analyze`` finds them (or ``feet``), the knee the ankle joint's parent and the hip
+    the knee's. Raises :class:`InputError` for a foot without them."""
     mapping = FootMap(resolve_feet(feet, clip.names), "given with --feet") if feet else find_feet(clip.names, path)
     chains = {}
     for foot, (ankle, toe) in mapping.feet.items():
@@ -96,8 +96,18 @@ def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -
         hip_index = clip.joints[knee_index].parent if knee_index >= 0 else -1
         if hip_index < 0 or toe is None:
             raise InputError(f"{path}: foot {foot} ({ankle}) has no knee and hip above it or no toe joint after "
-                             "it; compare needs hip, knee, ankle and toe joints")
+                             "it; this needs hip, knee, ankle and toe joints")
         chains[foot] = (clip.joints[hip_index].name, clip.joints[knee_index].name, ankle, toe)
+    return mapping, chains
+
+
+def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -> Legs:
+    """Every leg of a BVH clip with its strikes (from ``analyze``'s events)."""
+    from . import analyze_tracks
+    from .sources import _leading_jumps, _to_y_up, detect_up, tracks_from_bvh
+
+    clip = read_bvh(path)
+    mapping, chains = leg_chains(clip, path, feet)
     names = [n for chain in chains.values() for n in chain] + [clip.joints[0].name]
     points = clip.positions(names)  # (T, N, 3)
     feet_pts = points[:, [4 * i + 2 for i in range(len(chains))]]

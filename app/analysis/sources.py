@@ -250,7 +250,7 @@ def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis,
         notes.append(f"skipped {skip} leading frame{'s' if skip > 1 else ''} that jump into the motion (a rest pose)")
     tracks = FootTracks(times=np.asarray(times, dtype=np.float64), names=tuple(names), heel=heel * scale,
                         toe=toe * scale, body=body * scale, source=path, hip_height=hip * scale,
-                        hands=None if hands is None else hands * scale)
+                        hands=None if hands is None else hands * scale, unit_scale=scale)
     return tracks, "; ".join(notes)
 
 

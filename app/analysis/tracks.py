@@ -33,6 +33,7 @@ class FootTracks:
     hands: NDArray[np.float64] | None = None  # (T, 2, 3) m, left and right hand tips (bipeds with arms)
     compromised: int = 0  # stances on compromised footholds (Gaitlab's own motion on uneven ground)
     cut_short: int = 0  # stances that lifted early or landed late where the leg could not reach (idem)
+    unit_scale: float = 1.0  # metres per unit of the file the tracks were read from
 
     @property
     def frame_count(self) -> int:

@@ -17,11 +17,11 @@ from collections.abc import Sequence
 
 from .. import __version__
 from ..errors import GaitlabError
-from . import analyze, compare, creatures, export, poses, render, view
+from . import analyze, compare, creatures, export, fit, poses, render, view
 from .options import EXIT_BAD_INPUT, Parser
 
 COMMANDS = {"creatures": creatures, "render": render, "export": export, "analyze": analyze, "compare": compare,
-            "view": view, "poses": poses}
+            "fit": fit, "view": view, "poses": poses}
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -32,7 +32,7 @@ def build_parser() -> argparse.ArgumentParser:
                     epilog="Run 'gaitlab COMMAND --help' for a command's options.")
     parser.add_argument("--version", action="version", version=f"gaitlab {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
-    for module in (creatures, render, analyze, compare, export, poses, view):
+    for module in (creatures, render, analyze, compare, fit, export, poses, view):
         module.add_parser(sub)
     return parser
 

@@ -1,0 +1,87 @@
+"""``gaitlab fit``: a creature made to move like a motion-capture clip (issue 23)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+from cli_runner import gaitlab
+
+DATA = Path(__file__).parent / "data"
+WALK = DATA / "human_walk_cmu_12_01.bvh"
+TROT = DATA / "dog_trot_tencent_walkrun001_f960-1156.bvh"
+
+
+def _analysis(source: Path | str, tmp_path: Path) -> dict:
+    result = gaitlab("analyze", source, "--json", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    return json.loads(result.stdout)
+
+
+def _duties(report: dict) -> dict[str, float]:
+    return {f["name"]: f["duty_factor"] for f in report["feet"]}
+
+
+def test_a_fitted_walker_walks_like_the_cmu_walk(tmp_path: Path) -> None:
+    """fit CMU 12_01: Gaitlab's own analysis of the creature matches the clip's within
+    duty 0.03 per foot, cycle 3 %, speed 5 %; its hip and knee are within 10 degrees RMS
+    of the clip's (``gaitlab compare``)."""
+    result = gaitlab("fit", WALK, "-o", "walker.toml", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "wrote walker.toml" in result.stdout and "RMS L" in result.stdout
+    clip, walker = _analysis(WALK, tmp_path), _analysis("walker.toml", tmp_path)
+    assert walker["cycle_seconds"] == pytest.approx(clip["cycle_seconds"], rel=0.03)
+    assert walker["speed"] == pytest.approx(clip["speed"], rel=0.05)
+    mine, theirs = _duties(walker), _duties(clip)
+    for foot in ("L", "R"):
+        assert abs(mine[foot] - theirs[foot]) <= 0.03, (foot, mine, theirs)
+    compared = gaitlab("compare", "walker.toml", "--reference", WALK, "--json", cwd=tmp_path)
+    assert compared.returncode == 0, compared.stderr
+    rms = json.loads(compared.stdout)["rms_deg"]
+    assert rms["hip"] < 10.0 and rms["knee"] < 10.0, rms
+    # The body is the clip's: a leg of about 0.9 m, the CMU subject's hips 22 cm apart.
+    text = (tmp_path / "walker.toml").read_text()
+    assert "fitted to human_walk_cmu_12_01.bvh" in text
+
+
+def test_a_fitted_trotter_trots_like_the_tencent_dog(tmp_path: Path) -> None:
+    """fit the Tencent dog's trot: a trot of the clip's cycle (5 %) and mean duty (0.05),
+    its legs the skeleton's (the hind leg read from the hip, not from the knee)."""
+    result = gaitlab("fit", TROT, "-o", "trotter.toml", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    clip, trotter = _analysis(TROT, tmp_path), _analysis("trotter.toml", tmp_path)
+    assert trotter["cycle_seconds"] == pytest.approx(clip["cycle_seconds"], rel=0.05)
+    mean = lambda r: sum(_duties(r).values()) / 4
+    assert abs(mean(trotter) - mean(clip)) <= 0.05
+    assert trotter["gait_match"].startswith("trot")
+    from app.spec import load_creature
+
+    spec = load_creature(tmp_path / "trotter.toml")
+    fore, hind = spec.legs
+    assert fore.femur == pytest.approx(0.234, abs=0.005) and hind.femur == pytest.approx(0.260, abs=0.005)
+    assert hind.metatarsus == pytest.approx(0.104, abs=0.005)  # hock to ball, not ball to toe
+
+
+def test_fit_without_refinement_is_quick_and_still_matches_the_gait(tmp_path: Path) -> None:
+    result = gaitlab("fit", WALK, "-o", "quick.toml", "--no-refine", "--name", "quick", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "RMS L" in result.stdout
+    quick = _analysis("quick.toml", tmp_path)
+    assert quick["cycle_seconds"] == pytest.approx(_analysis(WALK, tmp_path)["cycle_seconds"], rel=0.03)
+
+
+@pytest.mark.parametrize("args, expected", [
+    (("missing.bvh", "-o", "x.toml"), "missing.bvh: no such file"),
+    (("feet.csv", "-o", "x.toml"), "fit reads BVH clips"),
+    ((str(WALK), "-o", "x.txt"), "a creature file ends in .toml"),
+    ((str(WALK), "-o", "nowhere/x.toml"), "does not exist"),
+    ((str(WALK), "-o", "x.toml", "--feet", "L=NoSuchJoint,R=RightFoot"), "NoSuchJoint"),
+])
+def test_bad_fit_input_is_one_line_exit_2_nothing_written(tmp_path: Path, args, expected: str) -> None:
+    (tmp_path / "feet.csv").write_text("time,L_x,L_y,L_z\n0,0,0,0\n0.1,0,0,0\n")
+    result = gaitlab("fit", *args, cwd=tmp_path)
+    assert result.returncode == 2
+    lines = result.stderr.strip().splitlines()
+    assert len(lines) == 1 and expected in lines[0], result.stderr
+    assert not list(tmp_path.glob("x.*"))
