@@ -68,6 +68,7 @@ class FitResult:
     fitted: GaitReport
     rms: dict[str, dict[str, float]]
     measured: dict[str, Any] = field(default_factory=dict)  # what was read off the skeleton
+    note: str = ""  # why the joint angles were not compared, when they were not
 
     def summary(self) -> str:
         """What was fitted and how close it came, for the terminal."""
@@ -93,7 +94,7 @@ class FitResult:
             lines.append(f"RMS {leg:8}" + "  ".join(f"{j} {v:.1f} deg" for j, v in joints.items())
                          + "  (joint angles against the clip's, over a cycle)")
         if not self.rms:
-            lines.append("joint angles not compared: a quadruped's joints above its foot differ from rig to rig")
+            lines.append(f"joint angles not compared: {self.note}")
         return "\n".join(lines)
 
 
@@ -388,8 +389,13 @@ def fit_clip(path: str, feet: dict[str, tuple[str, str | None]] | None = None, u
             poses.setdefault(key, round(h, 4))
     doc = _calibrate(doc, clip, str(path), progress)
 
-    clip_legs = bvh_legs(path, feet)
-    reference = _compared_legs(clip_legs)
+    note = "a quadruped's joints above its foot differ from rig to rig" if count == 4 else ""
+    reference: dict[str, Any] = {}
+    if count == 2:
+        try:
+            reference = _compared_legs(bvh_legs(path, feet))
+        except GaitlabError as exc:  # (one stride: no whole cycle of angles to compare)
+            note = str(exc).replace(f"{path}: ", "")
     if refine and reference:  # (bipeds)
         hip_height = build_rig(creature_from_dict(doc, source=str(path))).hip_height
         leg = next(iter(doc["legs"]))
@@ -411,4 +417,4 @@ def fit_clip(path: str, feet: dict[str, tuple[str, str | None]] | None = None, u
     for key in ("width", "length"):
         if key in skeleton:
             measured[f"hip {key}" if key == "width" else "trunk"] = skeleton[key]
-    return FitResult(spec=spec, clip=clip, fitted=fitted, rms=rms, measured=measured)
+    return FitResult(spec=spec, clip=clip, fitted=fitted, rms=rms, measured=measured, note=note)

@@ -85,3 +85,15 @@ def test_bad_fit_input_is_one_line_exit_2_nothing_written(tmp_path: Path, args, 
     lines = result.stderr.strip().splitlines()
     assert len(lines) == 1 and expected in lines[0], result.stderr
     assert not list(tmp_path.glob("x.*"))
+
+
+def test_a_single_stride_run_is_fitted_without_its_angles(tmp_path: Path) -> None:
+    """The CMU run 09_01 holds one stride: too little for whole cycles of joint angles, so
+    the fit says it did not compare them and still gives a run of the clip's cycle."""
+    result = gaitlab("fit", DATA / "human_run_cmu_09_01.bvh", "-o", "runner.toml", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "joint angles not compared: fewer than two strikes" in result.stdout
+    clip, runner = _analysis(DATA / "human_run_cmu_09_01.bvh", tmp_path), _analysis("runner.toml", tmp_path)
+    assert runner["cycle_seconds"] == pytest.approx(clip["cycle_seconds"], rel=0.03)
+    assert runner["speed"] == pytest.approx(clip["speed"], rel=0.05)
+    assert runner["gait_match"].startswith("run")
