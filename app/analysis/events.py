@@ -40,6 +40,7 @@ LIFT_LEVEL = 0.10  # the search span ends at 10% of the curve's maximum height
 SPEED_CHANGE = 0.50  # the forward-speed check: more than 50% away from the stance speed
 CONTACT_SPEED = 0.5  # a contact point's foot moves at under half its typical speed when it is down
 STATIC_SPEED = 0.25  # a foot slower than this fraction of the body's speed stands still
+MOVING = 0.7  # of the body's speed: a recorded paw faster than this over the ground has left it (or not yet landed)
 MIN_STANCE = 0.08  # of a stride: a shorter contact within the clip is a toe or heel dipping in swing, not a stance
 
 
@@ -274,6 +275,27 @@ def _one_per_contact(steps: list[Step], score: NDArray) -> list[Step]:
     return merged
 
 
+def _speed_gated(speed: NDArray[np.float64], stances: NDArray[np.intp], strike: NDArray[np.intp],
+                 liftoff: NDArray[np.intp], moving: float) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """Strikes and liftoffs (each (S,)) brought in to where the foot is slow over the
+    ground: a liftoff no later than the first frame after the stance centre at which the
+    foot's horizontal speed exceeds ``moving`` (m/s), a strike no earlier than the frame
+    after the last one before it. A foot already moving at its stance centre keeps its
+    events (a sliding stance is still a stance)."""
+    strike, liftoff = strike.copy(), liftoff.copy()
+    fast = speed > moving
+    for i, centre in enumerate(stances):
+        if fast[centre]:
+            continue
+        after = np.flatnonzero(fast[centre:liftoff[i] + 1])
+        if after.size:
+            liftoff[i] = centre + after[0]
+        before = np.flatnonzero(fast[strike[i]:centre + 1])
+        if before.size:
+            strike[i] = strike[i] + before[-1] + 1
+    return strike, liftoff
+
+
 def _long_enough(steps: list[Step], frames: int, count: int) -> list[Step]:
     """Drop contacts shorter than MIN_STANCE of a stride (``frames``) that lie wholly
     inside the clip (``count`` frames): a toe or heel dipping near the ground in mid-swing
@@ -408,6 +430,11 @@ def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> Foot
     z_down = _speed_checks(rel_f, stances, thresholds, -1, frames)
     lift = np.where((z_up >= 0) & (z_up < lift), np.maximum(z_up, stances), lift)
     landing = np.where((z_down >= 0) & (z_down > landing), np.minimum(z_down, stances), landing)
+    if not tracks.exact and len(tracks.names) >= 4:  # recorded paws slide: a contact also ends where the paw moves
+        # (Not a biped's: its tracked "toe" is the ball joint, which rolls forward while the
+        # toes still bear weight.)
+        strike, liftoff = _speed_gated(foot_speed, stances, strike, liftoff, MOVING * sig.static_speed / STATIC_SPEED)
+        landing, lift = np.maximum(landing, strike), np.minimum(lift, liftoff)
     steps = [Step(strike=int(strike[i]), landing=int(landing[i]), stance=int(stances[i]), lift=int(lift[i]),
                   liftoff=int(liftoff[i]), complete=bool(found[i])) for i in range(len(stances))]
     steps = _long_enough(_one_per_contact(steps, score), frames, tracks.frame_count)

@@ -289,7 +289,9 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
         notes.append(f"the clip holds a single stride: the cycle ({cycle:.3f} s, {how}) and so the duty factors "
                      "and phases are estimates")
     else:
-        cycle = float(np.median(np.diff(strikes[ref])))
+        # Every foot's strike-to-strike intervals, pooled: a short or speeding-up clip's
+        # cycle is not one foot's two or three strides.
+        cycle = float(np.median(np.concatenate([np.diff(s) for s in strikes.values() if len(s) > 1])))
         phases = {k: circular_mean(v) for k, v in _step_phases(times, strikes, ref).items()}
     scale = (tracks.hip_height / 0.9) if tracks.hip_height else 1.0
 
