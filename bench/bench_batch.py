@@ -1,6 +1,6 @@
 """A folder of clips analysed with one process and with two (``gaitlab analyze DIR --jobs N``).
 
-    python bench/bench_batch.py            # 20 clips: the real BVH clips in tests/data, five times each
+    python bench/bench_batch.py            # 20 clips: the 13 real BVH clips of tests/data and its corpus, then repeats
 
 Prints the wall time of the whole command (start-up and imports included: about 0.9 s of
 it is importing the analysis, most of that scipy.signal) and of the analysis alone, in
@@ -26,12 +26,14 @@ from app.analysis.batch import analyse_folder, clips_under
 def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
-        sources = sorted((ROOT / "tests" / "data").glob("*.bvh"))
-        for copy in range(1, 6):
-            for source in sources:
-                shutil.copy(source, folder / f"{source.stem}_{copy}.bvh")
+        data = ROOT / "tests" / "data"
+        sources = sorted(data.glob("*.bvh")) + sorted((data / "corpus").glob("*.bvh"))
+        for k in range(20):
+            source = sources[k % len(sources)]
+            shutil.copy(source, folder / f"{k:02d}_{source.name}")
         clips = clips_under(folder)
-        print(f"# {len(clips)} clips ({', '.join(s.name for s in sources)}, five times each)")
+        print(f"# {len(clips)} clips ({len(sources)} real clips of tests/data and tests/data/corpus, the first "
+              f"{20 - len(sources)} twice)")
         analyse_folder(clips[:1], 1)  # imports loaded, caches warm
         whole: dict[int, float] = {}
         alone: dict[int, float] = {}
