@@ -48,6 +48,10 @@ from .rigging import build_rig
 from .spec import CreatureSpec, creature_from_dict, load_creature
 
 BASE = {2: "human", 4: "dog"}  # the preset a clip with this many feet starts from
+FEET = {2: ("L", "R"), 4: ("LF", "RF", "LH", "RH")}
+MIN_SPEED = 1e-3  # m/s: a clip slower than this walks in place
+LEG_RANGE = (0.05, 5.0)  # m: legs outside this are the wrong units
+MAX_RETIME = 1.5  # a calibration round changes the frequency by at most this factor either way
 FIT_FPS = 120.0  # frames per second of the creature's motion while fitting
 FIT_CYCLES = 4.0  # cycles of it measured per evaluation
 REFINE_EVALUATIONS = 300  # Nelder-Mead's budget of motions solved
@@ -331,8 +335,12 @@ def _calibrate(doc: dict[str, Any], clip: GaitReport, name: str, progress: Progr
             break
         gait = doc["gait"]
         duty = float(np.clip(gait["duty_factor"] + np.clip(target_duty - duty_now, -0.1, 0.1), 0.1, 0.9))
-        frequency = float(np.clip(gait["frequency"] * own.cycle_seconds / target_cycle, 0.05, 19.0))
-        stride = gait["stride"] * (target_speed / own.speed) * (duty / gait["duty_factor"])
+        retime = float(np.clip(own.cycle_seconds / target_cycle, 1.0 / MAX_RETIME, MAX_RETIME))
+        frequency = float(np.clip(gait["frequency"] * retime, 0.05, 19.0))
+        # speed = stride x frequency / duty: the stride makes up for the speed missed and
+        # for the new frequency and duty.
+        stride = gait["stride"] * (target_speed / own.speed) * (duty / gait["duty_factor"]) \
+            * (gait["frequency"] / frequency)
         gait.update(duty_factor=round(duty, 4), frequency=round(frequency, 4),
                     stride=round(float(np.clip(stride, 0.05, 2.0)), 4))
     return doc
@@ -350,13 +358,20 @@ def fit_clip(path: str, feet: dict[str, tuple[str, str | None]] | None = None, u
     tracks, _ = load_tracks(path, feet_text, units, up)  # type: ignore[arg-type]
     clip = analyze_tracks(tracks)
     count = len(tracks.names)
-    if count not in BASE:
-        raise GaitlabError(f"{path}: {count} feet ({', '.join(tracks.names)}); fit makes bipeds (L, R) and "
-                           "quadrupeds (LF, RF, LH, RH)")
+    if count not in BASE or set(tracks.names) != set(FEET[count]):
+        raise GaitlabError(f"{path}: feet {', '.join(tracks.names)}; fit makes bipeds (feet L, R) and quadrupeds "
+                           "(LF, RF, LH, RH): name the feet so with --feet")
     if not math.isfinite(clip.cycle_seconds) or clip.cycle_seconds <= 0:
         raise GaitlabError(f"{path}: no repeating step found; fit needs at least one whole stride")
+    if not (math.isfinite(clip.speed) and clip.speed > MIN_SPEED):
+        raise GaitlabError(f"{path}: the clip walks in place (speed {clip.speed:.2f} m/s); fit needs a clip that "
+                           "travels (its stride is the distance covered)")
     clip_duty = mean_duty(clip)
     skeleton = measure_skeleton(path, feet, tracks.unit_scale)
+    longest = max(sum(leg) for leg in skeleton["legs"].values())
+    if not LEG_RANGE[0] <= longest <= LEG_RANGE[1]:
+        raise GaitlabError(f"{path}: its legs read {longest:.3g} m long (units {tracks.unit_scale:g} m each); "
+                           f"expected {LEG_RANGE[0]:g} to {LEG_RANGE[1]:g} m: check --units")
     base = load_creature(BASE[count])
     doc = base.to_dict()
     doc["name"] = name or source.stem

@@ -97,3 +97,35 @@ def test_a_single_stride_run_is_fitted_without_its_angles(tmp_path: Path) -> Non
     assert runner["cycle_seconds"] == pytest.approx(clip["cycle_seconds"], rel=0.03)
     assert runner["speed"] == pytest.approx(clip["speed"], rel=0.05)
     assert runner["gait_match"].startswith("run")
+
+
+def _edited(tmp_path: Path, name: str, edit) -> Path:
+    """A copy of the CMU walk with its motion lines passed through ``edit(lines)``."""
+    lines = WALK.read_text().splitlines()
+    start = lines.index("MOTION")
+    head, motion = lines[:start + 3], lines[start + 3:]
+    motion = edit(motion)
+    head[start + 1] = f"Frames: {len(motion)}"
+    out = tmp_path / name
+    out.write_text("\n".join(head + motion) + "\n")
+    return out
+
+
+def test_a_clip_that_walks_in_place_or_has_no_frames_is_one_line(tmp_path: Path) -> None:
+    """A treadmill take (the root never travels) cannot give a stride; a clip of no or
+    one frame holds no stride: one line each, exit 2, nothing written (a division by
+    the speed and an IndexError once)."""
+    def in_place(motion: list[str]) -> list[str]:
+        rows = [line.split() for line in motion]
+        return [" ".join(["0"] + row[1:2] + ["0"] + row[3:]) for row in rows]
+
+    cases = {"inplace.bvh": (in_place, "walks in place"), "none.bvh": (lambda m: [], "holds 0 frames"),
+             "one.bvh": (lambda m: m[:1], "holds 1 frame")}
+    for name, (edit, expected) in cases.items():
+        clip = _edited(tmp_path, name, edit)
+        result = gaitlab("fit", clip, "-o", "x.toml", cwd=tmp_path)
+        lines = result.stderr.strip().splitlines()
+        assert result.returncode == 2 and len(lines) == 1 and expected in lines[0], (name, result.stderr)
+        assert not (tmp_path / "x.toml").exists()
+        analysed = gaitlab("analyze", clip, cwd=tmp_path)
+        assert analysed.returncode in (0, 2) and "Traceback" not in analysed.stderr, (name, analysed.stderr)

@@ -307,3 +307,37 @@ def test_no_follower_walks_into_its_leader(count: int) -> None:
         if k > 120:
             leader = np.array([0.0, rig.ground_speed * k / 30])
             assert np.linalg.norm(herd.position - leader, axis=1).min() > rig.body_length, k
+
+
+def test_a_herds_legs_set_down_are_as_thick_as_on_flat_ground() -> None:
+    """Set down on the ground, each animal's leg shapes keep its own size (a small dog's
+    legs are thinner): on ground that is flat everywhere they equal the flat path's."""
+    from app.render.herd import HerdInstances
+
+    rig = build_rig(load_creature("dog"))
+    herd = Herd(rig, 5, seed=6)
+    rows = HerdInstances(herd, body="parts", show_joints=True)
+    flat = rows.frame(herd, None)
+    level = rows.frame(herd, lambda xz: np.zeros(len(xz)))
+    assert flat.capsules.shape == level.capsules.shape and flat.ellipsoids.shape == level.ellipsoids.shape
+    key = lambda a: a[np.lexsort(np.round(a, 4).T[::-1])]  # (rows in another order)
+    assert np.allclose(key(flat.capsules), key(level.capsules), atol=1e-4)
+    # (centres, radii, colours: a joint marker is a sphere, whose axes may point anywhere)
+    columns = np.r_[0:3, 12:18]
+    assert np.allclose(key(flat.ellipsoids[:, columns]), key(level.ellipsoids[:, columns]), atol=1e-4)
+
+
+def test_setting_legs_down_keeps_bones_even_for_straight_and_reversed_legs() -> None:
+    """Edge cases of the leg solve: a leg straight along the hip-ankle line still bends
+    with its bones' lengths; opposite bone directions give a real rotation."""
+    from app.kinematics.herd import _rotation_between, legs_to_ground
+
+    joints = np.array([[[[0, 1.0, 0], [0, 0.5, 0], [0, 0.0, 0], [0, -0.05, 0.05], [0, -0.05, 0.1]]]])
+    raised = legs_to_ground(joints, lambda xz: np.full(len(xz), 0.1), np.zeros((1, 1)))
+    bones = np.linalg.norm(np.diff(raised.joints[0, 0], axis=0), axis=-1)
+    assert np.allclose(bones, np.linalg.norm(np.diff(joints[0, 0], axis=0), axis=-1))
+    assert raised.joints[0, 0, 3, 1] == pytest.approx(0.1)  # the ball on the raised ground
+    a = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])
+    turn = _rotation_between(a, -a)
+    assert np.allclose(np.einsum("nij,nj->ni", turn, a), -a)
+    assert np.allclose(turn @ np.swapaxes(turn, -1, -2), np.eye(3)) and np.allclose(np.linalg.det(turn), 1.0)

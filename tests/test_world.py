@@ -307,9 +307,18 @@ def test_a_stance_ends_where_the_leg_cannot_reach() -> None:
     early = stance_ends_out_of_reach(np.ones((6, 1), bool), np.array([0, 0, 0.01, 0.02, 0.03, 0.04])[:, None],
                                      np.array([0.0, 0.2, 0.4, 0.6, 0.8, 0.99])[:, None])[:, 0]
     assert early.tolist() == [False, False, False, True, True, True]
-    # A stance that never reaches is no early lift or late landing: it stays planted (and is refused).
-    whole = stance_ends_out_of_reach(np.ones((3, 1), bool), np.full((3, 1), 0.05), np.array([[0.1], [0.5], [0.9]]))
+    # A stance that never reaches, touchdown to lift-off, is no early lift or late landing:
+    # it stays planted (and is refused).
+    whole = stance_ends_out_of_reach(np.array([0, 1, 1, 1, 0], bool)[:, None], np.full((5, 1), 0.05),
+                                     np.array([[0.9], [0.1], [0.5], [0.9], [0.1]]))
     assert not whole.any()
+    # The same frames cut by the clip's start or end are judged on what the clip holds: a
+    # landing (first half) or a lift (second half), as in any longer clip.
+    contact, progress = np.array([0, 1, 1, 1, 0], bool)[:, None], np.array([[0.9], [0.1], [0.5], [0.9], [0.1]])
+    expected = {(1, 4): [True, False, True], (0, 3): [False, True, False], (2, 5): [False, True, False]}
+    for (a, b), lifted_frames in expected.items():
+        part = stance_ends_out_of_reach(contact[a:b], np.full((3, 1), 0.05), progress[a:b])
+        assert part[:, 0].tolist() == lifted_frames, (a, b)
     # Nor is a miss beyond the farthest a foot may lift early (steps far too high).
     assert not stance_ends_out_of_reach(np.array([[True], [True]]), np.array([[0.0], [0.3]]),
                                         np.array([[0.6], [0.7]]), np.array([0.2])).any()

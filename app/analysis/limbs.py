@@ -107,6 +107,9 @@ def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -
     from .sources import _leading_jumps, _to_y_up, detect_up, tracks_from_bvh
 
     clip = read_bvh(path)
+    if clip.frames.shape[0] < 2:
+        raise InputError(f"{path}: the clip holds {clip.frames.shape[0]} frame(s); comparing joint angles needs at "
+                         "least one full stride")
     mapping, chains = leg_chains(clip, path, feet)
     names = [n for chain in chains.values() for n in chain] + [clip.joints[0].name]
     points = clip.positions(names)  # (T, N, 3)

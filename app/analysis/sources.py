@@ -224,6 +224,9 @@ def _centimetres_or_inches(times, names, heel, toe, body, hip: float, reason: st
 
 def _finish(path: str, times, names, heel, toe, body, units: Units, up: UpAxis,
             hands=None) -> tuple[FootTracks, str]:
+    if len(times) < 2:
+        raise InputError(f"{path}: the clip holds {len(times)} frame{'' if len(times) == 1 else 's'}; analysing a "
+                         "gait needs at least one full stride")
     for what, values in (("foot", heel), ("toe", toe), ("body", body)):
         if not np.all(np.abs(values) < MAX_COORDINATE):
             raise InputError(f"{path}: {what} positions reach {float(np.nanmax(np.abs(values))):.3g} (or are not "

@@ -279,13 +279,22 @@ class LegAdjustment:
 
 
 def _rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The smallest rotation (..., 3, 3) taking unit vectors a to b (..., 3) (Rodrigues)."""
+    """The smallest rotation (..., 3, 3) taking unit vectors a to b (..., 3) (Rodrigues);
+    for opposite vectors, a half turn about an axis perpendicular to a."""
     v = np.cross(a, b)
     c = np.sum(a * b, axis=-1)[..., None, None]
     k = np.zeros(a.shape[:-1] + (3, 3))
     k[..., 0, 1], k[..., 0, 2], k[..., 1, 2] = -v[..., 2], v[..., 1], -v[..., 0]
     k = k - np.swapaxes(k, -1, -2)
-    return np.eye(3) + k + (k @ k) / np.maximum(1.0 + c, 1e-9)
+    turn = np.eye(3) + k + (k @ k) / np.maximum(1.0 + c, 1e-9)
+    opposite = c[..., 0, 0] < -1.0 + 1e-9
+    if np.any(opposite):
+        side = np.where(np.abs(a[..., :1]) < 0.9, np.array([1.0, 0.0, 0.0]), np.array([0.0, 1.0, 0.0]))
+        axis = np.cross(a, side)
+        axis /= np.linalg.norm(axis, axis=-1, keepdims=True)
+        half = 2.0 * axis[..., :, None] * axis[..., None, :] - np.eye(3)  # a half turn about the axis
+        turn = np.where(opposite[..., None, None], half, turn)
+    return turn
 
 
 def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.float64]) -> LegAdjustment:
@@ -323,9 +332,17 @@ def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.
         lowered += np.where(over > 1e-9, over / steep + 1e-9, 0.0)
     d = np.clip(reach, shortest, longest)
     new_ankle = hip + along * d[..., None]
-    # The knee bends towards where it was, across the hip-ankle line.
+    # The knee bends towards where it was, across the hip-ankle line (a leg straight along
+    # it bends forward, across it, as a knee does: any way at all keeps the bones' lengths).
     bend = knee_from_hip - np.sum(knee_from_hip * along, axis=-1, keepdims=True) * along
-    bend = bend / np.maximum(np.linalg.norm(bend, axis=-1, keepdims=True), 1e-12)
+    size = np.linalg.norm(bend, axis=-1, keepdims=True)
+    straight = size < 1e-9 * np.maximum(femur[..., None], 1e-12)
+    if np.any(straight):
+        across = np.cross(along, np.array([1.0, 0.0, 0.0]))
+        across = np.where(np.linalg.norm(across, axis=-1, keepdims=True) < 1e-6, np.cross(along, UP), across)
+        bend = np.where(straight, across, bend)
+        size = np.linalg.norm(bend, axis=-1, keepdims=True)
+    bend = bend / np.maximum(size, 1e-12)
     cos_a = np.clip((femur ** 2 + d ** 2 - tibia ** 2) / np.maximum(2.0 * femur * d, 1e-12), -1.0, 1.0)
     new_knee = hip + femur[..., None] * (cos_a[..., None] * along + np.sqrt(1.0 - cos_a ** 2)[..., None] * bend)
     shift = lowered[:, None, None] * UP  # (N, 1, 3) the animal's settling

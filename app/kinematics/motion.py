@@ -355,10 +355,11 @@ def stance_ends_out_of_reach(contact: NDArray[np.bool_], reach_error: NDArray[np
     (the leg at full stretch behind, as a real stance ends at its leg's limit) or lands
     late (full stretch ahead, down into a hollow): a late landing within the stance's
     first half, an early lift within its second (``progress`` (T, L): 0 at touchdown, 1
-    at lift-off). A miss between frames that reach, beyond the stance's half, or through
-    a whole stance (as far as the clip holds it), or by more than ``farthest`` (L,) m,
-    stays a planted foot that misses, for :func:`check_reach` to judge. Vectorised over
-    frames and legs."""
+    at lift-off). A miss between frames that reach, beyond the stance's half, through a
+    whole stance the clip holds from touchdown to lift-off, or by more than ``farthest``
+    (L,) m, stays a planted foot that misses, for :func:`check_reach` to judge. (A stance
+    the clip cuts is judged on the frames it holds: the same frames are lifted whatever
+    the clip's start and length.) Vectorised over frames and legs."""
     frames = contact.shape[0]
     good = contact & (reach_error <= REACHED)
     index = np.arange(frames)[:, None]
@@ -369,9 +370,11 @@ def stance_ends_out_of_reach(contact: NDArray[np.bool_], reach_error: NDArray[np
     next_swing = np.minimum.accumulate(np.where(contact, frames, index)[::-1], axis=0)[::-1]
     leading = prev_good <= prev_swing  # no reaching frame since the stance began (or the clip)
     trailing = next_good >= next_swing  # none until it ends (or the clip does)
-    early_lift = trailing & (progress > 0.5)
-    late_landing = leading & (progress < 0.5)
-    return contact & ~good & ~(leading & trailing) & (early_lift | late_landing) & (reach_error <= farthest)
+    # A stance that reaches nowhere within the clip is refused, unless the clip cuts it:
+    # then it may reach beyond the cut (the frames here are its landing or its lift).
+    early_lift = trailing & (progress > 0.5) & (~leading | (prev_swing < 0))
+    late_landing = leading & (progress < 0.5) & (~trailing | (next_swing >= frames))
+    return contact & ~good & (early_lift | late_landing) & (reach_error <= farthest)
 
 
 def frame_count(seconds: float, fps: float) -> int:

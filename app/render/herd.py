@@ -19,7 +19,7 @@ from ..kinematics.herd import Herd, LegAdjustment
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import LEG_JOINTS, skeleton_points
 from .bodies import BodyDraw, motion_body, shared_body_cache
-from .scene import SceneInstances, leg_instances, motion_instances
+from .scene import Cap, Ell, SceneInstances, leg_instances, motion_instances
 
 
 class HerdInstances:
@@ -72,26 +72,28 @@ class HerdInstances:
             move = move.copy()
             move[:, 1] -= legs.lowered
             rows = self._body_rows
-        caps = _blend(rows.capsules, f0, f1, w)  # (N, C, 11)
+        caps = _blend(rows.capsules, f0, f1, w)  # (N, C, 11), each animal's at size 1 in its own frame
         ells = _blend(rows.ellipsoids, f0, f1, w)  # (N, E, 18)
+        if legs is not None and self._skins is None:  # the legs' shapes from the joints set down
+            # (built in each animal's own frame at size 1, then placed like the rest)
+            local = np.einsum("nji,nlkj->nlki", rot, legs.joints - move[:, None, None, :]) / scale[:, None, None, None]
+            leg_rows = leg_instances(local, herd.rig, show_joints=self.show_joints, by_side=self.by_side)
+            caps = np.concatenate([caps, leg_rows.capsules.astype(np.float64)], axis=1)
+            ells = np.concatenate([ells, leg_rows.ellipsoids.astype(np.float64)], axis=1)
         out_c = caps.copy()
         for k in (0, 3):  # the two end points
             out_c[..., k:k + 3] = _place(caps[..., k:k + 3], scale, rot, move)
-        out_c[..., 6:8] = caps[..., 6:8] * scale[:, None, None]
+        out_c[..., Cap.RADII] = caps[..., Cap.RADII] * scale[:, None, None]
         out_e = ells.copy()
         out_e[..., 0:3] = _place(ells[..., 0:3], scale, rot, move)
         for k in (3, 6, 9):  # the axes turn with the animal
             out_e[..., k:k + 3] = np.einsum("nij,nsj->nsi", rot, ells[..., k:k + 3])
-        out_e[..., 12:15] = ells[..., 12:15] * scale[:, None, None]
+        out_e[..., Ell.RADII] = ells[..., Ell.RADII] * scale[:, None, None]
         casters = self._rows.ellipsoid_casters
         n = herd.count
         width = out_e.shape[-1]
         parts = [out_e[:, :casters].reshape(n * casters, width), out_e[:, casters:].reshape(-1, width)]
         out_caps = out_c.reshape(-1, caps.shape[-1])
-        if legs is not None and self._skins is None:  # the legs' shapes from the joints set down
-            leg_rows = leg_instances(legs.joints, herd.rig, show_joints=self.show_joints, by_side=self.by_side)
-            out_caps = np.concatenate([out_caps, leg_rows.capsules.reshape(-1, caps.shape[-1])])
-            parts.append(leg_rows.ellipsoids.reshape(-1, width).astype(np.float64))
         ellipsoids = np.concatenate(parts)
         bodies: tuple[BodyDraw, ...] = ()
         if self._skins is not None:  # each animal's body: its blended skin, placed
