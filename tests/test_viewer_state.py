@@ -349,3 +349,22 @@ def test_the_follow_camera_and_r_keep_the_creature_in_view(creature: str, terrai
     state.default_view()
     assert _in_clear_view(state)
     assert abs(state.camera.target[1] - state.pose().root[1, 3]) < 0.5
+
+
+def test_a_stalled_frame_slows_the_animation_instead_of_jumping_it() -> None:
+    """A frame that took a second (a loaded machine) moves the walk on by at most 0.1 s:
+    a planted foot never jumps to a new foothold between two drawn frames (a 1 s frame
+    once swung and landed a dog's foot unseen, 0.41 m on, while the terrain was edited)."""
+    from app.ui.playback import MAX_FRAME_TIME
+
+    state = ViewerState(load_creature("dog"))
+    state.set_terrain("hills", amp=0.04, wavelength=1.7)
+    clock = state.live.clock
+    state.advance(1.0)
+    assert state.live.clock - clock == pytest.approx(MAX_FRAME_TIME * state.live.frequency, rel=1e-6)
+    for amp in (0.05, 0.07, 0.1):
+        state.set_terrain("hills", amp=amp, wavelength=1.7)
+        for _ in range(4):
+            state.advance(1.0)
+            state.note_pose(state.pose())
+    assert state.planted_jump_max < 1e-3

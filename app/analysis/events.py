@@ -430,7 +430,7 @@ def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> Foot
     z_down = _speed_checks(rel_f, stances, thresholds, -1, frames)
     lift = np.where((z_up >= 0) & (z_up < lift), np.maximum(z_up, stances), lift)
     landing = np.where((z_down >= 0) & (z_down > landing), np.minimum(z_down, stances), landing)
-    if not tracks.exact and len(tracks.names) >= 4:  # recorded paws slide: a contact also ends where the paw moves
+    if not tracks.exact and len(tracks.names) == 4:  # recorded paws slide: a contact also ends where the paw moves
         # (Not a biped's: its tracked "toe" is the ball joint, which rolls forward while the
         # toes still bear weight.)
         strike, liftoff = _speed_gated(foot_speed, stances, strike, liftoff, MOVING * sig.static_speed / STATIC_SPEED)

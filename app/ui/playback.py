@@ -18,6 +18,7 @@ from .session import CreatureSession
 
 FRAME_DT = 1.0 / 60.0  # the single-step size, and the fixed step of scripted runs
 SAMPLE_RATE = 240.0  # Hz: how often the live gait measurement samples the motion
+MAX_FRAME_TIME = 0.1  # s: the most wall time one frame moves the animation on
 
 
 def step_herd(session: CreatureSession, dt: float) -> None:
@@ -39,9 +40,11 @@ class PlaybackMixin(StateBase):
         self.playing = not self.playing
 
     def advance(self, dt: float) -> None:
-        """Move the animation on by ``dt`` seconds of wall time (if playing)."""
+        """Move the animation on by ``dt`` seconds of wall time (if playing), at most
+        MAX_FRAME_TIME: a frame that stalls (a loaded machine, a dialog) slows the
+        animation down instead of jumping it (a foot could swing and land unseen)."""
         if self.playing:
-            self._step(dt * self.time_scale)
+            self._step(min(dt, MAX_FRAME_TIME) * self.time_scale)
 
     def step_frame(self) -> None:
         """One frame forward (pauses playback)."""
