@@ -212,6 +212,9 @@ def test_undo_and_redo_say_what_they_changed(state: ViewerState) -> None:
     state.set("gait.duty_factor", 0.7)
     assert state.undo() and state.status.startswith("undone: gait.duty_factor")
     assert state.redo() and state.status == "redone: gait.duty_factor 0.7"
+    # A key that goes back to the preset's own value says so (it read "None").
+    state.set("gait.step_height", 0.2)
+    assert state.undo() and state.status == "undone: gait.step_height back to the preset's"
 
 
 def test_the_description_says_what_no_longer_holds(state: ViewerState) -> None:
@@ -368,3 +371,14 @@ def test_a_stalled_frame_slows_the_animation_instead_of_jumping_it() -> None:
             state.advance(1.0)
             state.note_pose(state.pose())
     assert state.planted_jump_max < 1e-3
+
+
+def test_switching_presets_asks_before_discarding_edits(state: ViewerState) -> None:
+    """Edits are not lost to one pick in the creature list: the first pick says what would
+    be discarded, the same pick again switches (an untouched creature switches at once)."""
+    assert state.set("gait.duty_factor", 0.7)
+    assert not state.load_preset("spider")
+    assert state.spec.name == "dog" and "discard" in state.status and "spider" in state.status
+    assert state.spec.gait.duty_factor == pytest.approx(0.7)
+    assert state.load_preset("spider") and state.spec.name == "spider"
+    assert state.load_preset("cat") and state.spec.name == "cat"  # nothing edited: no question

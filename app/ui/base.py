@@ -71,6 +71,7 @@ class StateBase:
         _style_check: tuple[Any, ...] | None
         _confirm_overwrite: str | None
         _confirm_record: str | None
+        _confirm_switch: str | None
         _known_files: dict[str, tuple[int, int]]
         _follow_height: float | None
         _heading: float | None

@@ -41,6 +41,8 @@ def changed_keys(before: CreatureSpec, after: CreatureSpec, most: int = 3) -> st
         return "no visible change"
 
     def shown(value: Any) -> str:
+        if value is None:  # a key left to the preset (or style) again
+            return "back to the preset's"
         return f"{value:.4g}" if isinstance(value, float) else str(value)
 
     words = [f"{k} {shown(spec_value(after, k))}" for k in keys[:most]]

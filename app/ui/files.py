@@ -70,6 +70,14 @@ class FilesMixin(StateBase):
     """Load, save, export and the Record panel's request."""
 
     def load_preset(self, name: str) -> bool:
+        """Load a preset; with edits to the current creature unsaved, ask first (once, on the
+        message line) and load when the same preset is chosen again."""
+        if self.spec != self.base and name != self.spec.name and self._confirm_switch != name:
+            self._confirm_switch = name
+            self.status = (f"{self.spec.name} has edits that {name} would discard (not undoable): choose {name} "
+                           "again to switch, or save first (File)")
+            return False
+        self._confirm_switch = None
         return self.load(name)
 
     def load(self, name_or_path: str) -> bool:

@@ -134,11 +134,14 @@ def file_panel(state: ViewerState, pc: PanelContext) -> None:
     _remember(state, "load")
     if not pc.dialogs_available:
         _wrapped_note("no file dialog here (install zenity or kdialog); type a path in the field")
-    if state.recent:
-        imgui.set_next_item_width(-1)
-        chosen = _combo("##recent", state.recent, "", "recent files")
-        if chosen is not None:
-            state.file_path = chosen
+    # The row is always there (greyed while empty): a first save must not push the
+    # buttons below it away from under the cursor.
+    imgui.begin_disabled(not state.recent)
+    imgui.set_next_item_width(-1)
+    chosen = _combo("##recent", state.recent or [""], "", "recent files" if state.recent else "no recent files yet")
+    imgui.end_disabled()
+    if chosen is not None and state.recent:
+        state.file_path = chosen
     imgui.separator_text("export the motion")
     r = state.record
     for i, fmt in enumerate(EXPORT_FORMATS[:3]):
