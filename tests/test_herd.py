@@ -46,8 +46,30 @@ def test_a_herd_keeps_apart_and_keeps_up_with_its_leader() -> None:
         np.fill_diagonal(d, np.inf)
         assert d.min() > 0.7 * rig.body_length, i  # nobody walks through anybody
         centre = p.mean(axis=0)
-        assert np.linalg.norm(centre - leader[i]) < 8.0 * rig.body_length  # the group keeps up
+        assert np.linalg.norm(centre - leader[i]) < 3.5 * herd.spacing  # the group keeps up (40 in loose rows)
     assert np.abs(track.heading[-1]).max() < 0.3  # all facing the way the leader goes
+
+
+def test_herd_animals_keep_nose_to_rump_room() -> None:
+    """An animal keeps its neighbours ahead at least its own nose-to-rump length away
+    (centre to centre, in line): a head never sits in the rump ahead (the old separation,
+    a body length hip to shoulder, let a dog's head into the next dog's rump)."""
+    rig = build_rig(load_creature("dog"))
+    herd = Herd(rig, 8, seed=1)
+    front, back, half_width = herd.extent
+    closest = np.inf
+    for k in range(600):
+        herd.step(1 / 30, np.array([0.0, rig.ground_speed * k / 30]), 0.0)
+        if k < 150:
+            continue
+        forward = np.column_stack([np.sin(herd.heading), np.cos(herd.heading)])
+        delta = herd.position[None] - herd.position[:, None]
+        along = np.sum(delta * forward[:, None], axis=-1)
+        side = delta[..., 0] * forward[:, None, 1] - delta[..., 1] * forward[:, None, 0]
+        in_line = (np.abs(side) < 2.0 * half_width) & (along > 0)
+        if in_line.any():
+            closest = min(closest, float(along[in_line].min()))
+    assert closest > 1.1 * (front + back)
 
 
 def test_herd_feet_stay_planted_while_walking_straight() -> None:

@@ -33,6 +33,7 @@ from .rig import Rig
 from .world import IN_PLACE
 
 CYCLE_FRAMES = 64  # frames of the solved cycle; poses between them are blended
+ROOM = 1.2  # the room an animal keeps about it, in its own extent (nose to rump, flank to flank)
 SETTLE_PASSES = 3  # how often an animal settles lower for a planted foot out of reach
 UP = np.array([0.0, 1.0, 0.0])
 
@@ -120,7 +121,9 @@ class Herd:
         self.phase = rng.uniform(0.0, 1.0, count)
         self.rate = self.pace.copy()
         self.set_rig(rig)
-        spacing = 1.6 * max(rig.body_length, rig.body.width * 3.0)
+        front, back, _ = self.extent
+        # Places at least as far apart as the room each animal keeps (nose to rump ahead).
+        spacing = max(1.6 * max(rig.body_length, rig.body.width * 3.0), 1.1 * ROOM * (front + back))
         self.home = loose_group(count, spacing, rng)  # each one's own place in the group
         self.slot = self.home.copy()  # ... where it is now, drifting about it
         self.wander_rate = 2.0 * np.pi * rng.uniform(*WANDER_HZ, (count, 2))  # rad/s
@@ -143,6 +146,12 @@ class Herd:
         # whose ground an animal stands on.
         feet = np.abs(self.cycle.joints[:, :, 3][..., [0, 2]]).max(axis=(0, 1))
         self.reach = (max(2.0 * float(feet[1]), 1e-3), max(2.0 * float(feet[0]), 1e-3))
+        # How far (m, at size 1) the animal reaches ahead of its centre (the nose), behind
+        # it (the rump) and to either side: the room it takes in the group.
+        cycle = self.cycle
+        z = np.concatenate([cycle.head[:, :, 2], cycle.spine[:, :, 2]], axis=1)
+        x = np.concatenate([cycle.spine[:, :, 0], cycle.joints[:, :, :, 0].reshape(cycle.frame_count, -1)], axis=1)
+        self.extent = (max(float(z.max()), 1e-3), max(float(-z.min()), 1e-3), max(float(np.abs(x).max()), 1e-3))
         self.frequency = rig.gait.frequency
         travel = self.cycle.travel
         frames = len(travel)
@@ -174,18 +183,17 @@ class Herd:
             [c * self.slot[:, 0] + s * self.slot[:, 1], -s * self.slot[:, 0] + c * self.slot[:, 1]])
         to_target = target - self.position
         forward = np.column_stack([np.sin(self.heading), np.cos(self.heading)])
-        # Separation: push from every neighbour within reach, stronger when nearer. Reach is
-        # measured with sideways distance counted double: animals walk side by side closer
-        # than nose to tail.
+        # Separation: push from every neighbour whose body comes within ROOM of this one's,
+        # judged in this animal's frame: nose to rump along it, flank to flank across it.
         delta = self.position[:, None, :] - self.position[None, :, :]  # (N, N, 2): from j to i
         along = np.sum(delta * forward[:, None, :], axis=-1)
         sideways = delta[..., 0] * forward[:, None, 1] - delta[..., 1] * forward[:, None, 0]
-        dist = np.hypot(along, 2.0 * sideways)
+        front, back, half_width = self.extent
+        size = 0.5 * (self.size[:, None] + self.size[None, :])
+        dist = np.hypot(along / ((front + back) * size), sideways / (2.0 * half_width * size))  # 1: touching
         np.fill_diagonal(dist, np.inf)
-        reach = 1.3 * self.rig.body_length * self.size[:, None]
-        near = dist < reach
-        finite = np.where(near, dist, 1.0)
-        push = np.where(near, (reach - finite) / np.maximum(finite, 1e-6), 0.0)[..., None] * delta
+        near = dist < ROOM
+        push = np.where(near, ROOM / np.where(near, np.maximum(dist, 1e-6), 1.0) - 1.0, 0.0)[..., None] * delta
         separation = push.sum(axis=1)
         steer = to_target / max(self.spacing, 1e-6) + 2.0 * separation / max(self.rig.body_length, 1e-6)
         steer = steer + 0.6 * np.array([s, c])  # and along the way the group is going
@@ -196,7 +204,7 @@ class Herd:
         # Speed: behind its place, faster; ahead, slower; a neighbour close ahead, slower.
         along = np.sum(to_target * forward, axis=1) / max(self.spacing, 1e-6)
         ahead = np.sum(-delta * forward[:, None, :], axis=-1)  # (N, N): j in front of i
-        blocked = np.any((ahead > 0) & (dist < 1.1 * self.rig.body_length * self.size[:, None]), axis=1)
+        blocked = np.any((ahead > 0) & (dist < ROOM), axis=1)
         rate = follow * self.pace * np.clip(1.0 + 0.5 * along, 0.65, 1.35) * np.where(blocked, 0.75, 1.0)
         self.rate += np.clip(rate - self.rate, -0.5 * follow * dt, 0.5 * follow * dt)  # speed changes ease in
         forward = np.column_stack([np.sin(self.heading), np.cos(self.heading)])
