@@ -382,3 +382,23 @@ def test_switching_presets_asks_before_discarding_edits(state: ViewerState) -> N
     assert state.spec.gait.duty_factor == pytest.approx(0.7)
     assert state.load_preset("spider") and state.spec.name == "spider"
     assert state.load_preset("cat") and state.spec.name == "cat"  # nothing edited: no question
+
+
+def test_a_question_unanswered_lapses(state: ViewerState, monkeypatch: pytest.MonkeyPatch) -> None:
+    """"Press again" for reset everything (and for switching presets over edits) stays
+    armed for a few seconds only: a press minutes later asks again (it stayed armed for
+    good, so a stray click much later reset everything)."""
+    import time as clock
+
+    from app.ui import playback
+
+    now = [1000.0]
+    monkeypatch.setattr(clock, "monotonic", lambda: now[0])
+    assert state.set("gait.duty_factor", 0.7)
+    assert not state.reset_all() and state.reset_pending
+    now[0] += playback.QUESTION_SECONDS + 1.0
+    state.advance(1 / 60)
+    assert not state.reset_pending
+    assert not state.reset_all()  # asks again
+    assert state.spec.gait.duty_factor == pytest.approx(0.7)
+    assert state.reset_all() and state.spec == state.base  # pressed again in time: done

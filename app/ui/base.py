@@ -72,6 +72,7 @@ class StateBase:
         _confirm_overwrite: str | None
         _confirm_record: str | None
         _confirm_switch: str | None
+        _asked_at: float
         _known_files: dict[str, tuple[int, int]]
         _follow_height: float | None
         _heading: float | None

@@ -223,6 +223,7 @@ class EditingMixin(StateBase):
         ``confirmed``, resets."""
         if not confirmed and not self.reset_pending:
             self.reset_pending = True
+            self._asked_at = time.monotonic()
             self.error = "reset every change to the loaded creature? press reset again to do it"
             return False
         self.reset_pending = False

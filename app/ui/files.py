@@ -3,6 +3,7 @@ and recording what the view shows."""
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Literal
@@ -74,6 +75,7 @@ class FilesMixin(StateBase):
         message line) and load when the same preset is chosen again."""
         if self.spec != self.base and name != self.spec.name and self._confirm_switch != name:
             self._confirm_switch = name
+            self._asked_at = time.monotonic()
             self.status = (f"{self.spec.name} has edits that {name} would discard (not undoable): choose {name} "
                            "again to switch, or save first (File)")
             return False

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import time
 from dataclasses import replace
 
 import numpy as np
@@ -19,6 +20,7 @@ from .session import CreatureSession
 FRAME_DT = 1.0 / 60.0  # the single-step size, and the fixed step of scripted runs
 SAMPLE_RATE = 240.0  # Hz: how often the live gait measurement samples the motion
 MAX_FRAME_TIME = 0.1  # s: the most wall time one frame moves the animation on
+QUESTION_SECONDS = 8.0  # s: how long "press again" (reset everything, switching presets) stays armed
 
 
 def step_herd(session: CreatureSession, dt: float) -> None:
@@ -43,6 +45,8 @@ class PlaybackMixin(StateBase):
         """Move the animation on by ``dt`` seconds of wall time (if playing), at most
         MAX_FRAME_TIME: a frame that stalls (a loaded machine, a dialog) slows the
         animation down instead of jumping it (a foot could swing and land unseen)."""
+        if (self.reset_pending or self._confirm_switch) and time.monotonic() - self._asked_at > QUESTION_SECONDS:
+            self.reset_pending, self._confirm_switch = False, None  # a question unanswered lapses
         if self.playing:
             self._step(min(dt, MAX_FRAME_TIME) * self.time_scale)
 

@@ -109,6 +109,7 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
         self._confirm_overwrite: str | None = None  # asked once to overwrite this
         self._confirm_record: str | None = None  # ... and to record over this
         self._confirm_switch: str | None = None  # ... and to switch to this preset, dropping edits
+        self._asked_at = 0.0  # when reset everything or the preset switch asked (monotonic s)
         self._known_files: dict[str, tuple[int, int]] = {}  # files this viewer read or wrote: (mtime ns, size)
         self._follow_height: float | None = None  # camera target above the root
         self._heading: float | None = None  # path heading last frame (degrees)
