@@ -27,6 +27,7 @@ from numpy.typing import NDArray
 
 from ..choices import MAX_HERD
 from ..errors import GaitlabError
+from .body import unit
 from .clip import clip_motion
 from .motion import Motion
 from .rig import Rig
@@ -252,14 +253,15 @@ class Herd:
         ``ground_height``) each foot set down on the ground under it."""
         return self.legs(ground_height)[0]
 
-    def legs(self, ground_height=None) -> tuple[NDArray[np.float64], LegAdjustment | None]:
+    def legs(self, ground_height=None, transforms=None) -> tuple[NDArray[np.float64], LegAdjustment | None]:
         """Every animal's leg joints in the world (N, L, 5, 3) and, on uneven ground, how
-        each leg was set down on it (None on flat ground, where the cycle's feet stand)."""
+        each leg was set down on it (None on flat ground, where the cycle's feet stand).
+        ``transforms``: :meth:`transforms` for this ground, when the caller has them."""
         f0, f1, w = self.blend()
         # In place, the body stays at the origin and planted feet sweep back with the
         # ground: in the body's frame, which is what each animal carries along.
         local = self.cycle.joints[f0] * (1.0 - w)[:, None, None, None] + self.cycle.joints[f1] * w[:, None, None, None]
-        scale, rot, move = self.transforms(ground_height)
+        scale, rot, move = self.transforms(ground_height) if transforms is None else transforms
         joints = np.einsum("nij,nlkj->nlki", rot, local * scale[:, None, None, None]) + move[:, None, None, :]
         if ground_height is None:
             return joints, None
@@ -359,7 +361,6 @@ def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.
     out = joints - shift[:, :, None, :]
     out[:, :, 1] = new_knee
     out[:, :, 2:] += foot_move[:, :, None, :]
-    unit = lambda v: v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
     thigh = _rotation_between(unit(knee - hip), unit(new_knee - hip))
     shin = _rotation_between(unit(ankle - knee), unit(new_ankle - new_knee))
     return LegAdjustment(joints=out, thigh=thigh, shin=shin, knee_move=new_knee - knee, foot_move=foot_move,

@@ -67,7 +67,7 @@ class HerdInstances:
         legs: LegAdjustment | None = None
         rows = self._rows
         if ground_height is not None:
-            legs = herd.legs(ground_height)[1]
+            legs = herd.legs(ground_height, (scale, rot, move))[1]
             assert legs is not None
             move = move.copy()
             move[:, 1] -= legs.lowered
