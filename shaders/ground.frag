@@ -7,7 +7,7 @@
 // on the CPU); the creature's shadow is multiplied onto it afterwards by
 // ground_shadow.frag over the shadow's footprint only.
 
-in vec3 v_world;
+in vec2 v_grid;  // grid coordinate (grid.glsl)
 in float v_focus_distance;
 
 uniform vec3 u_ground_color;   // linear
@@ -19,7 +19,7 @@ uniform vec2 u_fog_range;      // fog starts, ends (metres from u_focus)
 out vec4 frag_color;
 
 void main() {
-    float line = grid_line(v_world.xz);
+    float line = grid_line(v_grid);
     vec3 color = mix(u_ground_color, u_line_color, line) * u_floor_light;
     float fog = smoothstep(u_fog_range.x, u_fog_range.y, v_focus_distance);
     frag_color = vec4(to_display(mix(color, u_horizon_color, fog)), 1.0);

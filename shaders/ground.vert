@@ -8,16 +8,19 @@ uniform vec2 u_center;     // world xz of the rectangle's centre
 uniform vec2 u_half_size;  // half extents in x and z (metres)
 uniform float u_lift;      // height above y = 0 (metres)
 uniform vec2 u_focus;      // world xz the fog is centred on (the floor disc's centre)
+uniform vec2 u_grid_offset;    // as in grid.glsl: metres the ground has moved
+uniform float u_grid_spacing;  // metres between minor grid lines
 
 #include "shadow_vertex.glsl"
 
-out vec3 v_world;
+out vec2 v_grid;   // grid coordinate (grid.glsl's grid_coord), linear in the world
 out vec3 v_shadow;  // light-space position (used by the shadow pass only)
 out float v_focus_distance;  // metres from u_focus; exact along the floor disc's radii
 
 void main() {
-    v_world = vec3(u_center.x + in_xz.x * u_half_size.x, u_lift, u_center.y + in_xz.y * u_half_size.y);
-    v_shadow = shadow_coord(v_world, vec3(0.0, 1.0, 0.0));
-    v_focus_distance = length(v_world.xz - u_focus);
-    gl_Position = u_view_proj * vec4(v_world, 1.0);
+    vec3 world = vec3(u_center.x + in_xz.x * u_half_size.x, u_lift, u_center.y + in_xz.y * u_half_size.y);
+    v_grid = (world.xz + u_grid_offset) / u_grid_spacing;
+    v_shadow = shadow_coord(world, vec3(0.0, 1.0, 0.0));
+    v_focus_distance = length(world.xz - u_focus);
+    gl_Position = u_view_proj * vec4(world, 1.0);
 }

@@ -35,7 +35,7 @@ float contour_line(float y) {
 }
 
 void main() {
-    float line = max(grid_line(v_world.xz), contour_line(v_world.y));
+    float line = max(grid_line(grid_coord(v_world.xz)), contour_line(v_world.y));
     float lit = light_visibility_soft(v_shadow);
     vec3 color = mix(u_ground_color, u_line_color, line) * (v_ambient + v_sun * lit);
     color *= 1.0 - 0.35 * (1.0 - smoothstep(0.3, 0.8, v_up));

@@ -8,13 +8,14 @@ the group, keep apart from neighbours), clocks, and the pose transform.
 
 An animal's planted feet stand still on the ground when it walks straight: its body
 moves at exactly the speed the cycle's feet sweep back at (size x rate x the cycle's
-speed). Turning, they slide by the turn's angle about the body (a herd's animals turn
-gently; the creature being edited, outside the herd, keeps every foot planted).
+speed). Turning, the cycle would swing them about the body, so each foot is locked where
+it lands until it lifts (:meth:`Herd.step` keeps the locks): the leg reaches to it, and
+in the swing that follows the foot eases back onto the cycle's path by touchdown.
 
 On uneven ground each animal stands on the plane of the ground under it, and then each
 leg reaches down or folds up to the ground under its own foot (:func:`legs_to_ground`):
-the foot moves straight up or down, the knee bends in the leg's own plane, every bone
-keeps its length. One vectorised solve for every leg of every animal.
+the foot moves to its lock and straight up or down, the knee bends in the leg's own
+plane, every bone keeps its length. One vectorised solve for every leg of every animal.
 """
 
 from __future__ import annotations
@@ -35,7 +36,7 @@ from .world import IN_PLACE
 
 CYCLE_FRAMES = 64  # frames of the solved cycle; poses between them are blended
 ROOM = 1.2  # the room an animal keeps about it, in its own extent (nose to rump, flank to flank)
-SETTLE_PASSES = 3  # how often an animal settles lower for a planted foot out of reach
+MAX_SETTLE = 0.3  # the most an animal settles lower for a planted foot out of reach, in leg lengths
 UP = np.array([0.0, 1.0, 0.0])
 
 
@@ -138,6 +139,7 @@ class Herd:
         # Each one looking its own way a little; they turn to their places as they go.
         self.heading = float(heading) + np.radians(HEADING_SPREAD) * rng.uniform(-1.0, 1.0, count)
         self.rng = rng
+        self.unlock_feet()
 
     def set_rig(self, rig: Rig) -> None:
         """A new creature (edited in the panels): re-solve the cycle every animal plays."""
@@ -154,6 +156,13 @@ class Herd:
         x = np.concatenate([cycle.spine[:, :, 0], cycle.joints[:, :, :, 0].reshape(cycle.frame_count, -1)], axis=1)
         self.extent = (max(float(z.max()), 1e-3), max(float(-z.min()), 1e-3), max(float(np.abs(x).max()), 1e-3))
         self.frequency = rig.gait.frequency
+        # Each foot's swing in the cycle: the frame it lifts at and how many frames it lasts
+        # (one swing a cycle; a foot that never lifts has none).
+        contact = self.cycle.contact
+        lifts = ~contact & np.roll(contact, 1, axis=0)  # (F, L): first frame of a swing
+        self._swing_start = lifts.argmax(axis=0).astype(np.float64)
+        self._swing_frames = np.where(lifts.any(axis=0), (~contact).sum(axis=0), 0).astype(np.float64)
+        self.unlock_feet()
         travel = self.cycle.travel
         frames = len(travel)
         self.cycle_speed = float((travel[-1] - travel[0]) * frames / (frames - 1) * self.frequency)  # m/s
@@ -163,13 +172,53 @@ class Herd:
         """Each animal's ground speed now (m/s)."""
         return self.cycle_speed * self.size * self.rate
 
+    def unlock_feet(self) -> None:
+        """Forget where the feet are locked (a herd set down anew): each locks where it
+        next stands."""
+        if not hasattr(self, "cycle"):
+            return
+        legs = self.cycle.contact.shape[1]
+        self._locked = np.zeros((self.count, legs), dtype=bool)
+        self._lock = np.zeros((self.count, legs, 2))
+        self._lift_shift = np.zeros((self.count, legs, 2))
+        self.foot_shift: NDArray[np.float64] | None = None
+
+    def _swinging(self) -> tuple[NDArray[np.bool_], NDArray[np.float64]]:
+        """Which feet swing now (N, L) and how far through its swing each is (0 at lift-off,
+        1 at touchdown)."""
+        frames = self.cycle.frame_count
+        since_lift = (self.phase[:, None] * frames - self._swing_start[None, :]) % frames
+        swinging = since_lift < self._swing_frames[None, :]
+        return swinging, np.clip(since_lift / np.maximum(self._swing_frames, 1.0)[None, :], 0.0, 1.0)
+
+    def _lock_feet(self, ground_height=None) -> None:
+        """Keep each standing foot where it landed: lock a foot's ball (x, z) as it lands,
+        keep it until it lifts, then ease the foot from its lock back onto the cycle's
+        path over its swing. Sets :attr:`foot_shift` (N, L, 2): how far (m) each foot
+        stands or swings off where the cycle, carried by the animal, puts it."""
+        f0, f1, w = self.blend()
+        balls = self.cycle.joints[:, :, 3]  # (F, L, 3)
+        local = balls[f0] + (balls[f1] - balls[f0]) * w[:, None, None]
+        scale, rot, move = self.transforms(ground_height)
+        carried = ((local * scale[:, None, None]) @ np.swapaxes(rot, 1, 2) + move[:, None, :])[..., [0, 2]]
+        swinging, progress = self._swinging()
+        standing = ~swinging
+        landed = standing & ~self._locked
+        self._lock = np.where(landed[..., None], carried, self._lock)
+        lifted = swinging & self._locked
+        self._lift_shift = np.where(lifted[..., None], self._lock - carried, self._lift_shift)
+        ease = 1.0 - progress * progress * (3.0 - 2.0 * progress)
+        self.foot_shift = np.where(standing[..., None], self._lock - carried, self._lift_shift * ease[..., None])
+        self._locked = standing
+
     def step(self, dt: float, leader: NDArray[np.float64], leader_heading: float,
-             leader_speed: float | None = None) -> None:
+             leader_speed: float | None = None, ground_height=None) -> None:
         """Advance ``dt`` seconds, the group following ``leader`` (x, z) heading
         ``leader_heading`` (radians) at ``leader_speed`` m/s (default: the cycle's own
         speed): each animal steers for its place in the group, away from neighbours
         nearer than about a body length, and sets its speed to keep its place (within
-        +-35% of its own pace at the leader's speed)."""
+        +-35% of its own pace at the leader's speed). Standing feet stay where they
+        landed, on ``ground_height((K, 2)) -> (K,)`` (default flat)."""
         if dt <= 0:
             return
         # The cycle played faster or slower to go at the leader's speed (a driven leader
@@ -211,6 +260,7 @@ class Herd:
         forward = np.column_stack([np.sin(self.heading), np.cos(self.heading)])
         self.position = self.position + forward * (self.speed * dt)[:, None]
         self.phase = (self.phase + self.frequency * self.rate * dt) % 1.0
+        self._lock_feet(ground_height)
 
     def blend(self) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64]]:
         """Each animal's pose as a blend of two cycle frames: first (N,), second (N,) and
@@ -254,19 +304,28 @@ class Herd:
         return self.legs(ground_height)[0]
 
     def legs(self, ground_height=None, transforms=None) -> tuple[NDArray[np.float64], LegAdjustment | None]:
-        """Every animal's leg joints in the world (N, L, 5, 3) and, on uneven ground, how
-        each leg was set down on it (None on flat ground, where the cycle's feet stand).
-        ``transforms``: :meth:`transforms` for this ground, when the caller has them."""
+        """Every animal's leg joints in the world (N, L, 5, 3) and how each leg was set
+        down on the ground and its foot's lock (None where the cycle's feet stand as they
+        are: flat ground, no foot off its cycle). ``transforms``: :meth:`transforms` for
+        this ground, when the caller has them."""
         f0, f1, w = self.blend()
         # In place, the body stays at the origin and planted feet sweep back with the
         # ground: in the body's frame, which is what each animal carries along.
         local = self.cycle.joints[f0] * (1.0 - w)[:, None, None, None] + self.cycle.joints[f1] * w[:, None, None, None]
         scale, rot, move = self.transforms(ground_height) if transforms is None else transforms
-        joints = np.einsum("nij,nlkj->nlki", rot, local * scale[:, None, None, None]) + move[:, None, None, :]
-        if ground_height is None:
-            return joints, None
+        n = local.shape[0]
+        joints = ((local * scale[:, None, None, None]).reshape(n, -1, 3) @ np.swapaxes(rot, 1, 2)).reshape(local.shape)
+        joints += move[:, None, None, :]
         lift = local[:, :, 3, 1] * scale[:, None]  # each ball's height above the cycle's ground (m)
-        adjusted = legs_to_ground(joints, ground_height, lift)
+        shift, standing, off_cycle = self.foot_shift, None, False
+        if shift is not None:  # feet locked: a standing foot stands (blending into its swing's first frame lifts it)
+            standing = ~self._swinging()[0]
+            off_cycle = bool(np.any(np.abs(shift) > 1e-9) or np.any(standing & (lift > 0.0)))
+            lift = np.where(standing, 0.0, lift)
+        if ground_height is None and not off_cycle:
+            return joints, None
+        adjusted = legs_to_ground(joints, flat_ground if ground_height is None else ground_height, lift,
+                                  shift, standing)
         return adjusted.joints, adjusted
 
 
@@ -307,39 +366,52 @@ def _rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray
     return turn
 
 
-def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.float64]) -> LegAdjustment:
+def flat_ground(xz: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The flat floor's height (0 m) at points ``xz`` (K, 2)."""
+    return np.zeros(len(xz))
+
+
+def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.float64],
+                   shift: NDArray[np.float64] | None = None, planted: NDArray[np.bool_] | None = None) -> LegAdjustment:
     """Set each foot of ``joints`` (N, L, 5, 3: hip, knee, ankle, ball, toe) down on the
     ground: its ball ``lift`` (N, L) m above ``ground_height((K, 2)) -> (K,)`` under it
-    (0 for a planted foot). The foot (ankle, ball, toe) moves straight up or down; the
+    (0 for a planted foot), moved first by ``shift`` (N, L, 2) m along x and z (a foot's
+    lock; ``planted`` (N, L): the feet standing, default those with no lift). The foot
+    (ankle, ball, toe) moves across by the shift and straight up or down; the
     hip stays, unless a planted foot lies beyond the leg's reach (in a hollow): then the
-    whole animal settles lower until it reaches (up to SETTLE_PASSES tries); the knee is
+    whole animal settles lower just enough for it to reach (up to MAX_SETTLE leg lengths); the knee is
     re-solved in the plane of hip, knee and ankle (two-bone IK, bending the same way). A
     foot the leg still cannot reach stops at the leg's full stretch towards it, one too
     near at its full fold. Bone lengths are kept exactly."""
     n, legs = joints.shape[:2]
-    ground = ground_height(joints[:, :, 3][..., [0, 2]].reshape(-1, 2)).reshape(n, legs)
+    across = np.zeros((n, legs, 3))
+    if shift is not None:
+        across[..., 0], across[..., 2] = shift[..., 0], shift[..., 1]
+    ground = ground_height((joints[:, :, 3] + across)[..., [0, 2]].reshape(-1, 2)).reshape(n, legs)
     knee_from_hip = joints[:, :, 1] - joints[:, :, 0]
     femur = np.linalg.norm(knee_from_hip, axis=-1)
     tibia = np.linalg.norm(joints[:, :, 2] - joints[:, :, 1], axis=-1)
     longest, shortest = femur + tibia - 1e-9, np.abs(femur - tibia) + 1e-9
     # Where each ankle must go (the foot moved up or down to its ground): fixed in the world.
-    target = joints[:, :, 2].copy()
+    target = joints[:, :, 2] + across
     target[..., 1] += ground + lift - joints[:, :, 3, 1]
-    planted = lift < 1e-6
-    lowered = np.zeros(n)
-    for attempt in range(SETTLE_PASSES + 1):
-        hip = joints[:, :, 0] - lowered[:, None, None] * UP
-        to_target = target - hip
-        reach = np.linalg.norm(to_target, axis=-1)
-        along = to_target / np.maximum(reach, 1e-12)[..., None]
-        beyond = np.where(planted, reach - longest, 0.0)  # (N, L)
-        worst = beyond.argmax(axis=1)
-        over = beyond[np.arange(n), worst]
-        if attempt == SETTLE_PASSES or not np.any(over > 1e-9):
-            break
-        # Lowering the hip by h brings a foot straight below nearer by h, one out to the side less.
-        steep = np.maximum(-along[np.arange(n), worst, 1], 0.3)
-        lowered += np.where(over > 1e-9, over / steep + 1e-9, 0.0)
+    planted = lift < 1e-6 if planted is None else planted
+    # A planted foot beyond its leg's reach (in a hollow, or locked far back): the animal
+    # settles straight down until every planted foot is within reach; lowering the hip by h
+    # shortens the hip-to-foot line to sqrt(r^2 + (drop - h)^2), r across and drop below.
+    hip = joints[:, :, 0]
+    to_target = target - hip
+    across_r2 = to_target[..., 0] ** 2 + to_target[..., 2] ** 2
+    drop = -to_target[..., 1]
+    need = drop - np.sqrt(np.maximum(longest ** 2 - across_r2, 0.0))
+    reachable = across_r2 < longest ** 2
+    need = np.where(reachable, need, drop)  # too far across: down to the foot's level, the nearest it comes
+    lowered = np.clip(np.where(planted, need, 0.0).max(axis=1), 0.0, None) + 1e-9
+    lowered = np.minimum(lowered, MAX_SETTLE * longest.max(axis=1))
+    hip = hip - lowered[:, None, None] * UP
+    to_target = target - hip
+    reach = np.linalg.norm(to_target, axis=-1)
+    along = to_target / np.maximum(reach, 1e-12)[..., None]
     d = np.clip(reach, shortest, longest)
     new_ankle = hip + along * d[..., None]
     # The knee bends towards where it was, across the hip-ankle line (a leg straight along
@@ -369,32 +441,47 @@ def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.
 
 @dataclass(frozen=True)
 class HerdTrack:
-    """A herd over a clip's frames: position (T, N, 2), heading (T, N), phase (T, N)."""
+    """A herd over a clip's frames: position (T, N, 2), heading (T, N), phase (T, N) and
+    each foot's shift off its cycle (T, N, L, 2; see :meth:`Herd._lock_feet`)."""
 
     position: NDArray[np.float64]
     heading: NDArray[np.float64]
     phase: NDArray[np.float64]
+    foot_shift: NDArray[np.float64]
 
     def apply(self, herd: Herd, index: int) -> Herd:
         """Put ``herd`` where it is at frame ``index`` (and return it)."""
         herd.position, herd.heading, herd.phase = self.position[index], self.heading[index], self.phase[index]
+        herd.foot_shift = self.foot_shift[index]
         return herd
 
+    def first(self, frames: int = 1) -> HerdTrack:
+        """The track's first ``frames`` frames."""
+        return HerdTrack(self.position[:frames], self.heading[:frames], self.phase[:frames],
+                         self.foot_shift[:frames])
 
-def follow_leader(herd: Herd, leader: NDArray[np.float64], heading: NDArray[np.float64], fps: float) -> HerdTrack:
+
+def follow_leader(herd: Herd, leader: NDArray[np.float64], heading: NDArray[np.float64], fps: float,
+                  ground_height=None) -> HerdTrack:
     """Step ``herd`` after a leader at ``leader`` (T, 2) heading ``heading`` (T,) radians,
-    one step per frame at ``fps``; the herd starts in its places around the first frame's
-    leader. One vectorised step per frame (a loop over frames, never over animals)."""
+    one step per frame at ``fps``, on ``ground_height`` (default flat); the herd starts in
+    its places around the first frame's leader, its feet standing where the cycle puts
+    them. One vectorised step per frame (a loop over frames, never over animals)."""
     frames = len(leader)
     c, s = math.cos(float(heading[0])), math.sin(float(heading[0]))
     slot = herd.slot
     herd.position = leader[0] + np.column_stack([c * slot[:, 0] + s * slot[:, 1], -s * slot[:, 0] + c * slot[:, 1]])
     herd.heading = np.full(herd.count, float(heading[0]))
+    herd.unlock_feet()
+    herd._lock_feet(ground_height)
     position = np.empty((frames, herd.count, 2))
     headings = np.empty((frames, herd.count))
     phase = np.empty((frames, herd.count))
+    shifts = np.empty((frames, *herd._lock.shape))
     for i in range(frames):
         if i:
-            herd.step(1.0 / fps, leader[i], float(heading[i]))
+            herd.step(1.0 / fps, leader[i], float(heading[i]), ground_height=ground_height)
         position[i], headings[i], phase[i] = herd.position, herd.heading, herd.phase
-    return HerdTrack(position, headings, phase)
+        assert herd.foot_shift is not None
+        shifts[i] = herd.foot_shift
+    return HerdTrack(position, headings, phase, shifts)

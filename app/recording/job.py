@@ -61,7 +61,7 @@ class Recording:
             herds = [_herd_track(actor, m, request.fps, view.options) for actor, m in zip(request.cast, framed)]
             self.cameras = clip_cameras(cycle, view, _points_in_view(framed, herds))[:1]
             # The herds as they are at the frame: the cycle's first.
-            self._herds = [None if h is None else (h[0], _first_frame(h[1]), h[2]) for h in herds]
+            self._herds = [None if h is None else (h[0], h[1].first(), h[2]) for h in herds]
             self.options = replace(view.options, grid_spacing=loop_grid_spacing(cycle, None))
             self.cycles: float | None = None
         else:
@@ -253,12 +253,9 @@ def _herd_track(actor: Actor, motion: Motion, fps: float, options: RenderOptions
     points, tangents = motion.path.sample(motion.travel)
     heading = np.unwrap(np.arctan2(tangents[:, 0], tangents[:, 1]))
     herd = Herd(motion.rig, actor.herd - 1)
-    return herd, follow_leader(herd, points, heading, fps), HerdInstances(herd, options.joints, options.body,
+    ground = None if motion.terrain.flat else motion.terrain.height
+    return herd, follow_leader(herd, points, heading, fps, ground), HerdInstances(herd, options.joints, options.body,
                                                                           options.side_colors)
-
-
-def _first_frame(track: HerdTrack) -> HerdTrack:
-    return HerdTrack(track.position[:1], track.heading[:1], track.phase[:1])
 
 
 def _herd_box(motion: Motion, herd: HerdParts, frames: int) -> np.ndarray:

@@ -13,7 +13,7 @@ from ..kinematics.path import left_of
 from ..kinematics.terrain import Terrain
 from .camera import Camera
 from .instanced import InstancedMesh
-from .lighting import floor_light, shadow_footprint, sky_band
+from .lighting import SHADOW_OUTLINE_SIDES, SKY_FADE, SKY_ROWS, floor_light, shadow_outline, sky_band
 from .meshes import unit_sphere
 from .options import GroundView, RenderOptions
 from .overlays import SUPPORT_COLOR, Overlays
@@ -61,13 +61,14 @@ class GroundPass:
         disc = np.concatenate([[[0.0, 0.0]], np.stack([np.cos(angles), np.sin(angles)], axis=1)]).astype("f4")
         self.floor_vbo = ctx.buffer(disc.tobytes())
         self.floor_vao = ctx.vertex_array(self.floor_prog, [(self.floor_vbo, "2f", "in_xz")])
-        quad = np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4")
-        self.quad_vbo = ctx.buffer(quad.tobytes())
         self.shadow_prog = shaders.program("ground.vert", "ground_shadow.frag")
-        self.shadow_vao = ctx.vertex_array(self.shadow_prog, [(self.quad_vbo, "2f", "in_xz")])
+        # The shadow's outline on the floor (world xz corners; ground.vert's rectangle set to
+        # the identity), rewritten every frame.
+        self.shadow_vbo = ctx.buffer(reserve=2 * 4 * SHADOW_OUTLINE_SIDES, dynamic=True)
+        self.shadow_vao = ctx.vertex_array(self.shadow_prog, [(self.shadow_vbo, "2f", "in_xz")])
         self.sky_prog = shaders.program("background.vert", "background.frag")
-        self.sky_vbo = ctx.buffer(reserve=4 * 3 * 4, dynamic=True)
-        self.sky_vao = ctx.vertex_array(self.sky_prog, [(self.sky_vbo, "2f 1f", "in_ndc", "in_height")])
+        self.sky_vbo = ctx.buffer(reserve=2 * (SKY_ROWS + 2) * 5 * 4, dynamic=True)
+        self.sky_vao = ctx.vertex_array(self.sky_prog, [(self.sky_vbo, "2f 3f", "in_ndc", "in_color")])
         self.terrain_prog = shaders.program("terrain.vert", "terrain.frag")
         self.overlay_prog = shaders.program("overlay.vert", "overlay.frag")
         self._terrain_key: tuple | None = None
@@ -112,16 +113,16 @@ class GroundPass:
         set_(g, "u_floor_light", tuple(floor_ambient + floor_sun))
         self.floor_vao.render(moderngl.TRIANGLE_FAN)
         if options.shadow:
-            # The shadow on the floor, over its footprint only, lifted a hair above the floor.
-            lo, hi = shadow_footprint(scene, shadow_texel)
+            # The shadow on the floor, over the polygon holding it only, lifted a hair above the floor.
+            self.shadow_vbo.write(shadow_outline(scene, shadow_texel).astype("f4").tobytes())
             gs = self.shadow_prog
-            set_(gs, "u_center", tuple(0.5 * (lo + hi)))
-            set_(gs, "u_half_size", tuple(0.5 * (hi - lo)))
+            set_(gs, "u_center", (0.0, 0.0))
+            set_(gs, "u_half_size", (1.0, 1.0))
             set_(gs, "u_lift", 1e-3 * radius)
             set_(gs, "u_shadowed_ratio", tuple(floor_ambient / (floor_ambient + floor_sun)))
             ctx.enable(moderngl.BLEND)
             ctx.blend_func = moderngl.DST_COLOR, moderngl.ZERO
-            self.shadow_vao.render(moderngl.TRIANGLE_STRIP)
+            self.shadow_vao.render(moderngl.TRIANGLE_FAN)
             ctx.disable(moderngl.BLEND)
             ctx.blend_func = moderngl.DEFAULT_BLENDING  # type: ignore[assignment]  # (a pair of factors in the stub)
 
@@ -194,15 +195,23 @@ class GroundPass:
         band = sky_band(camera, aspect, centre, reach, ground_level)
         if band is None:
             return
+        # The gradient's colours per row, in display values (linear mix, then the display
+        # transform): the fragment shader only passes them on (its cost is per pixel).
+        top, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
+        t = np.clip(band[:, 1] / SKY_FADE, 0.0, 1.0)
+        fade = t * t * (3.0 - 2.0 * t)
+        colors = np.sqrt(np.clip(horizon + (top - horizon) * fade[:, None], 0.0, 1.0))
+        strip = np.empty((2 * len(band), 5), dtype="f4")
+        strip[0::2, 0], strip[1::2, 0] = -1.0, 1.0
+        strip[:, 1] = np.repeat(band[:, 0], 2)
+        strip[:, 2:] = np.repeat(colors, 2, axis=0)
         self.ctx.depth_func = "<="  # the sky sits exactly on the far plane
-        self.sky_vbo.write(band.tobytes())
-        self.uniforms.set(self.sky_prog, "u_top_color", tuple(srgb_to_linear(options.sky_color)))
-        self.uniforms.set(self.sky_prog, "u_horizon_color", tuple(srgb_to_linear(options.horizon_color)))
-        self.sky_vao.render(moderngl.TRIANGLE_STRIP)
+        self.sky_vbo.write(strip.tobytes())
+        self.sky_vao.render(moderngl.TRIANGLE_STRIP, vertices=len(strip))
         self.ctx.depth_func = "<"
 
     def release(self) -> None:
-        for obj in (*self._terrain_objects, self.floor_vao, self.shadow_vao, self.floor_vbo, self.quad_vbo,
+        for obj in (*self._terrain_objects, self.floor_vao, self.shadow_vao, self.shadow_vbo, self.floor_vbo,
                     self.sky_vao, self.sky_vbo):
             obj.release()
         self.path.release()

@@ -4,9 +4,10 @@
 (:func:`app.render.scene.motion_instances`); per frame it blends each animal's two cycle
 frames and moves the rows to the animal's place, size and heading, for all animals at
 once. The renderer then draws the whole herd with the same four instanced draw calls as
-one creature. On uneven ground each animal's legs are set down on the ground under its
-feet (:func:`app.kinematics.herd.legs_to_ground`): the leg shapes are built from those
-joints, and a skinned body's thigh, shin and foot bones turn and move with them.
+one creature. Each animal's legs are set down on the ground under its feet and reach to
+where its feet are locked (:func:`app.kinematics.herd.legs_to_ground`): the leg shapes
+are built from those joints, and a skinned body's thigh, shin and foot bones turn and
+move with them.
 """
 
 from __future__ import annotations
@@ -64,11 +65,9 @@ class HerdInstances:
         assert self._rows is not None and self._body_rows is not None
         f0, f1, w = herd.blend()
         scale, rot, move = herd.transforms(ground_height)
-        legs: LegAdjustment | None = None
         rows = self._rows
-        if ground_height is not None:
-            legs = herd.legs(ground_height, (scale, rot, move))[1]
-            assert legs is not None
+        legs = herd.legs(ground_height, (scale, rot, move))[1]  # None: the cycle's legs as they are
+        if legs is not None:
             move = move.copy()
             move[:, 1] -= legs.lowered
             rows = self._body_rows
@@ -86,8 +85,8 @@ class HerdInstances:
         out_c[..., Cap.RADII] = caps[..., Cap.RADII] * scale[:, None, None]
         out_e = ells.copy()
         out_e[..., 0:3] = _place(ells[..., 0:3], scale, rot, move)
-        for k in (3, 6, 9):  # the axes turn with the animal
-            out_e[..., k:k + 3] = np.einsum("nij,nsj->nsi", rot, ells[..., k:k + 3])
+        axes = ells[..., 3:12].reshape(len(ells), -1, 3)  # the three axes turn with the animal
+        out_e[..., 3:12] = (axes @ np.swapaxes(rot, 1, 2)).reshape(ells.shape[0], ells.shape[1], 9)
         out_e[..., Ell.RADII] = ells[..., Ell.RADII] * scale[:, None, None]
         casters = self._rows.ellipsoid_casters
         n = herd.count
@@ -102,7 +101,7 @@ class HerdInstances:
             place = np.tile(np.eye(4), (n, 1, 1))
             place[:, :3, :3] = rot * scale[:, None, None]
             place[:, :3, 3] = move
-            posed = np.einsum("nab,njbc->njac", place, skin)
+            posed = place[:, None] @ skin
             if legs is not None:
                 assert self._leg_bones is not None
                 posed = _set_down(posed, self._leg_bones, legs)
@@ -142,4 +141,4 @@ def _blend(rows: NDArray[np.float32], f0: NDArray[np.int64], f1: NDArray[np.int6
 def _place(points: NDArray[np.float64], scale: NDArray[np.float64], rot: NDArray[np.float64],
            move: NDArray[np.float64]) -> NDArray[np.float64]:
     """Points (N, S, 3) in each animal's frame, scaled, turned and moved into the world."""
-    return np.einsum("nij,nsj->nsi", rot, points * scale[:, None, None]) + move[:, None, :]
+    return (points * scale[:, None, None]) @ np.swapaxes(rot, 1, 2) + move[:, None, :]

@@ -1,5 +1,5 @@
 """The light and what it reaches, as numbers (no OpenGL): the key light's direction, the
-shadow map's fit around the casters, the shadow's footprint on the floor, the floor's
+shadow map's fit around the casters, the polygon that holds the shadow on the floor, the floor's
 light and the sky's band on screen. The passes in :mod:`.renderer` and
 :mod:`.ground` draw with these."""
 
@@ -8,6 +8,7 @@ from __future__ import annotations
 from typing import cast
 
 import numpy as np
+from numpy.typing import NDArray
 from pyglm import glm
 
 from ..kinematics.terrain import Terrain
@@ -59,14 +60,30 @@ def light_view_proj(scene: SceneInstances, ground: float | None = None) -> tuple
     return cast(glm.mat4, proj * view), float(max(hi[0] - lo[0], hi[1] - lo[1]) / SHADOW_MAP_SIZE)
 
 
-def shadow_footprint(scene: SceneInstances, texel: float) -> tuple[np.ndarray, np.ndarray]:
-    """World xz bounds (lo, hi) of the shadow on the plane y = 0: every caster point
-    projected along the light, padded by the largest radius."""
+SHADOW_OUTLINE_SIDES = 32  # directions of the polygon that holds the shadow on the floor
+
+
+def shadow_outline(scene: SceneInstances, texel: float,
+                   sides: int = SHADOW_OUTLINE_SIDES) -> NDArray[np.float64]:
+    """A convex polygon on the plane y = 0 holding the creatures' shadow: (sides, 2)
+    world xz corners in order around it.
+
+    Every caster sphere is projected along the light (its shadow lies within
+    radius / |light y| of its centre's) and padded by four shadow-map texels (the soft
+    filter's reach and the normal offset). The polygon's edges touch the padded shadow in
+    ``sides`` evenly spaced directions: much tighter than the shadow's bounding box for
+    an oblique light, so the soft lookups run over the shadow and little else."""
     points, radii = scene.spheres(casters_only=True)
-    pad = float(radii.max())
-    on_ground = points - LIGHT_DIR * (points[:, 1:2] / LIGHT_DIR[1])
-    pad = pad / abs(LIGHT_DIR[1]) + 4.0 * texel
-    return on_ground[:, [0, 2]].min(axis=0) - pad, on_ground[:, [0, 2]].max(axis=0) + pad
+    on_ground = (points - LIGHT_DIR * (points[:, 1:2] / LIGHT_DIR[1]))[:, [0, 2]]
+    pads = radii / abs(LIGHT_DIR[1]) + 4.0 * texel
+    angles = np.arange(sides) * (2.0 * np.pi / sides)
+    normals = np.column_stack([np.cos(angles), np.sin(angles)])  # (sides, 2) outward edge normals
+    reach = (on_ground @ normals.T + pads[:, None]).max(axis=0)  # (sides,) support distances
+    # Corner k: where edge k meets edge k + 1 (two lines n . x = h, solved in closed form).
+    n0, n1 = normals, np.roll(normals, -1, axis=0)
+    h0, h1 = reach, np.roll(reach, -1)
+    det = n0[:, 0] * n1[:, 1] - n0[:, 1] * n1[:, 0]
+    return np.column_stack([(h0 * n1[:, 1] - h1 * n0[:, 1]) / det, (h1 * n0[:, 0] - h0 * n1[:, 0]) / det])
 
 
 def floor_light(options: RenderOptions) -> tuple[np.ndarray, np.ndarray]:
@@ -78,10 +95,16 @@ def floor_light(options: RenderOptions) -> tuple[np.ndarray, np.ndarray]:
     return ambient, SUN_COLOR * wrapped
 
 
+SKY_FADE = 0.45  # the sky turns from the horizon colour to its own by this height (sine of elevation)
+SKY_ROWS = 12  # rows of the band's gradient (a smoothstep, linear between rows)
+
+
 def sky_band(camera: Camera, aspect: float, centre: np.ndarray, reach: float,
              ground_level: float = 0.0) -> np.ndarray | None:
-    """The sky's screen band: from the floor's far edge straight ahead up to the top of
-    the view, as 4 vertices (ndc x, ndc y, height); None when no sky is in view."""
+    """The sky's screen band, from the floor's far edge straight ahead up to the top of
+    the view, as rows (K, 2): ndc y and height (the sine of the elevation the row looks
+    at), bottom to top, spaced to follow the gradient (:data:`SKY_ROWS` through the
+    fade, one more at the top); None when no sky is in view."""
     forward = np.asarray(camera.target, dtype=np.float64) - camera.eye
     flat = np.array([forward[0], 0.0, forward[2]])
     if camera.top_down or np.linalg.norm(flat) < 1e-6:
@@ -99,4 +122,11 @@ def sky_band(camera: Camera, aspect: float, centre: np.ndarray, reach: float,
         far = np.linalg.inv(vp) @ np.array([0.0, 1.0, 1.0, 1.0])
         ray = far[:3] / far[3] - camera.eye
         h1 = max(float(ray[1] / np.linalg.norm(ray)), 0.0)
-    return np.array([[-1, y0, 0.0], [1, y0, 0.0], [-1, 1, h1], [1, 1, h1]], dtype="f4")
+    # Height runs linearly up the screen from the edge (0) to the top (h1).
+    heights = np.linspace(0.0, min(h1, SKY_FADE), SKY_ROWS + 1)
+    if h1 > SKY_FADE:
+        heights = np.append(heights, h1)
+    rows = y0 + (1.0 - y0) * heights / max(h1, 1e-9) if h1 > 0 else np.array([y0, 1.0])
+    if h1 <= 0:
+        heights = np.zeros(2)
+    return np.column_stack([rows, heights])

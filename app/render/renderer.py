@@ -227,12 +227,14 @@ class SceneRenderer:
     def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
                        target: moderngl.Framebuffer, options: RenderOptions,
                        viewport: tuple[int, int, int, int] | None = None, multisampled: bool | None = None,
-                       overlays: Overlays | None = None) -> None:
+                       overlays: Overlays | None = None, clear_target: bool = False) -> None:
         """Draw creature instances over ``ground`` (a GroundView, or the in-place ground
         offset in metres) seen by ``camera`` into ``target`` (cleared first), with
         ``overlays`` (footprints, targets, support polygon) on the ground.
         ``multisampled``: whether ``target`` has several samples per pixel (default: from
-        its colour attachments; give it for a window's framebuffer).
+        its colour attachments; give it for a window's framebuffer). ``clear_target``:
+        clear all of ``target``, not just ``viewport`` (cheaper on a software rasteriser
+        than a clear cut to a rectangle, for callers that draw over the rest anyway).
 
         Without multisampling the creatures go first, nearest shapes first, so the depth
         test rejects the ground hidden behind them before shading it (a software
@@ -252,7 +254,7 @@ class SceneRenderer:
         ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
         light_vp, shadow_texel = light_view_proj(scene, None if terrain.flat else ground_level)
         self._shadow_pass(light_vp, options)
-        self._begin_main_pass(target, viewport, camera, aspect, light_vp, shadow_texel, options)
+        self._begin_main_pass(target, viewport, camera, aspect, light_vp, shadow_texel, options, clear_target)
         if multisampled is None:
             multisampled = any(getattr(a, "samples", 0) > 0 for a in target.color_attachments)
         if not multisampled:
@@ -289,14 +291,15 @@ class SceneRenderer:
             self.bodies.draw_depth(light_vp)
 
     def _begin_main_pass(self, target: moderngl.Framebuffer, viewport: tuple[int, int, int, int], camera: Camera,
-                         aspect: float, light_vp: glm.mat4, shadow_texel: float, options: RenderOptions) -> None:
-        """Clear ``target`` to the horizon colour and give every lit program the camera,
-        the light and the shadow map."""
+                         aspect: float, light_vp: glm.mat4, shadow_texel: float, options: RenderOptions,
+                         clear_target: bool = False) -> None:
+        """Clear ``target`` (its ``viewport``, or all of it) to the horizon colour and give
+        every lit program the camera, the light and the shadow map."""
         target.use()
         target.viewport = viewport
         sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
         r, g, b = (float(c) for c in np.sqrt(horizon))
-        target.clear(r, g, b, 1.0, depth=1.0, viewport=viewport)  # beyond the floor: horizon
+        target.clear(r, g, b, 1.0, depth=1.0, viewport=None if clear_target else viewport)  # beyond the floor: horizon
         view_proj = camera.view_proj(aspect)
         self.shadow_map.use(location=0)
         set_ = self.uniforms.set

@@ -32,7 +32,9 @@ def step_herd(session: CreatureSession, dt: float) -> None:
         herd.set_rig(live.rig)
     (point,), (tangent,) = session.world.path.sample(np.array([live.travel]))
     speed = live.travel_per_cycle() * live.frequency
-    herd.step(dt, point, float(np.arctan2(tangent[0], tangent[1])), leader_speed=speed)
+    terrain = session.world.terrain
+    herd.step(dt, point, float(np.arctan2(tangent[0], tangent[1])), leader_speed=speed,
+              ground_height=None if terrain.flat else terrain.height)
 
 
 class PlaybackMixin(StateBase):

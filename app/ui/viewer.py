@@ -26,10 +26,12 @@ from ..render.arcs import arc_instances
 from ..render.bodies import pose_body, shared_body_cache
 from ..render.camera import eye_ray, ground_point, point3
 from ..render.herd import HerdInstances
+from ..render.options import GroundView
+from ..render.overlays import Overlays
 from ..render.renderer import SceneRenderer
 from ..render.scene import KEY_POSE_COLORS, SceneInstances, frame_instances, ghost_instances, pose_instances
 from .file_dialog import FileDialog, dialogs_available
-from .imgui_renderer import ImguiRenderer
+from .imgui_renderer import Backdrop, ImguiRenderer
 from .monitor import GaitMonitor
 from .panels import SIDEBAR_COLOR, SIDEBAR_WIDTH, PanelContext, draw_ui
 from .playback import FRAME_DT
@@ -55,6 +57,15 @@ class ViewerOptions:
     presets: list[str] = field(default_factory=list)
     overlays: tuple[str, ...] = ()  # turned on at start: footprints, targets, support
     panels: tuple[str, ...] = ()  # sidebar panels opened at start (titles)
+
+
+@dataclass(frozen=True)
+class FrameContent:
+    """What one frame of the 3-D view draws, gathered before it is drawn."""
+
+    instances: SceneInstances
+    ground: GroundView
+    overlays: Overlays | None
 
 
 def _ema(old: float, new: float, k: float = 0.1) -> float:
@@ -106,6 +117,7 @@ class Viewer:
         self._press: tuple[np.ndarray, int | None, tuple[float, float], int] | None = None  # waypoint press
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
         self.extra_panels: tuple = ()
+        self._next: FrameContent | None = None  # the next frame, solved while the GL draws this one
 
     # -- input ------------------------------------------------------------------------
 
@@ -283,6 +295,18 @@ class Viewer:
         left = min(left, max(fb_w - 1, 0))
         return (left, 0, fb_w - left, fb_h)
 
+    def _backdrop(self, viewport: tuple[int, int, int, int]) -> Backdrop | None:
+        """The sidebar's strip left of the 3-D view, filled under the panels (they draw no
+        background); none when the UI is hidden. In a multisampled window the sidebar
+        is drawn every frame (a layer cannot be copied into it), over its own fill."""
+        if viewport[0] <= 0:
+            return None
+        if self.options.samples > 0:
+            r, g, b = SIDEBAR_COLOR
+            self.ctx.screen.clear(r, g, b, 1.0, viewport=(0, 0, viewport[0], self.window.framebuffer_size[1]))
+            return None
+        return Backdrop(viewport[0], SIDEBAR_COLOR)
+
     def _resolve_pick(self, viewport: tuple[int, int, int, int]) -> None:
         """Focus on the scene point under a double-click (depth read back), or the creature."""
         if self._pick is None:
@@ -442,9 +466,14 @@ class Viewer:
         return 0
 
     def _frame(self, frame: int, last: bool) -> None:
-        """One frame: input, simulation, the 3-D view, the UI, outputs, swap; timed.
-        With ``--report-fps`` every 8th frame waits for the GL after each stage to time
-        it; the other frames run freely and give the frame rate."""
+        """One frame: input, the 3-D view, the UI, the next frame's motion, outputs, swap;
+        timed. With ``--report-fps`` every 8th frame waits for the GL after each stage to
+        time it; the other frames run freely and give the frame rate.
+
+        The 3-D view is handed to the GL (flushed) before the UI is built and the next
+        frame's motion is solved, so a software renderer rasterises on its threads while
+        Python works. The next frame is solved after this frame's UI, so an edit made in
+        the UI shows in the next frame, as it would if it were solved at that frame's start."""
         opts, state, window, clock = self.options, self.state, self.window, time.perf_counter
         start = clock()
         dt = window.begin_frame(FRAME_DT if opts.frames is not None else None)
@@ -456,24 +485,36 @@ class Viewer:
         self._mouse(max(viewport[3], 1))
         sync = opts.report_fps and frame % 8 == 0
         t0 = clock()
-        pose = self._simulate(dt)
+        content = self._next if self._next is not None else self._prepare(dt)
+        self._next = None
         t1 = clock()
         if not minimized and viewport[2] > 0:
-            self._draw_view(pose, viewport, sync)
+            self._draw_view(content, viewport, sync)
+            window.flush()
         t2 = clock()
         draw_ui(state, self.panel, self.extra_panels)
         imgui.render()
+        t3 = clock()
+        if not last:
+            self._next = self._prepare(dt)
+        t4 = clock()
         if not minimized:
-            self.ui.render(imgui.get_draw_data(), self.ctx.screen)
+            self.ui.render(imgui.get_draw_data(), self.ctx.screen, self._backdrop(viewport))
             if sync:
                 self.ctx.finish()
-        t3 = clock()
+        t5 = clock()
         self._outputs(frame, last, minimized)
         if minimized:
             time.sleep(0.05)  # nothing to draw: do not spin
         else:
             window.swap()
-        self._time(start, t0, t1, t2, t3, clock(), sync)
+        self._time(start, (t1 - t0) + (t4 - t3), t2 - t1, (t3 - t2) + (t5 - t4), clock(), sync)
+
+    def _prepare(self, dt: float) -> FrameContent:
+        """Move the scene on by ``dt`` and gather what its next frame draws."""
+        pose = self._simulate(dt)
+        state = self.state
+        return FrameContent(self._instances(pose), state.ground(pose), state.overlays(pose))
 
     def _simulate(self, dt: float) -> Pose:
         """Move the scene on by ``dt`` and return the selected creature's pose to draw.
@@ -499,17 +540,14 @@ class Viewer:
         self.monitor.wanted = False
         return pose
 
-    def _draw_view(self, pose: Pose, viewport: tuple[int, int, int, int], sync: bool) -> None:
-        """The 3-D view (and the sidebar's background beside it)."""
+    def _draw_view(self, content: FrameContent, viewport: tuple[int, int, int, int], sync: bool) -> None:
+        """The 3-D view."""
         state = self.state
         state.aspect = viewport[2] / max(viewport[3], 1)
         self.ctx.screen.use()
-        if viewport[0] > 0:  # the sidebar's background (the panels draw none)
-            r, g, b = SIDEBAR_COLOR
-            self.ctx.screen.clear(r, g, b, 1.0, viewport=(0, 0, viewport[0], self.window.framebuffer_size[1]))
-        self.scene.draw_instances(self._instances(pose), state.ground(pose), state.camera, self.ctx.screen,
+        self.scene.draw_instances(content.instances, content.ground, state.camera, self.ctx.screen,
                                   state.options, viewport, multisampled=self.options.samples > 0,
-                                  overlays=state.overlays(pose))
+                                  overlays=content.overlays, clear_target=True)
         self._resolve_pick(viewport)
         if state.screenshot_requested and not state.screenshot_with_ui:
             self._screenshot(viewport=viewport)  # the 3-D view alone, before the UI
@@ -526,15 +564,16 @@ class Viewer:
         if self.options.dump_state is not None and (frame % 20 == 0 or last):
             self._dump(self.options.dump_state, frame)
 
-    def _time(self, start: float, t0: float, t1: float, t2: float, t3: float, end: float, sync: bool) -> None:
-        """Keep the frame's timings (for --report-fps) and the HUD's averages."""
-        self.frame_times.append((t1 - t0, t2 - t1, t3 - t2, end - start, sync))
+    def _time(self, start: float, simulate: float, scene: float, ui: float, end: float, sync: bool) -> None:
+        """Keep the frame's timings (seconds spent simulating, drawing the scene and the
+        UI; for --report-fps) and the HUD's averages."""
+        self.frame_times.append((simulate, scene, ui, end - start, sync))
         s = self.panel.stats
         s.frame_ms = _ema(s.frame_ms, (end - start) * 1000)
         s.fps = 1000.0 / max(s.frame_ms, 1e-3)
-        s.simulate_ms = _ema(s.simulate_ms, (t1 - t0) * 1000)
-        s.scene_ms = _ema(s.scene_ms, (t2 - t1) * 1000)
-        s.ui_ms = _ema(s.ui_ms, (t3 - t2) * 1000)
+        s.simulate_ms = _ema(s.simulate_ms, simulate * 1000)
+        s.scene_ms = _ema(s.scene_ms, scene * 1000)
+        s.ui_ms = _ema(s.ui_ms, ui * 1000)
 
     def report(self) -> None:
         """Print the frame rate (median over free-running frames) and the time split

@@ -6,6 +6,7 @@ nowhere on the headless path.
 
 from __future__ import annotations
 
+import ctypes
 import os
 import sys
 
@@ -79,6 +80,10 @@ class GlfwWindow:
                                "(apt-get install libgl1-mesa-dri) or use 'gaitlab render'")
         glfw.make_context_current(self.handle)
         glfw.swap_interval(1 if vsync else 0)
+        # glFlush, looked up for this context through glfw (moderngl offers only finish):
+        # hands the frame's queued drawing to the renderer's threads without waiting.
+        pointer = ctypes.cast(glfw.get_proc_address("glFlush"), ctypes.c_void_p).value
+        self._gl_flush = ctypes.CFUNCTYPE(None)(pointer) if pointer else None
         self._keys = _key_map()
         self._io = imgui.get_io()
         self._last_time: float | None = None
@@ -160,6 +165,12 @@ class GlfwWindow:
 
     def request_close(self) -> None:
         glfw.set_window_should_close(self.handle, True)
+
+    def flush(self) -> None:
+        """Start drawing what has been queued, without waiting for it: a software
+        renderer (llvmpipe) then rasterises on its threads while Python goes on."""
+        if self._gl_flush is not None:
+            self._gl_flush()
 
     def swap(self) -> None:
         glfw.swap_buffers(self.handle)
