@@ -150,7 +150,7 @@ class ImguiRenderer:
             return
         if self._layer is None or self._layer.size != (backdrop.width, fb_h):
             self._release_layer()
-            self._layer = self.ctx.simple_framebuffer((backdrop.width, fb_h), components=4)
+            self._layer = self.ctx.framebuffer([self.ctx.renderbuffer((backdrop.width, fb_h), 4)])
         self._layer.use()
         self._layer.clear(*backdrop.color, 1.0)
         self._draw_lists(lists, self._layer, origin, size, scale, (0, 0, backdrop.width, fb_h))
@@ -214,7 +214,8 @@ class ImguiRenderer:
 
     def _release_layer(self) -> None:
         if self._layer is not None:
-            for attachment in self._layer.color_attachments:
-                attachment.release()
+            attachments = self._layer.color_attachments
             self._layer.release()
+            for attachment in attachments:
+                attachment.release()
         self._layer, self._layer_key, self._layer_lists = None, None, []
