@@ -180,35 +180,76 @@ class Herd:
         legs = self.cycle.contact.shape[1]
         self._locked = np.zeros((self.count, legs), dtype=bool)
         self._lock = np.zeros((self.count, legs, 2))
+        self._anchor = np.zeros((self.count, legs, 3))
         self._lift_shift = np.zeros((self.count, legs, 2))
+        self._locked_phase: NDArray[np.float64] | None = None
         self.foot_shift: NDArray[np.float64] | None = None
 
     def _swinging(self) -> tuple[NDArray[np.bool_], NDArray[np.float64]]:
         """Which feet swing now (N, L) and how far through its swing each is (0 at lift-off,
         1 at touchdown)."""
+        swinging, progress, _ = self._swing_state()
+        return swinging, progress
+
+    def _swing_state(self) -> tuple[NDArray[np.bool_], NDArray[np.float64], NDArray[np.float64]]:
+        """:meth:`_swinging`, and the cycle frames since each foot last lifted (N, L)."""
         frames = self.cycle.frame_count
         since_lift = (self.phase[:, None] * frames - self._swing_start[None, :]) % frames
-        swinging = since_lift < self._swing_frames[None, :]
-        return swinging, np.clip(since_lift / np.maximum(self._swing_frames, 1.0)[None, :], 0.0, 1.0)
+        swinging = (since_lift < self._swing_frames[None, :]) & (self._swing_frames[None, :] > 0)
+        return swinging, np.clip(since_lift / np.maximum(self._swing_frames, 1.0)[None, :], 0.0, 1.0), since_lift
+
+    def _ground_anchor(self, f0: NDArray[np.int64], f1: NDArray[np.int64],
+                       w: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Each ball in the cycle's frame plus how far the cycle's ground has moved back
+        (N, L, 3; size 1): constant through a stance for a foot that stands still on the
+        ground, changing only as a foot rolls (heel to ball to toe)."""
+        balls = self.cycle.joints[:, :, 3]
+        local = balls[f0] + (balls[f1] - balls[f0]) * w[:, None, None]
+        travel = self.cycle.travel
+        length = self.cycle_speed / max(self.frequency, 1e-9)  # ground a cycle moves by (m)
+        ahead = travel[f1] + np.where(f1 < f0, length, 0.0)  # the cycle's last frame leads into its first
+        anchor = local.copy()
+        anchor[..., 2] += (travel[f0] + (ahead - travel[f0]) * w)[:, None]
+        return anchor
 
     def _lock_feet(self, ground_height=None) -> None:
         """Keep each standing foot where it landed: lock a foot's ball (x, z) as it lands,
-        keep it until it lifts, then ease the foot from its lock back onto the cycle's
-        path over its swing. Sets :attr:`foot_shift` (N, L, 2): how far (m) each foot
-        stands or swings off where the cycle, carried by the animal, puts it."""
+        keep it until it lifts (moving it only as the cycle rolls it on the ground), then
+        ease the foot from its lock back onto the cycle's path over its swing. A step that
+        passes a whole swing lifts and lands the foot. Sets :attr:`foot_shift` (N, L, 2):
+        how far (m) each foot stands or swings off where the cycle, carried by the animal,
+        puts it."""
         f0, f1, w = self.blend()
         balls = self.cycle.joints[:, :, 3]  # (F, L, 3)
         local = balls[f0] + (balls[f1] - balls[f0]) * w[:, None, None]
         scale, rot, move = self.transforms(ground_height)
-        carried = ((local * scale[:, None, None]) @ np.swapaxes(rot, 1, 2) + move[:, None, :])[..., [0, 2]]
-        swinging, progress = self._swinging()
+        turn = np.swapaxes(rot, 1, 2)
+        carried = ((local * scale[:, None, None]) @ turn + move[:, None, :])[..., [0, 2]]
+        swinging, progress, since_lift = self._swing_state()
+        # A standing foot's anchor: not blended into its swing's first frame (that is the lift).
+        into_swing = ~swinging & self.cycle.contact[f0] & ~self.cycle.contact[f1]
+        anchor = np.where(into_swing[..., None], self._ground_anchor(f0, f1, np.zeros_like(w)),
+                          self._ground_anchor(f0, f1, w))
+        frames = self.cycle.frame_count
+        if self._locked_phase is None:
+            advanced = np.zeros((self.count, 1))
+        else:
+            advanced = ((self.phase - self._locked_phase) % 1.0)[:, None] * frames
+        passed = (since_lift < advanced) & (self._swing_frames[None, :] > 0)  # lifted since the last step
+        self._locked_phase = self.phase.copy()
         standing = ~swinging
-        landed = standing & ~self._locked
-        self._lock = np.where(landed[..., None], carried, self._lock)
-        lifted = swinging & self._locked
+        lifted = (swinging | passed) & self._locked
         self._lift_shift = np.where(lifted[..., None], self._lock - carried, self._lift_shift)
+        landed = standing & (~self._locked | passed)
+        self._lock = np.where(landed[..., None], carried, self._lock)
+        self._anchor = np.where(landed[..., None], anchor, self._anchor)
+        # A standing foot: its lock, moved by the cycle's roll since it landed (turned with the animal).
+        length = self.cycle_speed / max(self.frequency, 1e-9)
+        roll = anchor - self._anchor
+        roll[..., 2] = (roll[..., 2] + 0.5 * length) % length - 0.5 * length  # across the cycle's wrap
+        rolled = self._lock + ((roll * scale[:, None, None]) @ turn)[..., [0, 2]]
         ease = 1.0 - progress * progress * (3.0 - 2.0 * progress)
-        self.foot_shift = np.where(standing[..., None], self._lock - carried, self._lift_shift * ease[..., None])
+        self.foot_shift = np.where(standing[..., None], rolled - carried, self._lift_shift * ease[..., None])
         self._locked = standing
 
     def step(self, dt: float, leader: NDArray[np.float64], leader_heading: float,
@@ -318,10 +359,14 @@ class Herd:
         joints += move[:, None, None, :]
         lift = local[:, :, 3, 1] * scale[:, None]  # each ball's height above the cycle's ground (m)
         shift, standing, off_cycle = self.foot_shift, None, False
-        if shift is not None:  # feet locked: a standing foot stands (blending into its swing's first frame lifts it)
+        if shift is not None:
+            # A standing foot keeps the cycle's height for it (a rolling foot's ball rises
+            # at heel strike), but not the blend into its swing's first frame.
             standing = ~self._swinging()[0]
-            off_cycle = bool(np.any(np.abs(shift) > 1e-9) or np.any(standing & (lift > 0.0)))
-            lift = np.where(standing, 0.0, lift)
+            into_swing = standing & ~self.cycle.contact[f1] & self.cycle.contact[f0]
+            at_f0 = self.cycle.joints[f0][:, :, 3, 1] * scale[:, None]
+            off_cycle = bool(np.any(np.abs(shift) > 1e-9) or np.any(into_swing & (lift != at_f0)))
+            lift = np.where(into_swing, at_f0, lift)
         if ground_height is None and not off_cycle:
             return joints, None
         adjusted = legs_to_ground(joints, flat_ground if ground_height is None else ground_height, lift,
