@@ -11,6 +11,7 @@ with the sky).
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import moderngl
@@ -32,6 +33,7 @@ from .shaders import ShaderLibrary
 from .uniforms import Uniforms, uniform
 
 GL_MULTISAMPLE = 0x809D  # glEnable/glDisable capability (moderngl's enable_direct)
+TINY_PIXELS = 4.0  # small spheres fewer pixels across than this get the coarsest mesh
 THIN_CAPSULE = 0.35  # capsules thinner than this fraction of the thickest use the coarse mesh
 CAPSULE_LAYOUT = ("3f 1f", ("in_pos", "in_end"), "3f 3f 2f 3f/i", ("in_a", "in_b", "in_radius", "in_color"),
                   CAPSULE_FLOATS)
@@ -56,10 +58,16 @@ class CreaturePass:
                                         *ELLIPSOID_LAYOUT)
         self.small_ellipsoids = InstancedMesh(ctx, lit_ell, depth_ell, unit_sphere(6, 9), unit_sphere(3, 4),
                                               *ELLIPSOID_LAYOUT)
+        # ... and those a few pixels across (a herd's far eyes): a handful of faces does
+        self.tiny_ellipsoids = InstancedMesh(ctx, lit_ell, depth_ell, unit_sphere(3, 5), unit_sphere(3, 4),
+                                             *ELLIPSOID_LAYOUT)
 
-    def upload(self, scene: SceneInstances, eye: np.ndarray) -> None:
+    def upload(self, scene: SceneInstances, eye: np.ndarray, pixel: float | None = None) -> None:
         """This frame's shapes, nearest first, so the depth test rejects hidden fragments
-        before shading them."""
+        before shading them. ``pixel``: the angle (radians) one pixel spans at the eye
+        (perspective); small spheres (eyes, joints) narrower than half a pixel are left
+        out, and those under TINY_PIXELS across get a coarse sphere (a herd's far eyes:
+        every vertex is shaded on the drawing thread)."""
         caps = scene.capsules
         caps = caps[np.argsort(((0.5 * (caps[:, Cap.A] + caps[:, Cap.B]) - eye) ** 2).sum(axis=1))]
         thick = caps[:, Cap.RADII].max(axis=1) >= THIN_CAPSULE * (caps[:, Cap.RADII].max() if len(caps) else 0.0)
@@ -67,7 +75,14 @@ class CreaturePass:
         self.thin_capsules.upload(caps[~thick])
         small = scene.ellipsoids[scene.ellipsoid_casters:]
         self.ellipsoids.upload(scene.ellipsoids[:scene.ellipsoid_casters])
-        self.small_ellipsoids.upload(small[np.argsort(((small[:, Ell.CENTRE] - eye) ** 2).sum(axis=1))])
+        small = small[np.argsort(((small[:, Ell.CENTRE] - eye) ** 2).sum(axis=1))]
+        tiny = np.zeros(len(small), dtype=bool)
+        if pixel is not None:
+            across = 2.0 * small[:, Ell.RADII].max(axis=1) / (pixel * np.sqrt(((small[:, Ell.CENTRE] - eye) ** 2).sum(axis=1)))
+            small, across = small[across >= 0.5], across[across >= 0.5]
+            tiny = across < TINY_PIXELS
+        self.small_ellipsoids.upload(small[~tiny])
+        self.tiny_ellipsoids.upload(small[tiny])
 
     def draw_depth(self, light_vp: glm.mat4) -> None:
         """Into the shadow map (small spheres cast no shadow)."""
@@ -79,12 +94,12 @@ class CreaturePass:
         """Lit and shadowed."""
         self.ctx.enable(moderngl.CULL_FACE)
         self.ctx.disable(moderngl.BLEND)
-        for mesh in (self.capsules, self.ellipsoids, self.thin_capsules, self.small_ellipsoids):
+        for mesh in (self.capsules, self.ellipsoids, self.thin_capsules, self.small_ellipsoids, self.tiny_ellipsoids):
             mesh.draw(depth_only=False)
         self.ctx.disable(moderngl.CULL_FACE)
 
     def release(self) -> None:
-        for mesh in (self.capsules, self.thin_capsules, self.ellipsoids, self.small_ellipsoids):
+        for mesh in (self.capsules, self.thin_capsules, self.ellipsoids, self.small_ellipsoids, self.tiny_ellipsoids):
             mesh.release()
 
 
@@ -246,9 +261,10 @@ class SceneRenderer:
         if not isinstance(ground, GroundView):
             ground = GroundView(offset=float(ground))
         terrain = ground.terrain
-        self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32))
-        self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64))
         viewport = viewport or (0, 0, *target.size)
+        pixel = None if camera.ortho else math.radians(camera.fov) / max(viewport[3], 1)
+        self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32), pixel)
+        self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64))
         aspect = viewport[2] / max(viewport[3], 1)
         centre, radius = creature_bounds(scene, terrain)
         ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
