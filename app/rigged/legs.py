@@ -1,0 +1,161 @@
+"""Finding a rigged model's legs: pairs of joint chains, left and right, from the hip (or
+shoulder) down to the last joint of the foot, front pair first.
+
+Names first, in the common conventions: Mixamo (``mixamorig:LeftUpLeg``, with any
+``mixamorigN:`` or other namespace), Blender (``thigh.L``, ``shin.R``), ``Left``/``Right``,
+``L_``/``_R``/``.l`` with Thigh, UpLeg, Leg, Shin, Calf, Foot, Toe, and numbered chains
+(``b_LeftLeg01``, ``leg_joint_L_1``), 3ds Max Biped (``Bip01 L Thigh``) and ASF
+(``lfemur``). A chain starts at the highest joint of its side
+named for the leg and runs down its children to the end. Arms become the front legs when
+their hands reach down near the ground at rest (a quadruped's fore legs); a biped's arms
+stay arms. A model whose legs cannot be found is a one-line :class:`RigError` naming the
+joints it has.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .gltf import RigError, RiggedModel
+
+LEG_WORDS = ("upleg", "upperleg", "thigh", "femur", "leg", "shin", "calf", "tibia", "knee", "foot", "ankle", "toe",
+             "ball", "hip")
+ARM_WORDS = ("upperarm", "uparm", "arm", "humerus", "forearm", "radius", "elbow", "hand", "wrist", "finger",
+             "shoulder", "clavicle")
+NEAR_GROUND = 0.25  # a hand within this fraction of the hip height of the ground makes the arm a leg
+
+
+@dataclass(frozen=True)
+class LegChain:
+    """One leg: its side ("L" or "R") and its joints (indices into the model's joints),
+    from the top of the leg down to the end of the foot."""
+
+    side: str
+    joints: tuple[int, ...]
+
+
+@dataclass(frozen=True)
+class ModelLegs:
+    """A model's leg pairs, front first (each pair left, right), and whether its arms
+    are its front legs."""
+
+    pairs: tuple[tuple[LegChain, LegChain], ...]
+    arms_as_legs: bool
+
+    @property
+    def chains(self) -> tuple[LegChain, ...]:
+        return tuple(chain for pair in self.pairs for chain in pair)
+
+
+def _words(name: str) -> tuple[str, str | None, str]:
+    """A joint name as (lower-case words joined by spaces, side "L"/"R"/None, the words
+    without the side): namespaces dropped, camel case and digits split."""
+    base = name.rsplit(":", 1)[-1]
+    base = re.sub(r"([a-z])([A-Z])", r"\1 \2", base)
+    base = re.sub(r"([A-Za-z])(\d)", r"\1 \2", base)
+    tokens = [t for t in re.split(r"[\s_.\-|]+", base.lower()) if t]
+    side = None
+    rest = []
+    for t in tokens:
+        if t in ("l", "left", "lft") and side is None:
+            side = "L"
+        elif t in ("r", "right", "rt", "rgt") and side is None:
+            side = "R"
+        elif t.startswith("left") and side is None:
+            side, t = "L", t[4:]
+            if t:
+                rest.append(t)
+        elif t.startswith("right") and side is None:
+            side, t = "R", t[5:]
+            if t:
+                rest.append(t)
+        else:
+            rest.append(t)
+    if side is None and tokens:  # lthigh, rfoot (ASF-style): a single-letter prefix on a limb word
+        first = tokens[0]
+        for words in (LEG_WORDS, ARM_WORDS):
+            for word in words:
+                if first in ("l" + word, "r" + word):
+                    side = first[0].upper()
+                    rest = [word, *tokens[1:]]
+    return " ".join(rest), side, " ".join(tokens)
+
+
+def _has(words: str, vocabulary: tuple[str, ...]) -> bool:
+    return any(w in vocabulary or any(w.startswith(v) for v in vocabulary) for w in words.split())
+
+
+def _chain_from(model: RiggedModel, top: int) -> tuple[int, ...]:
+    """``top`` and its descendants straight down: at each joint the child whose subtree
+    reaches lowest (a foot before a stray twist bone)."""
+    children: dict[int, list[int]] = {}
+    for j, p in enumerate(model.parents):
+        children.setdefault(int(p), []).append(j)
+    points = model.rest_points
+
+    def lowest(j: int) -> float:
+        stack, low = [j], np.inf
+        while stack:
+            k = stack.pop()
+            low = min(low, float(points[k, 1]))
+            stack.extend(children.get(k, []))
+        return low
+
+    chain = [top]
+    while children.get(chain[-1]):
+        chain.append(min(children[chain[-1]], key=lowest))
+    return tuple(chain)
+
+
+def _limbs(model: RiggedModel, vocabulary: tuple[str, ...], avoid: tuple[str, ...]) -> dict[str, list[tuple[int, ...]]]:
+    """Chains per side whose top joint is named for the limb (``vocabulary``, not
+    ``avoid``) and whose parent is not."""
+    named = {}
+    for j, name in enumerate(model.names):
+        words, side, _ = _words(name)
+        if side is not None and _has(words, vocabulary) and not _has(words, avoid):
+            named[j] = side
+    tops: dict[str, list[tuple[int, ...]]] = {"L": [], "R": []}
+    for j, side in named.items():
+        parent = int(model.parents[j])
+        if parent in named and named[parent] == side:
+            continue
+        chain = _chain_from(model, j)
+        if len(chain) >= 3:
+            tops[side].append(chain)
+    return tops
+
+
+def find_legs(model: RiggedModel) -> ModelLegs:
+    """The model's legs by their joints' names (see the module docstring)."""
+    legs = _limbs(model, LEG_WORDS, ARM_WORDS)
+    arms = _limbs(model, ARM_WORDS, ("upleg", "thigh", "foot", "toe", "shin", "calf"))
+    if len(legs["L"]) != len(legs["R"]) or not legs["L"]:
+        found = ", ".join(model.names[:40]) + (" ..." if len(model.names) > 40 else "")
+        raise RigError(f"{model.path}: no left and right legs found among its joints ({found}); name each leg's "
+                       "joints for its side and part, e.g. LeftUpLeg/RightUpLeg, thigh.L/thigh.R or L_Thigh/R_Thigh")
+    points = model.rest_points
+    pairs = []
+    for left, right in zip(sorted(legs["L"], key=lambda c: -points[c[0], 2]),
+                           sorted(legs["R"], key=lambda c: -points[c[0], 2])):
+        pairs.append((LegChain("L", left), LegChain("R", right)))
+    hip_height = float(np.mean([points[left.joints[0], 1] - points[left.joints[-1], 1] for left, _ in pairs]))
+    ground = float(min(points[c.joints[-1], 1] for pair in pairs for c in pair))
+    arms_as_legs = False
+    if len(arms["L"]) == 1 and len(arms["R"]) == 1:
+        hands = [points[arms[s][0][-1], 1] - ground for s in ("L", "R")]
+        if max(hands) < NEAR_GROUND * hip_height:
+            arms_as_legs = True
+            pairs.insert(0, (LegChain("L", arms["L"][0]), LegChain("R", arms["R"][0])))
+    pairs.sort(key=lambda pair: -float(points[pair[0].joints[0], 2]))  # front first (+z forward)
+    return ModelLegs(pairs=tuple(pairs), arms_as_legs=arms_as_legs)
+
+
+def chain_lengths(model: RiggedModel, chain: LegChain) -> NDArray[np.float64]:
+    """Lengths of a chain's bones at rest (len(joints) - 1,), in the model's units."""
+    points = model.rest_points[list(chain.joints)]
+    return np.linalg.norm(np.diff(points, axis=0), axis=1)

@@ -1,0 +1,112 @@
+"""Reading a user's rigged glTF and finding its legs (app/rigged)."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from app.rigged.gltf import RigError, RiggedModel, load_rigged_model
+from app.rigged.legs import chain_lengths, find_legs
+
+MODELS = Path(__file__).parent / "data" / "models"
+
+
+def _skinned_rest(model: RiggedModel) -> np.ndarray:
+    """The mesh skinned by the rest pose (V, 3)."""
+    skin = model.rest @ model.inverse_bind
+    v = np.concatenate([model.positions, np.ones((len(model.positions), 1))], axis=1)
+    return np.einsum("vk,vkab,vb->va", model.weights, skin[model.joints], v)[:, :3]
+
+
+def test_the_fox_is_read_with_its_skeleton_weights_and_texture() -> None:
+    fox = load_rigged_model(MODELS / "Fox.glb")
+    assert len(fox.names) == 24 and fox.faces.shape == (576, 3)
+    assert np.allclose(fox.weights.sum(axis=1), 1.0)
+    assert fox.parents[fox.names.index("b_LeftLeg02_016")] == fox.names.index("b_LeftLeg01_015")
+    # The rest pose skins the mesh onto itself (the file's bind pose).
+    assert np.abs(_skinned_rest(fox) - fox.positions).max() < 1e-3
+    # Colours from its texture: a fox's orange, not a flat grey.
+    r, g, b = fox.colors.mean(axis=0)
+    assert r > g > b and r - b > 0.3
+
+
+def test_cesium_man_stands_up_through_his_z_up_node() -> None:
+    man = load_rigged_model(MODELS / "CesiumMan.glb")
+    mesh = _skinned_rest(man)
+    assert abs(mesh[:, 1].min()) < 0.01 and 1.4 < np.ptp(mesh[:, 1]) < 1.6  # feet on y = 0, 1.5 m tall, y up
+    assert man.rest_points[:, 1].max() < 1.3  # the head joint is high up, not lying along z
+
+
+def test_legs_are_found_front_first_and_a_fox_walks_on_its_arms() -> None:
+    fox = load_rigged_model(MODELS / "Fox.glb")
+    legs = find_legs(fox)
+    assert legs.arms_as_legs and len(legs.pairs) == 2
+    names = [[fox.names[j] for j in chain.joints] for chain in legs.chains]
+    assert names[0] == ["b_LeftUpperArm_09", "b_LeftForeArm_010", "b_LeftHand_011"]
+    assert names[3] == ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021", "b_RightFoot02_022"]
+    assert [c.side for c in legs.chains] == ["L", "R", "L", "R"]
+    assert np.allclose(chain_lengths(fox, legs.chains[2]), chain_lengths(fox, legs.chains[3]), rtol=1e-3)
+    man = find_legs(load_rigged_model(MODELS / "CesiumMan.glb"))
+    assert not man.arms_as_legs and len(man.pairs) == 1
+    assert len(man.pairs[0][0].joints) == 4
+
+
+@pytest.mark.parametrize("names", [
+    ("mixamorig:Hips", "mixamorig:LeftUpLeg", "mixamorig:LeftLeg", "mixamorig:LeftFoot", "mixamorig:LeftToeBase",
+     "mixamorig:RightUpLeg", "mixamorig:RightLeg", "mixamorig:RightFoot", "mixamorig:RightToeBase"),
+    ("mixamorig7:Hips", "mixamorig7:LeftUpLeg", "mixamorig7:LeftLeg", "mixamorig7:LeftFoot", "mixamorig7:LeftToeBase",
+     "mixamorig7:RightUpLeg", "mixamorig7:RightLeg", "mixamorig7:RightFoot", "mixamorig7:RightToeBase"),
+    ("pelvis", "thigh.L", "shin.L", "foot.L", "toe.L", "thigh.R", "shin.R", "foot.R", "toe.R"),
+    ("Hips", "L_Thigh", "L_Calf", "L_Foot", "L_Toe", "R_Thigh", "R_Calf", "R_Foot", "R_Toe"),
+    ("Bip01 Pelvis", "Bip01 L Thigh", "Bip01 L Calf", "Bip01 L Foot", "Bip01 L Toe0",
+     "Bip01 R Thigh", "Bip01 R Calf", "Bip01 R Foot", "Bip01 R Toe0"),
+    ("root", "lfemur", "ltibia", "lfoot", "ltoes", "rfemur", "rtibia", "rfoot", "rtoes"),
+])
+def test_legs_are_found_by_common_naming_conventions(names: tuple[str, ...]) -> None:
+    model = _biped(names)
+    legs = find_legs(model)
+    assert len(legs.pairs) == 1 and not legs.arms_as_legs
+    left, right = legs.pairs[0]
+    assert left.joints == (1, 2, 3, 4) and right.joints == (5, 6, 7, 8)
+
+
+def test_a_model_without_legs_or_skin_is_one_clear_line(tmp_path) -> None:
+    model = _biped(("root", "a", "b", "c", "d", "e", "f", "g", "h"))
+    with pytest.raises(RigError) as err:
+        find_legs(model)
+    message = str(err.value)
+    assert "\n" not in message and "root, a, b" in message and "LeftUpLeg" in message
+    import trimesh
+
+    plain = tmp_path / "box.glb"
+    trimesh.creation.box().export(plain)
+    with pytest.raises(RigError, match="no skinned mesh"):
+        load_rigged_model(plain)
+    broken = tmp_path / "broken.glb"
+    broken.write_bytes(b"glTF\x02\x00\x00\x00garbage")
+    with pytest.raises(RigError, match="broken.glb: not a readable glTF"):
+        load_rigged_model(broken)
+    with pytest.raises(RigError, match="no such file"):
+        load_rigged_model(tmp_path / "missing.glb")
+
+
+def _biped(names: tuple[str, ...]) -> RiggedModel:
+    """A skeleton of a pelvis and two four-joint legs (pelvis 1 m up), named ``names``."""
+    points = np.array([[0, 1.0, 0], [0.1, 0.95, 0], [0.1, 0.5, 0.02], [0.1, 0.08, 0], [0.1, 0.0, 0.12],
+                       [-0.1, 0.95, 0], [-0.1, 0.5, 0.02], [-0.1, 0.08, 0], [-0.1, 0.0, 0.12]])
+    rest = np.tile(np.eye(4), (len(points), 1, 1))
+    rest[:, :3, 3] = points
+    none = np.zeros((0, 3))
+    return RiggedModel(path=Path("model.glb"), names=names, parents=np.array([-1, 0, 1, 2, 3, 0, 5, 6, 7]),
+                       rest=rest, inverse_bind=np.linalg.inv(rest), positions=none, normals=none, colors=none,
+                       faces=np.zeros((0, 3), dtype=np.int64), joints=np.zeros((0, 4), dtype=np.int64),
+                       weights=np.zeros((0, 4)))
+
+
+def test_model_dataclass_is_frozen() -> None:
+    model = _biped(tuple("abcdefghi"))
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        model.names = ()  # type: ignore[misc]
