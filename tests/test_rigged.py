@@ -110,3 +110,58 @@ def test_model_dataclass_is_frozen() -> None:
     model = _biped(tuple("abcdefghi"))
     with pytest.raises(dataclasses.FrozenInstanceError):
         model.names = ()  # type: ignore[misc]
+
+
+def _driven(name: str, world: str, terrain: str = "flat", seconds: float = 3.0):
+    from app import build_rig
+    from app.kinematics import simulate
+    from app.rigged.creature import creature_from_model
+    from app.rigged.drive import drive_model, rest_in_metres
+    from app.worlds import make_world
+
+    model = load_rigged_model(MODELS / name)
+    legs = find_legs(model)
+    spec, scale = creature_from_model(model, legs)
+    motion = simulate(build_rig(spec), seconds, 60.0, world=make_world(world, terrain))
+    return model, legs, scale, motion, drive_model(model, legs, scale, motion), rest_in_metres(model, scale)
+
+
+def test_a_creature_is_made_with_the_model_s_own_proportions() -> None:
+    from app import build_rig
+    from app.rigged.creature import creature_from_model
+
+    fox = load_rigged_model(MODELS / "Fox.glb")
+    spec, scale = creature_from_model(fox, find_legs(fox))
+    assert scale == 0.01  # the fox is modelled in centimetres
+    rig = build_rig(spec)
+    assert rig.leg_names == ("LF", "RF", "LH", "RH")
+    hind = chain_lengths(fox, find_legs(fox).chains[2]) * scale
+    assert np.allclose([spec.legs[-1].femur, spec.legs[-1].tibia, spec.legs[-1].metatarsus], hind[:3], atol=1e-4)
+    assert abs(spec.body.length - 0.479) < 0.002 and abs(spec.legs[-1].hip_offset - 0.0697) < 0.001
+    man = load_rigged_model(MODELS / "CesiumMan.glb")
+    spec, scale = creature_from_model(man, find_legs(man))
+    assert scale == 1.0 and build_rig(spec).leg_names == ("L", "R")
+
+
+@pytest.mark.parametrize("name", ["Fox.glb", "CesiumMan.glb"])
+def test_the_model_s_skeleton_walks_a_circle_with_every_bone_its_length(name: str) -> None:
+    """The creature's motion on the model's own skeleton: every bone keeps its rest length
+    (to 1e-9 m), every foot's last joint follows the creature's (within a few mm: the hips
+    are fitted to the creature's as one rigid trunk), and a fox's planted hind paws do not
+    move at all."""
+    model, legs, _, motion, world, rest = _driven(name, "circle:r=3", "hills:amp=0.05")
+    assert world.shape == (motion.frame_count, len(model.names), 4, 4)
+    pos = world[:, :, :3, 3]
+    for j, p in enumerate(model.parents):
+        if p >= 0:
+            length = np.linalg.norm(pos[:, j] - pos[:, p], axis=-1)
+            assert np.abs(length - np.linalg.norm(rest[j, :3, 3] - rest[p, :3, 3])).max() < 1e-9
+    rotations = world[:, :, :3, :3]
+    assert np.allclose(rotations @ np.swapaxes(rotations, -1, -2), np.eye(3), atol=1e-9)
+    for leg, chain in enumerate(legs.chains):
+        end = pos[:, chain.joints[-1]]
+        creature = motion.joints[:, leg, min(len(chain.joints) - 1, 4)]
+        assert np.linalg.norm(end - creature, axis=-1).max() < 5e-3
+        if name == "Fox.glb" and len(chain.joints) == 4:  # a hind paw's bone
+            planted = motion.contact[1:, leg] & motion.contact[:-1, leg]
+            assert np.linalg.norm(end[1:] - end[:-1], axis=-1)[planted].max() < 1e-3

@@ -1,0 +1,82 @@
+"""A Gaitlab creature with a rigged model's proportions: the base preset for its kind
+(a dog for four legs, a person for two) with the model's own leg segment lengths, girdle
+spacing and hip width, and the rest of the body scaled with the legs. The creature's
+motion then drives the model's skeleton (:mod:`.drive`)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..spec import CreatureSpec, creature_from_dict, load_creature
+from .gltf import RigError, RiggedModel
+from .legs import ModelLegs, chain_lengths
+
+BASE = {1: "human", 2: "dog"}  # leg pairs -> the preset a model's creature starts from
+CENTIMETRES = 5.0  # a model whose hips stand higher than this (in its units) is taken to be in centimetres
+
+
+def model_scale(model: RiggedModel, legs: ModelLegs) -> float:
+    """Metres per model unit: glTF is metres, but many exports are in centimetres (hips
+    tens of units up)."""
+    points = model.rest_points
+    hip = float(np.mean([points[c.joints[0], 1] - points[c.joints[-1], 1] for c in legs.chains]))
+    return 0.01 if hip > CENTIMETRES else 1.0
+
+
+def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSpec, float]:
+    """The creature that moves like ``model`` would (see the module docstring), and the
+    model's scale (metres per unit)."""
+    pairs = len(legs.pairs)
+    if pairs not in BASE:
+        raise RigError(f"{model.path}: {pairs} pairs of legs found; models with one (a biped) or two (a "
+                       "quadruped) are driven")
+    scale = model_scale(model, legs)
+    doc: dict[str, Any] = load_creature(BASE[pairs]).to_dict()
+    doc["name"] = model.path.stem
+    doc["description"] = f"the rigged model {model.path.name}, walking on its own legs"
+    tables = list(doc["legs"])
+    ratios = []
+    points = model.rest_points * scale
+    for k, (left, right) in enumerate(legs.pairs):
+        table = doc["legs"][tables[0] if k == 0 else tables[-1]]
+        bones = 0.5 * (chain_lengths(model, left) + chain_lengths(model, right)) * scale
+        ground = min(points[left.joints[-1], 1], points[right.joints[-1], 1])
+        femur, tibia = float(bones[0]), float(bones[1])
+        if len(bones) >= 3:
+            metatarsus = float(bones[2])
+        else:  # the chain ends at the wrist (a fox's fore leg): the paw below it
+            metatarsus = max(float(points[left.joints[-1], 1] - ground), 0.1 * (femur + tibia))
+        old = table["femur"] + table["tibia"] + table["metatarsus"]
+        ratios.append((femur + tibia + metatarsus) / old)
+        table["femur"], table["tibia"], table["metatarsus"] = round(femur, 4), round(tibia, 4), round(metatarsus, 4)
+        if len(bones) >= 4:
+            table["toe"] = round(float(bones[3]), 4)
+        # The legs hang from the model's own hip (or shoulder) joints.
+        table["hip_offset"] = round(0.5 * float(np.linalg.norm(points[left.joints[0]] - points[right.joints[0]])), 4)
+    ratio = float(np.mean(ratios))
+    body = doc["body"]
+    for key in ("length", "neck_length", "head_length", "head_radius", "tail_length", "ear_length"):
+        if isinstance(body.get(key), (int, float)):
+            body[key] = round(body[key] * ratio, 4)
+    body["radius"] = [round(r * ratio, 4) for r in body["radius"]]
+    for table in doc["legs"].values():
+        for key in ("toe", "heel", "radius"):
+            if key in table and not (key == "toe" and table is doc["legs"][tables[-1]] and
+                                     len(legs.pairs[-1][0].joints) >= 5):
+                table[key] = round(table[key] * ratio, 4)
+    hind_left, hind_right = legs.pairs[-1]
+    body["width"] = round(float(np.linalg.norm(points[hind_left.joints[0]] - points[hind_right.joints[0]])), 4)
+    if pairs == 2:
+        fore, hind = legs.pairs[0][0].joints[0], legs.pairs[-1][0].joints[0]
+        body["length"] = round(float(abs(points[fore, 2] - points[hind, 2])), 4)
+    # The model's trunk moves as one piece (its spine joints are carried, not bent): the
+    # creature's hips and shoulders do not turn, tilt or flex against each other.
+    motion = doc.setdefault("motion", {})
+    motion["yaw"], motion["pelvis_tilt"], motion["spine_flex"] = 0, 0, 0
+    if "arms" in doc:
+        for key in ("upper", "fore", "hand", "shoulder_width", "radius"):
+            if isinstance(doc["arms"].get(key), (int, float)):
+                doc["arms"][key] = round(doc["arms"][key] * ratio, 4)
+    return creature_from_dict(doc, source=str(model.path)), scale

@@ -1,0 +1,211 @@
+"""A Gaitlab motion on a rigged model's own skeleton: every joint's world transform, every
+frame, in metres, ready for skinning with the model's own weights.
+
+The body moves rigidly with the creature's hips (a weighted least-squares fit of the
+model's hip joints, and lightly of the body's forward and up directions, to the
+creature's, per frame). Each
+leg is re-solved from the model's own hip with its own bone lengths: two-bone IK to the
+creature's ankle (bending towards the creature's knee), then the foot's bones along the
+creature's foot, so a planted ball stands where the creature plants it. Each leg bone
+turns so that it points along its new direction with the body's side as its second axis;
+every other joint keeps its rest transform relative to its parent, so every bone keeps
+its length exactly.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..kinematics.motion import Motion
+from .gltf import RiggedModel
+from .legs import ModelLegs
+
+FIT_REACH = 1.0  # m: how far ahead and above the hips the body's extra fit points lie
+FIT_HINT = 1e-3  # their weight against a hip's
+
+
+def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+
+
+def rest_in_metres(model: RiggedModel, scale: float) -> NDArray[np.float64]:
+    """The model's rest transforms (J, 4, 4), rigid (the nearest rotation to each: a
+    file's float32 rotations, or scales, are not quite orthonormal), positions in metres."""
+    rest = model.rest.copy()
+    u, _, vt = np.linalg.svd(rest[:, :3, :3])
+    rest[:, :3, :3] = u @ vt
+    rest[:, :3, 3] *= scale
+    return rest
+
+
+def body_fit(source: NDArray[np.float64], target: NDArray[np.float64],
+             weights: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+    """Rigid transforms (T, 4, 4) taking points ``source`` (K, 3) onto ``target``
+    (T, K, 3) in the weighted least-squares sense (Kabsch, per frame; ``weights`` (K,))."""
+    w = np.ones(len(source)) if weights is None else np.asarray(weights, dtype=np.float64)
+    w = w / w.sum()
+    c_src = w @ source
+    c_dst = np.einsum("k,tki->ti", w, target)
+    h = np.einsum("k,ki,tkj->tij", w, source - c_src, target - c_dst[:, None, :])
+    u, _, vt = np.linalg.svd(h)
+    d = np.sign(np.linalg.det(np.swapaxes(vt, 1, 2) @ np.swapaxes(u, 1, 2)))
+    fix = np.tile(np.eye(3), (len(target), 1, 1))
+    fix[:, 2, 2] = d
+    rot = np.swapaxes(vt, 1, 2) @ fix @ np.swapaxes(u, 1, 2)
+    out = np.tile(np.eye(4), (len(target), 1, 1))
+    out[:, :3, :3] = rot
+    out[:, :3, 3] = c_dst - np.einsum("tij,j->ti", rot, c_src)
+    return out
+
+
+def _order(parents: NDArray[np.int64]) -> list[int]:
+    """Joints with every parent before its children."""
+    depth = np.zeros(len(parents), dtype=np.int64)
+    for j in range(len(parents)):
+        p, d = int(parents[j]), 0
+        while p >= 0:
+            p, d = int(parents[p]), d + 1
+        depth[j] = d
+    return [int(j) for j in np.argsort(depth, kind="stable")]
+
+
+def _girdle_fit(rest: NDArray[np.float64], tops: list[int], hips_now: NDArray[np.float64],
+                motion: Motion) -> NDArray[np.float64]:
+    """The rigid transforms (T, 4, 4) taking the model's leg tops ``tops`` (with a hint of
+    the body's forward and up directions) onto the creature's hips ``hips_now`` (T, K, 3)."""
+    hips_rest = rest[tops, :3, 3]
+    centre = hips_rest.mean(axis=0)
+    source = np.concatenate([hips_rest, [centre + [0.0, 0.0, FIT_REACH], centre + [0.0, FIT_REACH, 0.0]]])
+    centre_now = hips_now.mean(axis=1)
+    forward, up = motion.root[:, :3, 2], motion.root[:, :3, 1]
+    target = np.concatenate([hips_now, (centre_now + FIT_REACH * forward)[:, None],
+                             (centre_now + FIT_REACH * up)[:, None]], axis=1)
+    # The hips decide (a girdle rolls on a slope); the two points ahead and above only
+    # settle what the hips leave open (a biped's pitch about its hip line).
+    weights = np.concatenate([np.ones(len(tops)), [FIT_HINT, FIT_HINT]])
+    return body_fit(source, target, weights)
+
+
+def _path(parents: NDArray[np.int64], top: int, bottom: int) -> list[int] | None:
+    """The joints from ``top`` (excluded) down to ``bottom`` (included), or None when
+    ``bottom`` is not below ``top``."""
+    path = []
+    j = bottom
+    while j >= 0 and j != top:
+        path.append(j)
+        j = int(parents[j])
+    return path[::-1] if j == top else None
+
+
+def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motion) -> NDArray[np.float64]:
+    """Every joint's world transform (T, J, 4, 4) for ``motion`` of the model's creature
+    (legs in the order of ``legs.chains``), rigid, in metres.
+
+    The hind girdle (the joint the hindmost legs hang from) moves with the creature's
+    hind hips; with two pairs of legs the spine between it and the fore girdle turns, in
+    one piece about the hind girdle, to reach where the creature's fore hips put the fore
+    girdle, which then turns with them (the back bends and the shoulders roll on their
+    own, as the creature's do)."""
+    rest = rest_in_metres(model, scale)
+    frames = motion.frame_count
+    parents = model.parents
+    local = np.array([np.linalg.inv(rest[p]) @ rest[j] if p >= 0 else rest[j] for j, p in enumerate(parents)])
+    chains = legs.chains
+    hind = [chains[-2].joints[0], chains[-1].joints[0]]
+    body = _girdle_fit(rest, hind, motion.joints[:, -2:, 0], motion)  # (T, 4, 4)
+    fore_girdle, spine, fore = -1, None, None
+    if len(legs.pairs) >= 2:
+        fore_girdle = int(parents[chains[0].joints[0]])
+        spine = _path(parents, int(parents[hind[0]]), fore_girdle)
+        if spine is not None and spine:
+            fore = _girdle_fit(rest, [chains[0].joints[0], chains[1].joints[0]], motion.joints[:, :2, 0], motion)
+    side_now = body[:, :3, 0]
+    world = np.zeros((frames, len(parents), 4, 4))
+    placed: dict[int, tuple[int, int]] = {j: (leg, k) for leg, c in enumerate(chains) for k, j in enumerate(c.joints)}
+    for j in _order(parents):
+        p = int(parents[j])
+        above = body if p < 0 else world[:, p]
+        leg, k = placed.get(j, (-1, -1))
+        if leg < 0:  # not a leg's: carried by its parent
+            world[:, j] = above @ (rest[j] if p < 0 else local[j])
+            if fore is not None and spine is not None and j == spine[0]:
+                world[:, j] = _aim_spine(world[:, j], world[:, p, :3, 3], rest, spine, fore)
+            if fore is not None and j == fore_girdle:
+                world[:, j, :3, :3] = fore[:, :3, :3] @ rest[j, :3, :3]
+        elif k == 0:  # a leg's top: the whole leg, solved from where its parent puts it
+            _solve_chain(world, rest, chains[leg].joints, motion.joints[:, leg], side_now,
+                         (above @ (rest[j] if p < 0 else local[j]))[:, :3, 3])
+    return world
+
+
+def _aim_spine(first: NDArray[np.float64], pivot: NDArray[np.float64], rest: NDArray[np.float64],
+               spine: list[int], fore: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The spine's first joint (T, 4, 4), turned about ``pivot`` (T, 3; the hind girdle)
+    so that the spine's end (the fore girdle) points where ``fore`` puts it."""
+    end_rest = rest[spine[-1]]
+    # Where the end lies now, carried rigidly with the first joint, and where it should.
+    first_rest_inv = np.linalg.inv(rest[spine[0]])
+    carried = (first @ (first_rest_inv @ end_rest))[:, :3, 3]
+    wanted = (fore @ end_rest)[:, :3, 3]
+    turn = _rotation_between(_unit(carried - pivot), _unit(wanted - pivot))
+    out = first.copy()
+    out[:, :3, :3] = turn @ first[:, :3, :3]
+    out[:, :3, 3] = pivot + np.einsum("tij,tj->ti", turn, first[:, :3, 3] - pivot)
+    return out
+
+
+def _rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The smallest rotations (T, 3, 3) taking unit vectors ``a`` to ``b`` (T, 3)."""
+    v = np.cross(a, b)
+    c = np.sum(a * b, axis=-1)
+    k = np.zeros((len(a), 3, 3))
+    k[:, 0, 1], k[:, 0, 2], k[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
+    k = k - np.swapaxes(k, 1, 2)
+    return np.eye(3) + k + (k @ k) / np.maximum(1.0 + c, 1e-9)[:, None, None]
+
+
+def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: tuple[int, ...],
+                 target: NDArray[np.float64], side: NDArray[np.float64], top: NDArray[np.float64]) -> None:
+    """One leg's joints into ``world`` (T, J, 4, 4): from ``top`` (T, 3) by two-bone IK to
+    the creature's ankle ``target[:, 2]`` (``target`` (T, 5, 3): hip, knee, ankle, ball,
+    toe), bending towards its knee, the foot's bones along its foot."""
+    points_rest = rest[list(joints), :3, 3]
+    lengths = np.linalg.norm(np.diff(points_rest, axis=0), axis=1)
+    femur, tibia = lengths[0], lengths[1]
+    ankle = target[:, 2]
+    to_ankle = ankle - top
+    reach = np.clip(np.linalg.norm(to_ankle, axis=-1), abs(femur - tibia) + 1e-9, femur + tibia - 1e-9)
+    along = _unit(to_ankle)
+    bend = target[:, 1] - target[:, 0]
+    bend = _unit(bend - np.sum(bend * along, axis=-1, keepdims=True) * along)
+    cos_a = np.clip((femur ** 2 + reach ** 2 - tibia ** 2) / (2.0 * femur * reach), -1.0, 1.0)
+    knee = top + femur * (cos_a[:, None] * along + np.sqrt(1.0 - cos_a ** 2)[:, None] * bend)
+    new = [top, knee, top + along * reach[:, None]]
+    for k in range(3, len(joints)):  # the foot's bones along the creature's foot (ankle -> ball -> toe)
+        a, b = min(k - 1, 4), min(k, 4)
+        direction = _unit(target[:, b] - target[:, a]) if b > a else _unit(new[-1] - new[-2])
+        new.append(new[-1] + lengths[k - 1] * direction)
+    points = np.stack(new, axis=1)  # (T, n, 3)
+    for k, j in enumerate(joints):
+        world[:, j, :3, 3] = points[:, k]
+        if k + 1 < len(joints):
+            u_rest, u_new = _unit(points_rest[k + 1] - points_rest[k]), _unit(points[:, k + 1] - points[:, k])
+        else:  # the last joint turns with the bone above it
+            u_rest, u_new = _unit(points_rest[k] - points_rest[k - 1]), _unit(points[:, k] - points[:, k - 1])
+        x_rest = np.array([1.0, 0.0, 0.0])
+        frame_rest = _frame(u_rest[None], x_rest[None])[0]
+        frame_new = _frame(u_new, side)
+        turn = frame_new @ frame_rest.T
+        world[:, j, :3, :3] = turn @ rest[j, :3, :3]
+        world[:, j, 3, 3] = 1.0
+
+
+def _frame(u: NDArray[np.float64], side: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Orthonormal frames (T, 3, 3) whose columns are ``u``, the part of ``side``
+    across it, and their cross product."""
+    s = side - np.sum(side * u, axis=-1, keepdims=True) * u
+    fallback = np.cross(u, np.array([0.0, 0.0, 1.0]))
+    s = np.where(np.linalg.norm(s, axis=-1, keepdims=True) < 1e-6, fallback, s)
+    s = _unit(s)
+    return np.stack([u, s, np.cross(u, s)], axis=-1)
