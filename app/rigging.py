@@ -189,6 +189,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
     hip_height = float(rest_height.mean())
     rig = Rig(
         name=spec.name,
+        model=spec.source if spec.source.lower().endswith((".glb", ".gltf")) else "",
         leg_names=spec.foot_names,
         femur=femur,
         tibia=tibia,

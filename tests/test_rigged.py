@@ -165,3 +165,38 @@ def test_the_model_s_skeleton_walks_a_circle_with_every_bone_its_length(name: st
         if name == "Fox.glb" and len(chain.joints) == 4:  # a hind paw's bone
             planted = motion.contact[1:, leg] & motion.contact[:-1, leg]
             assert np.linalg.norm(end[1:] - end[:-1], axis=-1)[planted].max() < 1e-3
+
+
+@pytest.mark.gl
+def test_render_walks_a_rigged_fox_round_a_circle_over_hills(tmp_path) -> None:
+    """``gaitlab render Fox.glb``: the model's own mesh, skinned by its own weights, walks
+    the path; its orange fur is in the frames (no preset body drawn instead)."""
+    from cli_runner import gaitlab
+    from PIL import Image
+
+    out = tmp_path / "fox.png"
+    result = gaitlab("render", MODELS / "Fox.glb", "--path", "circle:r=3", "--terrain", "hills", "--time", "1.5",
+                     "-o", out, "--size", "320x240")
+    assert result.returncode == 0, result.stderr
+    image = np.asarray(Image.open(out).convert("RGB")).astype(int)
+    orange = (image[..., 0] > 150) & (image[..., 0] - image[..., 2] > 80)
+    assert orange.mean() > 0.02
+
+
+def test_render_refuses_a_model_it_cannot_drive_in_one_line(tmp_path) -> None:
+    import trimesh
+    from cli_runner import gaitlab
+
+    plain = tmp_path / "box.glb"
+    trimesh.creation.box().export(plain)
+    result = gaitlab("render", plain, "-o", tmp_path / "box.gif")
+    assert result.returncode == 2 and "no skinned mesh" in result.stderr and len(result.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "box.gif").exists()
+
+
+def test_export_of_a_model_says_plainly_it_is_not_built_yet(tmp_path) -> None:
+    from cli_runner import gaitlab
+
+    result = gaitlab("export", MODELS / "Fox.glb", "-o", tmp_path / "walked.glb")
+    assert result.returncode == 2 and "not built yet" in result.stderr
+    assert not (tmp_path / "walked.glb").exists()

@@ -52,9 +52,12 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
                        base_overrides: dict[str, object] | None = None, origin: str = "--set") -> CreatureSpec:
     """The creature named on the command line (or in a scene) with the scene's settings,
     then --gait, --frames-per-cycle, --set and --style applied."""
+    from ..rigged import is_model_path
+    from ..rigged.creature import model_creature
     from ..spec import load_creature, parse_override
 
-    spec = load_creature(creature or args.creature)
+    name = creature or args.creature
+    spec = model_creature(name) if is_model_path(name) else load_creature(name)
     if base_overrides:
         spec = spec.with_overrides(base_overrides, origin=origin)
     overrides = creature_changes(args)

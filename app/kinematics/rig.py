@@ -203,6 +203,7 @@ class Rig:
     overlap: Overlap = Overlap()
     roll: NDArray[np.float64] | None = None  # (L,) foot roll amount 0..1 (None: all 0)
     heel: NDArray[np.float64] | None = None  # (L,) m a plantigrade heel reaches behind the ankle (None: all 0)
+    model: str = ""  # the rigged model (a .glb/.gltf path) whose own skeleton and mesh this creature drives
 
     @property
     def leg_count(self) -> int:

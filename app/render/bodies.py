@@ -200,7 +200,11 @@ def pose_motion(pose: Pose, rig: Rig) -> Motion:
 
 
 def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> BodyDraw:
-    """The body of a pose (``live``: the viewer's, which never waits for a full body)."""
+    """The body of a pose (``live``: the viewer's, which never waits for a full body; a
+    creature that drives a user's model: that model's mesh)."""
+    if rig.model:
+        body, skin = model_skin(rig.model, pose.joints[None], pose.root[None])
+        return BodyDraw(body, skin[0])
     body = cache.live(rig) if live else cache.get(rig)
     world = joint_matrices(skeleton_clip(pose_motion(pose, rig), body.layout), 0)
     return BodyDraw(body, (world @ body.inverse_bind).astype(np.float32))
@@ -208,9 +212,33 @@ def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> Bod
 
 def motion_body(motion: Motion, cache: BodyCache) -> BodyDraw:
     """The body through every frame of a clip: skinning matrices (T, J, 4, 4)."""
+    if motion.rig.model:
+        return BodyDraw(*model_skin(motion.rig.model, motion.joints, motion.root))
     body = cache.get(motion.rig)
     clip = skeleton_clip(motion, body.layout)
     world = np.tile(np.eye(4), clip.world_position.shape[:2] + (1, 1))
     world[..., :3, :3] = clip.world_rotation
     world[..., :3, 3] = clip.world_position
     return BodyDraw(body, (world @ body.inverse_bind).astype(np.float32))
+
+
+_MODEL_BODIES: dict[int, tuple[object, SkinnedBody]] = {}
+
+
+def model_skin(path: str, leg_joints: NDArray[np.float64],
+               root: NDArray[np.float64]) -> tuple[SkinnedBody, NDArray[np.float32]]:
+    """A user's rigged model (``path``) as a skinned body, and its skinning matrices
+    (T, J, 4, 4) for a creature's leg joints (T, L, 5, 3) and body transforms (T, 4, 4):
+    its own mesh, weights and colours, its own skeleton moved by the creature."""
+    from ..rigged.loaded import load_model
+
+    loaded = load_model(path)
+    known = _MODEL_BODIES.get(id(loaded))
+    if known is None or known[0] is not loaded:
+        model = loaded.model
+        body = SkinnedBody(positions=loaded.mesh.astype(np.float32), normals=loaded.normals.astype(np.float32),
+                           colors=(model.colors ** 2).astype(np.float32),  # display -> the renderer's linear
+                           faces=model.faces.astype(np.int32), joints=model.joints.astype(np.int32),
+                           weights=model.weights.astype(np.float32), bind=loaded.bind)
+        known = _MODEL_BODIES[id(loaded)] = (loaded, body)
+    return known[1], loaded.skin(leg_joints, root)

@@ -27,6 +27,8 @@ def creature_bounds(scene: SceneInstances, terrain: Terrain) -> tuple[np.ndarray
     from .scene import Cap, Ell
 
     pts = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], ells[:, Ell.CENTRE]])
+    if not len(pts):  # only skinned bodies (a user's model): their joints
+        pts = scene.spheres()[0]
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     lo[1] = 0.0 if terrain.flat else min(float(lo[1]), float(terrain.height(0.5 * (lo + hi)[[0, 2]])))
     centre = 0.5 * (lo + hi)

@@ -337,6 +337,9 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     body_color = srgb_to_linear(look.body_color)
     arm_color = side_colors(rig) if by_side else np.broadcast_to(body_color, (2, 3))
     leg_caps, foot_parts, markers = _leg_rows(joints, rig, show_joints, parts, by_side) if legs else ([], [], [])
+    if not parts and rig.model:  # the user's model is drawn instead, with its own eyes
+        return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
+                              ellipsoids=np.zeros((frames, 0, ELLIPSOID_FLOATS), np.float32), ellipsoid_casters=0)
     if not parts:  # a skinned body is drawn instead: only the eyes and the joint markers
         skull, head_dir = _skull(head, rig)
         on_skin = [_eyes(skull, head_dir, rig)] + markers

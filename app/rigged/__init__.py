@@ -1,2 +1,14 @@
 """Rigged models users bring (glTF with a skin): reading their skeleton, rest pose and
-skinned mesh (:mod:`.gltf`), and finding their legs (:mod:`.legs`). No GL."""
+skinned mesh (:mod:`.gltf`), finding their legs (:mod:`.legs`), the model ready to drive
+(:mod:`.loaded`: read once, its scale and its mesh in metres), the creature with their
+proportions (:mod:`.creature`) and that creature's motion on their own skeleton
+(:mod:`.drive`). No GL."""
+
+from __future__ import annotations
+
+MODEL_SUFFIXES = (".glb", ".gltf")
+
+
+def is_model_path(text: str) -> bool:
+    """Whether ``text`` names a rigged model file (by its suffix)."""
+    return text.lower().endswith(MODEL_SUFFIXES)

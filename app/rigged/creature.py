@@ -11,18 +11,10 @@ import numpy as np
 
 from ..spec import CreatureSpec, creature_from_dict, load_creature
 from .gltf import RigError, RiggedModel
-from .legs import ModelLegs, chain_lengths
+from .legs import ModelLegs, chain_lengths, model_scale
+from .loaded import load_model
 
 BASE = {1: "human", 2: "dog"}  # leg pairs -> the preset a model's creature starts from
-CENTIMETRES = 5.0  # a model whose hips stand higher than this (in its units) is taken to be in centimetres
-
-
-def model_scale(model: RiggedModel, legs: ModelLegs) -> float:
-    """Metres per model unit: glTF is metres, but many exports are in centimetres (hips
-    tens of units up)."""
-    points = model.rest_points
-    hip = float(np.mean([points[c.joints[0], 1] - points[c.joints[-1], 1] for c in legs.chains]))
-    return 0.01 if hip > CENTIMETRES else 1.0
 
 
 def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSpec, float]:
@@ -80,3 +72,10 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
             if isinstance(doc["arms"].get(key), (int, float)):
                 doc["arms"][key] = round(doc["arms"][key] * ratio, 4)
     return creature_from_dict(doc, source=str(model.path)), scale
+
+
+def model_creature(path: str) -> CreatureSpec:
+    """The creature that drives the model at ``path`` (its source is the model's path, so
+    its rig draws the model)."""
+    loaded = load_model(path)
+    return creature_from_model(loaded.model, loaded.legs)[0]

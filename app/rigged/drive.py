@@ -71,14 +71,14 @@ def _order(parents: NDArray[np.int64]) -> list[int]:
 
 
 def _girdle_fit(rest: NDArray[np.float64], tops: list[int], hips_now: NDArray[np.float64],
-                motion: Motion) -> NDArray[np.float64]:
+                root: NDArray[np.float64]) -> NDArray[np.float64]:
     """The rigid transforms (T, 4, 4) taking the model's leg tops ``tops`` (with a hint of
     the body's forward and up directions) onto the creature's hips ``hips_now`` (T, K, 3)."""
     hips_rest = rest[tops, :3, 3]
     centre = hips_rest.mean(axis=0)
     source = np.concatenate([hips_rest, [centre + [0.0, 0.0, FIT_REACH], centre + [0.0, FIT_REACH, 0.0]]])
     centre_now = hips_now.mean(axis=1)
-    forward, up = motion.root[:, :3, 2], motion.root[:, :3, 1]
+    forward, up = root[:, :3, 2], root[:, :3, 1]
     target = np.concatenate([hips_now, (centre_now + FIT_REACH * forward)[:, None],
                              (centre_now + FIT_REACH * up)[:, None]], axis=1)
     # The hips decide (a girdle rolls on a slope); the two points ahead and above only
@@ -100,7 +100,15 @@ def _path(parents: NDArray[np.int64], top: int, bottom: int) -> list[int] | None
 
 def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motion) -> NDArray[np.float64]:
     """Every joint's world transform (T, J, 4, 4) for ``motion`` of the model's creature
-    (legs in the order of ``legs.chains``), rigid, in metres.
+    (see :func:`drive_joints`)."""
+    return drive_joints(model, legs, scale, motion.joints, motion.root)
+
+
+def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: NDArray[np.float64],
+                 root: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Every joint's world transform (T, J, 4, 4), rigid, in metres, for the creature's
+    leg joints ``leg_joints`` (T, L, 5, 3; legs in the order of ``legs.chains``) and body
+    transforms ``root`` (T, 4, 4).
 
     The hind girdle (the joint the hindmost legs hang from) moves with the creature's
     hind hips; with two pairs of legs the spine between it and the fore girdle turns, in
@@ -108,18 +116,18 @@ def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motio
     girdle, which then turns with them (the back bends and the shoulders roll on their
     own, as the creature's do)."""
     rest = rest_in_metres(model, scale)
-    frames = motion.frame_count
+    frames = len(leg_joints)
     parents = model.parents
     local = np.array([np.linalg.inv(rest[p]) @ rest[j] if p >= 0 else rest[j] for j, p in enumerate(parents)])
     chains = legs.chains
     hind = [chains[-2].joints[0], chains[-1].joints[0]]
-    body = _girdle_fit(rest, hind, motion.joints[:, -2:, 0], motion)  # (T, 4, 4)
+    body = _girdle_fit(rest, hind, leg_joints[:, -2:, 0], root)  # (T, 4, 4)
     fore_girdle, spine, fore = -1, None, None
     if len(legs.pairs) >= 2:
         fore_girdle = int(parents[chains[0].joints[0]])
         spine = _path(parents, int(parents[hind[0]]), fore_girdle)
         if spine is not None and spine:
-            fore = _girdle_fit(rest, [chains[0].joints[0], chains[1].joints[0]], motion.joints[:, :2, 0], motion)
+            fore = _girdle_fit(rest, [chains[0].joints[0], chains[1].joints[0]], leg_joints[:, :2, 0], root)
     side_now = body[:, :3, 0]
     world = np.zeros((frames, len(parents), 4, 4))
     placed: dict[int, tuple[int, int]] = {j: (leg, k) for leg, c in enumerate(chains) for k, j in enumerate(c.joints)}
@@ -134,7 +142,7 @@ def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motio
             if fore is not None and j == fore_girdle:
                 world[:, j, :3, :3] = fore[:, :3, :3] @ rest[j, :3, :3]
         elif k == 0:  # a leg's top: the whole leg, solved from where its parent puts it
-            _solve_chain(world, rest, chains[leg].joints, motion.joints[:, leg], side_now,
+            _solve_chain(world, rest, chains[leg].joints, leg_joints[:, leg], side_now,
                          (above @ (rest[j] if p < 0 else local[j]))[:, :3, 3])
     return world
 

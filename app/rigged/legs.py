@@ -27,6 +27,7 @@ LEG_WORDS = ("upleg", "upperleg", "thigh", "femur", "leg", "shin", "calf", "tibi
 ARM_WORDS = ("upperarm", "uparm", "arm", "humerus", "forearm", "radius", "elbow", "hand", "wrist", "finger",
              "shoulder", "clavicle")
 NEAR_GROUND = 0.25  # a hand within this fraction of the hip height of the ground makes the arm a leg
+CENTIMETRES = 5.0  # a model whose hips stand higher than this (in its units) is taken to be in centimetres
 
 
 @dataclass(frozen=True)
@@ -159,3 +160,11 @@ def chain_lengths(model: RiggedModel, chain: LegChain) -> NDArray[np.float64]:
     """Lengths of a chain's bones at rest (len(joints) - 1,), in the model's units."""
     points = model.rest_points[list(chain.joints)]
     return np.linalg.norm(np.diff(points, axis=0), axis=1)
+
+
+def model_scale(model: RiggedModel, legs: ModelLegs) -> float:
+    """Metres per model unit: glTF is metres, but many exports are in centimetres (hips
+    tens of units up)."""
+    points = model.rest_points
+    hip = float(np.mean([points[c.joints[0], 1] - points[c.joints[-1], 1] for c in legs.chains]))
+    return 0.01 if hip > CENTIMETRES else 1.0

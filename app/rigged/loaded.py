@@ -1,0 +1,59 @@
+"""A rigged model ready to drive: read once while its file is unchanged, its legs found,
+its scale known, its mesh skinned to the rest pose in metres; and its skinning matrices
+for a creature's motion. The renderer draws the mesh with them."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .drive import drive_joints, rest_in_metres
+from .gltf import RigError, RiggedModel, load_rigged_model
+from .legs import ModelLegs, find_legs, model_scale
+
+
+@dataclass(frozen=True)
+class LoadedModel:
+    """A model, its legs, its scale (metres per unit) and its mesh in the rest pose in
+    metres: ``mesh`` (V, 3), ``normals`` (V, 3), ``colors`` (V, 3, display RGB) and the
+    rest transforms ``bind`` (J, 4, 4, metres) the skinning matrices are relative to."""
+
+    model: RiggedModel
+    legs: ModelLegs
+    scale: float
+    mesh: NDArray[np.float64]
+    normals: NDArray[np.float64]
+    bind: NDArray[np.float64]
+
+    def skin(self, leg_joints: NDArray[np.float64], root: NDArray[np.float64]) -> NDArray[np.float32]:
+        """Skinning matrices (T, J, 4, 4) for the creature's leg joints (T, L, 5, 3) and
+        body transforms (T, 4, 4)."""
+        world = drive_joints(self.model, self.legs, self.scale, leg_joints, root)
+        return (world @ np.linalg.inv(self.bind)).astype(np.float32)
+
+
+@lru_cache(maxsize=8)
+def _load(path: str, stamp: float) -> LoadedModel:
+    import trimesh
+
+    model = load_rigged_model(path)
+    legs = find_legs(model)
+    scale = model_scale(model, legs)
+    skin = model.rest @ model.inverse_bind
+    vertices = np.concatenate([model.positions, np.ones((len(model.positions), 1))], axis=1)
+    mesh = np.einsum("vk,vkab,vb->va", model.weights, skin[model.joints], vertices)[:, :3] * scale
+    normals = np.asarray(trimesh.Trimesh(mesh, model.faces, process=False).vertex_normals)
+    return LoadedModel(model=model, legs=legs, scale=scale, mesh=mesh, normals=normals,
+                       bind=rest_in_metres(model, scale))
+
+
+def load_model(path: str) -> LoadedModel:
+    """The model at ``path``, read once while the file is unchanged."""
+    file = Path(path)
+    if not file.is_file():
+        raise RigError(f"{path}: no such file")
+    return _load(str(file.resolve()), file.stat().st_mtime)
