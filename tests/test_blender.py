@@ -64,3 +64,36 @@ def test_blender_imports_every_preset_with_its_bones_on_gaitlab_s_joints_and_its
         assert error < 1e-3, f"{Path(path).stem}: bones {1000 * error:.2f} mm from Gaitlab's joints"
         body = [mesh for mesh in bones["meshes"] if mesh["skinned"]]  # the smooth body, on the armature
         assert len(body) == 1 and body[0]["vertices"] > 500 and body[0]["groups"] > 1, (Path(path).stem, bones["meshes"])
+
+
+def test_blender_plays_a_rigged_model_s_export_with_its_feet_where_gaitlab_put_them(tmp_path: Path) -> None:
+    """``gaitlab export Fox.glb``: Blender imports the model with the walk, and the foot
+    bones stand where Gaitlab's solve put them (within 1 mm, in the model's units of 1 cm)."""
+    python = _blender_python()
+    from cli_runner import gaitlab
+
+    from app.cast import Actor, cast_motions
+    from app.rigged.creature import model_creature
+    from app.rigged.drive import drive_joints
+    from app.rigged.loaded import load_model
+    from app.worlds import make_world
+
+    model_path = Path(__file__).parent / "data" / "models" / "Fox.glb"
+    out = tmp_path / "walked.glb"
+    result = gaitlab("export", model_path, "--path", "circle:r=3", "--seconds", "1", "--fps", str(FPS), "-o", out)
+    assert result.returncode == 0, result.stderr
+    loaded = load_model(str(model_path))
+    motions, _ = cast_motions((Actor(model_creature(str(model_path)), make_world("circle:r=3")),), float(FPS),
+                              1.0, None, 0.0)
+    solved = drive_joints(loaded.model, loaded.legs, loaded.scale, motions[0].joints, motions[0].root)
+    feet = [loaded.model.names[chain.joints[-1]] for chain in loaded.legs.chains]
+    blender = subprocess.run([python, str(SCRIPT), str(FPS), str(out)], capture_output=True, text=True, timeout=600)
+    assert blender.returncode == 0, blender.stderr[-2000:]
+    line = next(text for text in blender.stdout.splitlines() if text.startswith("BONES "))
+    bones = json.loads(line[len("BONES "):])[str(out)]
+    heads = np.asarray(bones["frames"])  # (frames, bones, 3) in the file's units
+    frames = min(len(heads), len(solved))
+    for foot in feet:
+        k, j = bones["names"].index(foot), loaded.model.names.index(foot)
+        error = np.abs(heads[:frames, k] * loaded.scale - solved[:frames, j, :3, 3]).max()
+        assert error < 1e-3, f"{foot}: {1000 * error:.2f} mm from Gaitlab's"

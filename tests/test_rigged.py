@@ -194,9 +194,88 @@ def test_render_refuses_a_model_it_cannot_drive_in_one_line(tmp_path) -> None:
     assert not (tmp_path / "box.gif").exists()
 
 
-def test_export_of_a_model_says_plainly_it_is_not_built_yet(tmp_path) -> None:
-    from cli_runner import gaitlab
+def _animated_world(path: Path, names: tuple[str, ...]) -> np.ndarray:
+    """The first animation of the glTF at ``path`` played on its joints: world transforms
+    (T, J, 4, 4) in the file's units, joints in the order of ``names``."""
+    import pygltflib as gl
+    from scipy.spatial.transform import Rotation
 
-    result = gaitlab("export", MODELS / "Fox.glb", "-o", tmp_path / "walked.glb")
-    assert result.returncode == 2 and "not built yet" in result.stderr
-    assert not (tmp_path / "walked.glb").exists()
+    from app.rigged.gltf import _Reader, node_matrix, world_matrices
+
+    gltf = gl.GLTF2().load(str(path))
+    reader = _Reader(gltf, path)
+    animation = gltf.animations[0]
+    tracks: dict[tuple[int, str], np.ndarray] = {}
+    for channel in animation.channels:
+        sampler = animation.samplers[channel.sampler]
+        tracks[(channel.target.node, channel.target.path)] = reader.accessor(sampler.output).astype(np.float64)
+    frames = len(next(iter(tracks.values())))
+    static = world_matrices(gltf)
+    parent = {c: p for p, n in enumerate(gltf.nodes) for c in (n.children or [])}
+    by_name = {n.name: i for i, n in enumerate(gltf.nodes)}
+    world: dict[int, np.ndarray] = {}
+
+    def of(i: int) -> np.ndarray:
+        if i in world:
+            return world[i]
+        node = gltf.nodes[i]
+        local = np.tile(node_matrix(node), (frames, 1, 1))
+        if (i, "rotation") in tracks:
+            scale = np.array(node.scale or [1.0, 1.0, 1.0])
+            local[:, :3, :3] = Rotation.from_quat(tracks[(i, "rotation")]).as_matrix() * scale
+            local[:, :3, 3] = tracks[(i, "translation")]
+        p = parent.get(i, -1)
+        if p >= 0 and (p, "rotation") in tracks:
+            above = of(p)  # an animated parent
+        else:
+            above = np.broadcast_to(static[p] if p >= 0 else np.eye(4), (frames, 4, 4))
+        world[i] = above @ local
+        return world[i]
+
+    return np.stack([of(by_name[name]) for name in names], axis=1)
+
+
+def test_export_writes_the_walk_on_the_model_s_own_skeleton(tmp_path) -> None:
+    """``gaitlab export Fox.glb -o walked.glb``: the model's own file with the walk as its
+    first animation; the same joints, hierarchy and rest pose; played back, its foot bones
+    stand where Gaitlab put them (within 1 mm); the Khronos validator finds no error."""
+    import json
+    import subprocess
+
+    from cli_runner import gaitlab
+    from test_export import _validator
+
+    from app.rigged.drive import drive_joints
+    from app.rigged.loaded import load_model
+
+    out = tmp_path / "walked.glb"
+    result = gaitlab("export", MODELS / "Fox.glb", "--path", "circle:r=3", "--terrain", "hills", "--seconds", "1",
+                     "-o", out)
+    assert result.returncode == 0, result.stderr
+    original, walked = load_rigged_model(MODELS / "Fox.glb"), load_rigged_model(out)
+    assert walked.names == original.names and np.array_equal(walked.parents, original.parents)
+    assert np.allclose(walked.rest, original.rest, atol=1e-5)
+    assert np.allclose(walked.inverse_bind, original.inverse_bind)
+    import pygltflib as gl
+
+    animations = gl.GLTF2().load(str(out)).animations
+    assert animations[0].name == "gaitlab walk" and len(animations) == 4  # the fox's own three kept after
+    # Played back, the foot bones are where Gaitlab's solve put them.
+    from app import build_rig
+    from app.cast import Actor, cast_motions
+    from app.rigged.creature import model_creature
+    from app.worlds import make_world
+
+    loaded = load_model(str(MODELS / "Fox.glb"))
+    played = _animated_world(out, original.names)[:, :, :3, 3] * loaded.scale
+
+    spec = model_creature(str(MODELS / "Fox.glb"))
+    motions, _ = cast_motions((Actor(spec, make_world("circle:r=3", "hills")),), 30.0, 1.0, None, 0.0)
+    solved = drive_joints(loaded.model, loaded.legs, loaded.scale, motions[0].joints, motions[0].root)[:, :, :3, 3]
+    feet = [chain.joints[-1] for chain in loaded.legs.chains]
+    assert played.shape == solved.shape
+    assert np.abs(played[:, feet] - solved[:, feet]).max() < 1e-3
+    assert build_rig(spec).model.endswith("Fox.glb")
+    command = _validator()
+    report = json.loads(subprocess.run([*command, str(out)], capture_output=True, text=True, timeout=120).stdout)
+    assert report.get("errors") == 0, report

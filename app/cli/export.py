@@ -52,14 +52,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from ..errors import GaitlabError
     from ..export import export_cast
-    from ..rigged import is_model_path
     from .inputs import choose_fps, load_cast
 
-    if is_model_path(str(args.creature)):
-        raise GaitlabError(f"{args.creature}: exporting a rigged model's own skeleton is not built yet; "
-                           "'gaitlab render' and 'gaitlab view' walk it")
     output = args.output or Path(f"{Path(args.creature).stem}.bvh")
     cast = load_cast(args)
     lead = cast[0]

@@ -56,6 +56,13 @@ def bvh_paths(output: str | os.PathLike[str], cast: Cast) -> list[Path]:
     return paths
 
 
+def load_model_joints(path: str) -> tuple[str, ...]:
+    """The joint names of the rigged model at ``path``."""
+    from ..rigged.loaded import load_model
+
+    return load_model(path).model.names
+
+
 def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, seconds: float | None = None,
                 cycles: float | None = None, start: float = 0.0, loop: bool = False,
                 ground: bool = False) -> ExportResult:
@@ -65,6 +72,10 @@ def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, s
     :class:`GaitlabError` with one line for bad input."""
     fmt = export_format(output)
     check_output_dir(output)
+    model = cast[0].spec.source if cast[0].spec.source.lower().endswith((".glb", ".gltf")) else ""
+    if model and (fmt != "glb" or len(cast) > 1 or ground):
+        raise OutputError(f"{os.fspath(output)}: a rigged model is exported alone, on its own skeleton, as .glb "
+                          "(without --ground)")
     if fmt in ("usda", "usdc"):
         from .usd import _pxr
 
@@ -93,6 +104,12 @@ def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, s
     names = [p.stem.removeprefix(Path(output).stem + "-") for p in bvh_paths(output, cast)]
     if fmt == "bvh":
         paths = [write_bvh(p, c) for p, c in zip(bvh_paths(output, cast), clips)]
+    elif model:
+        from .model import write_model_glb
+
+        paths = [write_model_glb(motions[0], output, fps)]
+        return ExportResult(Path(paths[0]), clips[0].frame_count, len(load_model_joints(model)), seconds_out,
+                            units="the model's own units and axes", paths=(Path(paths[0]),), skeletons=1)
     elif fmt == "glb":
         paths = [write_glb(output, motions, clips, ground=ground, names=names if len(cast) > 1 else None)]
     else:

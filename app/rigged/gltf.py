@@ -56,7 +56,7 @@ class RiggedModel:
         return self.rest[:, :3, 3]
 
 
-def _node_matrix(node) -> NDArray[np.float64]:
+def node_matrix(node) -> NDArray[np.float64]:
     """A node's local transform (4, 4)."""
     if node.matrix is not None:
         return np.array(node.matrix, dtype=np.float64).reshape(4, 4).T  # glTF stores columns
@@ -145,7 +145,7 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
     if not gltf.skins or not skinned:
         raise RigError(f"{path}: has no skinned mesh (a glTF with a skin: a skeleton and a mesh weighted to it)")
     reader = _Reader(gltf, path)
-    world = _world_matrices(gltf)
+    world = world_matrices(gltf)
     node = gltf.nodes[skinned[0]]
     skin = gltf.skins[node.skin]
     joints = list(skin.joints)
@@ -179,7 +179,7 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
                        joints=vertex_joints, weights=weights)
 
 
-def _world_matrices(gltf) -> dict[int, NDArray[np.float64]]:
+def world_matrices(gltf) -> dict[int, NDArray[np.float64]]:
     """Every node's world transform, from the scene roots down."""
     children = {c for n in gltf.nodes for c in (n.children or [])}
     roots = [i for i in range(len(gltf.nodes)) if i not in children]
@@ -187,7 +187,7 @@ def _world_matrices(gltf) -> dict[int, NDArray[np.float64]]:
     stack = [(i, np.eye(4)) for i in roots]
     while stack:
         i, above = stack.pop()
-        world[i] = above @ _node_matrix(gltf.nodes[i])
+        world[i] = above @ node_matrix(gltf.nodes[i])
         stack.extend((c, world[i]) for c in (gltf.nodes[i].children or []))
     return world
 
