@@ -279,3 +279,44 @@ def test_export_writes_the_walk_on_the_model_s_own_skeleton(tmp_path) -> None:
     command = _validator()
     report = json.loads(subprocess.run([*command, str(out)], capture_output=True, text=True, timeout=120).stdout)
     assert report.get("errors") == 0, report
+
+
+def test_a_rig_map_names_the_legs_of_a_model_whose_names_do_not_say(tmp_path) -> None:
+    """``--rig map.toml`` for joints named anything: the legs it lists are driven; a map that
+    names a joint the model has not, lists a leg out of order or unpaired, or is given for
+    a creature that is not a model, is one line and exit status 2 (nothing written)."""
+    from cli_runner import gaitlab
+
+    from app.rigged.legs import legs_from_map
+
+    fox = load_rigged_model(MODELS / "Fox.glb")
+    mapping = {"legs": {"LF": ["b_LeftUpperArm_09", "b_LeftForeArm_010", "b_LeftHand_011"],
+                        "RF": ["b_RightUpperArm_06", "b_RightForeArm_07", "b_RightHand_08"],
+                        "LH": ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017", "b_LeftFoot02_018"],
+                        "RH": ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021", "b_RightFoot02_022"]}}
+    assert legs_from_map(fox, mapping, "map.toml").chains == find_legs(fox).chains
+    good = tmp_path / "map.toml"
+    lines = ["[legs]"] + [f"{k} = {v!r}".replace("'", '"') for k, v in mapping["legs"].items()]
+    good.write_text("\n".join(lines) + "\n")
+    result = gaitlab("render", MODELS / "Fox.glb", "--rig", good, "--time", "0.5", "-o", tmp_path / "fox.png",
+                     "--size", "160x120")
+    assert result.returncode == 0, result.stderr
+    cases = {
+        '[legs]\nLF = ["b_LeftUpperArm_09", "b_Elbow", "b_LeftHand_011"]\nRF = ["a", "b", "c"]\n': "names 'b_Elbow'",
+        '[legs]\nLH = ["b_LeftFoot02_018", "b_LeftFoot01_017", "b_LeftLeg02_016"]\n'
+        'RH = ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021"]\n': "does not hang below",
+        '[legs]\nLH = ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017"]\n': "in pairs",
+        '[legz]\nLH = []\n': "give a [legs] table",
+    }
+    for text, expected in cases.items():
+        bad = tmp_path / "bad.toml"
+        bad.write_text(text)
+        result = gaitlab("render", MODELS / "Fox.glb", "--rig", bad, "-o", tmp_path / "bad.gif")
+        assert result.returncode == 2 and expected in result.stderr, (text, result.stderr)
+        assert len(result.stderr.strip().splitlines()) == 1 and "bad.toml" in result.stderr
+        assert not (tmp_path / "bad.gif").exists()
+    result = gaitlab("render", "dog", "--rig", good, "-o", tmp_path / "dog.gif")
+    assert result.returncode == 2 and "--rig" in result.stderr
+    # A later command without --rig goes by the joint names again.
+    assert gaitlab("render", MODELS / "Fox.glb", "--time", "0.5", "-o", tmp_path / "again.png",
+                   "--size", "160x120").returncode == 0

@@ -57,6 +57,13 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
     from ..spec import load_creature, parse_override
 
     name = creature or args.creature
+    rig_map = getattr(args, "rig", None)
+    if rig_map is not None and not is_model_path(name):
+        raise GaitlabError(f"--rig {rig_map}: names a rigged model's legs; give a .glb or .gltf, not {name!r}")
+    if is_model_path(name):
+        from ..rigged.loaded import use_rig_map
+
+        use_rig_map(name, rig_map or "")  # this command's map, or none (names decide)
     spec = model_creature(name) if is_model_path(name) else load_creature(name)
     if base_overrides:
         spec = spec.with_overrides(base_overrides, origin=origin)

@@ -136,9 +136,13 @@ def crf(text: str) -> int:
 def add_creature(parser: argparse.ArgumentParser, default: str = "dog", scenes: bool = True) -> None:
     """The creature (or scene file) and the changes to it: ``--gait``, ``--set``,
     ``--style`` and ``--frames-per-cycle``."""
-    what = "preset name, creature .toml" + (" or scene .toml" if scenes else "")
+    what = "preset name, creature .toml, a rigged model .glb/.gltf" + (" or scene .toml" if scenes else "")
     parser.add_argument("creature", nargs="?", default=default, metavar="CREATURE", help=f"{what} (default: {default})")
     group = parser.add_argument_group("the creature")
+    group.add_argument("--rig", metavar="MAP.toml",
+                       help="for a rigged model: which of its joints are its legs, when their names do not say "
+                            "([legs] with LF = [\"shoulder\", \"elbow\", \"wrist\"], RF, LH, RH, ... front pair "
+                            "first, each list from the top of the leg down to the foot)")
     group.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
     group.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                        help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable; 'gaitlab creatures "

@@ -168,3 +168,44 @@ def model_scale(model: RiggedModel, legs: ModelLegs) -> float:
     points = model.rest_points
     hip = float(np.mean([points[c.joints[0], 1] - points[c.joints[-1], 1] for c in legs.chains]))
     return 0.01 if hip > CENTIMETRES else 1.0
+
+
+def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
+    """The legs a mapping file names (``[legs]``: a list of joint names per leg, from the
+    top of the leg down, front pair first, each pair left then right: keys starting L and
+    R). Every mistake is one line naming ``where`` and the key."""
+    table = mapping.get("legs")
+    if not isinstance(table, dict) or not table:
+        raise RigError(f"{where}: give a [legs] table, e.g. LH = [\"thigh.L\", \"shin.L\", \"foot.L\"], one list of "
+                       "joint names per leg")
+    unknown = sorted(set(mapping) - {"legs"})
+    if unknown:
+        raise RigError(f"{where}: unknown table {unknown[0]!r}; a rig map has [legs] only")
+    index = {name: j for j, name in enumerate(model.names)}
+    chains: list[LegChain] = []
+    for key, names in table.items():
+        side = str(key)[:1].upper()
+        if side not in ("L", "R"):
+            raise RigError(f"{where}: legs.{key}: a leg's key starts with L or R (its side), e.g. LF, RF, LH, RH")
+        if not isinstance(names, list) or len(names) < 3 or not all(isinstance(n, str) for n in names):
+            raise RigError(f"{where}: legs.{key}: give three or more joint names, from the hip down to the foot")
+        missing = [n for n in names if n not in index]
+        if missing:
+            shown = ", ".join(model.names[:30]) + (" ..." if len(model.names) > 30 else "")
+            raise RigError(f"{where}: legs.{key} names {missing[0]!r}, which {model.path.name} has not; its joints: "
+                           f"{shown}")
+        joints = tuple(index[n] for n in names)
+        for upper, lower in zip(joints, joints[1:]):
+            j = int(model.parents[lower])
+            while j >= 0 and j != upper:
+                j = int(model.parents[j])
+            if j != upper:
+                raise RigError(f"{where}: legs.{key}: {model.names[lower]!r} does not hang below "
+                               f"{model.names[upper]!r}; list each leg's joints from the top down")
+        chains.append(LegChain(side, joints))
+    if len(chains) % 2 or any(a.side != "L" or b.side != "R" for a, b in zip(chains[::2], chains[1::2])):
+        raise RigError(f"{where}: [legs] lists legs in pairs, left then right (LF, RF, LH, RH), front pair first")
+    if len(chains) // 2 not in (1, 2):
+        raise RigError(f"{where}: {len(chains)} legs; a biped (2) or a quadruped (4) is driven")
+    pairs = tuple((chains[k], chains[k + 1]) for k in range(0, len(chains), 2))
+    return ModelLegs(pairs=pairs, arms_as_legs=False)

@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from .drive import drive_joints, rest_in_metres
 from .gltf import RigError, RiggedModel, load_rigged_model
-from .legs import ModelLegs, find_legs, model_scale
+from .legs import ModelLegs, find_legs, legs_from_map, model_scale
 
 
 @dataclass(frozen=True)
@@ -36,12 +36,36 @@ class LoadedModel:
         return (world @ np.linalg.inv(self.bind)).astype(np.float32)
 
 
+_RIG_MAPS: dict[str, str] = {}  # model path (resolved) -> the --rig map file that names its legs
+
+
+def use_rig_map(model_path: str, map_path: str) -> None:
+    """Name the legs of the model at ``model_path`` with the map file at ``map_path`` (for
+    this process: the command line's --rig; "" for none: the joint names decide), checked
+    at once."""
+    key = str(Path(model_path).resolve())
+    if map_path:
+        _RIG_MAPS[key] = map_path
+    else:
+        _RIG_MAPS.pop(key, None)
+    load_model(model_path)
+
+
 @lru_cache(maxsize=8)
-def _load(path: str, stamp: float) -> LoadedModel:
+def _load(path: str, stamp: float, rig_map: str, map_stamp: float) -> LoadedModel:
     import trimesh
 
     model = load_rigged_model(path)
-    legs = find_legs(model)
+    if rig_map:
+        from ..tomlfile import TomlProblem, read_toml
+
+        try:
+            mapping = read_toml(rig_map)
+        except TomlProblem as exc:
+            raise RigError(f"--rig {rig_map}: {exc}") from None
+        legs = legs_from_map(model, mapping, rig_map)
+    else:
+        legs = find_legs(model)
     scale = model_scale(model, legs)
     skin = model.rest @ model.inverse_bind
     vertices = np.concatenate([model.positions, np.ones((len(model.positions), 1))], axis=1)
@@ -56,4 +80,7 @@ def load_model(path: str) -> LoadedModel:
     file = Path(path)
     if not file.is_file():
         raise RigError(f"{path}: no such file")
-    return _load(str(file.resolve()), file.stat().st_mtime)
+    rig_map = _RIG_MAPS.get(str(file.resolve()), "")
+    if rig_map and not Path(rig_map).is_file():
+        raise RigError(f"--rig {rig_map}: no such file")
+    return _load(str(file.resolve()), file.stat().st_mtime, rig_map, Path(rig_map).stat().st_mtime if rig_map else 0.0)
