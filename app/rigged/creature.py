@@ -11,7 +11,7 @@ import numpy as np
 
 from ..spec import CreatureSpec, creature_from_dict, load_creature
 from .gltf import RigError, RiggedModel
-from .legs import ModelLegs, chain_lengths, model_scale
+from .legs import ARM_WORDS, ModelLegs, chain_lengths, limbs, model_scale
 from .loaded import load_model
 
 BASE = {1: "human", 2: "dog"}  # leg pairs -> the preset a model's creature starts from
@@ -63,6 +63,13 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
     if pairs == 2:
         fore, hind = legs.pairs[0][0].joints[0], legs.pairs[-1][0].joints[0]
         body["length"] = round(float(abs(points[fore, 2] - points[hind, 2])), 4)
+    else:  # a biped's trunk rises from its hips to its shoulders (the arms' tops), as tall as the model's
+        arms = limbs(model, ARM_WORDS, ("upleg", "thigh", "foot", "toe", "shin", "calf"))
+        if len(arms["L"]) == 1 and len(arms["R"]) == 1:
+            shoulders = 0.5 * (points[arms["L"][0][0], 1] + points[arms["R"][0][0], 1])
+            hips = 0.5 * (points[hind_left.joints[0], 1] + points[hind_right.joints[0], 1])
+            if shoulders > hips:
+                body["length"] = round(float(shoulders - hips), 4)
     # The model's trunk moves as one piece (its spine joints are carried, not bent): the
     # creature's hips and shoulders do not turn, tilt or flex against each other.
     motion = doc.setdefault("motion", {})

@@ -112,7 +112,7 @@ def _chain_from(model: RiggedModel, top: int) -> tuple[int, ...]:
     return tuple(chain)
 
 
-def _limbs(model: RiggedModel, vocabulary: tuple[str, ...], avoid: tuple[str, ...]) -> dict[str, list[tuple[int, ...]]]:
+def limbs(model: RiggedModel, vocabulary: tuple[str, ...], avoid: tuple[str, ...]) -> dict[str, list[tuple[int, ...]]]:
     """Chains per side whose top joint is named for the limb (``vocabulary``, not
     ``avoid``) and whose parent is not."""
     named = {}
@@ -133,8 +133,8 @@ def _limbs(model: RiggedModel, vocabulary: tuple[str, ...], avoid: tuple[str, ..
 
 def find_legs(model: RiggedModel) -> ModelLegs:
     """The model's legs by their joints' names (see the module docstring)."""
-    legs = _limbs(model, LEG_WORDS, ARM_WORDS)
-    arms = _limbs(model, ARM_WORDS, ("upleg", "thigh", "foot", "toe", "shin", "calf"))
+    legs = limbs(model, LEG_WORDS, ARM_WORDS)
+    arms = limbs(model, ARM_WORDS, ("upleg", "thigh", "foot", "toe", "shin", "calf"))
     if len(legs["L"]) != len(legs["R"]) or not legs["L"]:
         found = ", ".join(model.names[:40]) + (" ..." if len(model.names) > 40 else "")
         raise RigError(f"{model.path}: no left and right legs found among its joints ({found}); name each leg's "
