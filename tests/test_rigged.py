@@ -271,7 +271,8 @@ def test_export_writes_the_walk_on_the_model_s_own_skeleton(tmp_path) -> None:
 
     spec = model_creature(str(MODELS / "Fox.glb"))
     motions, _ = cast_motions((Actor(spec, make_world("circle:r=3", "hills")),), 30.0, 1.0, None, 0.0)
-    solved = drive_joints(loaded.model, loaded.legs, loaded.scale, motions[0].joints, motions[0].root)[:, :, :3, 3]
+    solved = drive_joints(loaded.model, loaded.legs, loaded.scale, motions[0].joints, motions[0].root,
+                          loaded.clearance)[:, :, :3, 3]
     feet = [chain.joints[-1] for chain in loaded.legs.chains]
     assert played.shape == solved.shape
     assert np.abs(played[:, feet] - solved[:, feet]).max() < 1e-3
@@ -320,3 +321,54 @@ def test_a_rig_map_names_the_legs_of_a_model_whose_names_do_not_say(tmp_path) ->
     # A later command without --rig goes by the joint names again.
     assert gaitlab("render", MODELS / "Fox.glb", "--time", "0.5", "-o", tmp_path / "again.png",
                    "--size", "160x120").returncode == 0
+
+
+def test_a_driven_fox_s_paws_rest_on_the_ground_not_in_it() -> None:
+    """The model's feet stand on their soles: its last foot joints sit above the sole (a
+    fox's hind toes 1.1 cm, its fore legs end at the wrist with the paw below), so over a
+    walk the lowest vertex of the mesh stays within a few millimetres of the ground (it
+    sank 2.5 cm when the joints were set on the ground)."""
+    from app import build_rig
+    from app.kinematics import simulate
+    from app.rigged.creature import creature_from_model
+    from app.rigged.loaded import load_model
+
+    loaded = load_model(str(MODELS / "Fox.glb"))
+    spec, _ = creature_from_model(loaded.model, loaded.legs)
+    motion = simulate(build_rig(spec), 2.0, 30.0)
+    skin = loaded.skin(motion.joints, motion.root).astype(np.float64)
+    vertices = np.concatenate([loaded.mesh, np.ones((len(loaded.mesh), 1))], axis=1)
+    weights, joints = loaded.model.weights, loaded.model.joints
+    lowest = [np.einsum("vk,vkab,vb->va", weights, skin[t][joints], vertices)[:, 1].min() for t in range(0, 60, 5)]
+    assert -0.006 < min(lowest) and max(lowest) < 0.01
+
+
+def test_a_herd_of_a_model_is_refused_plainly(tmp_path) -> None:
+    from cli_runner import gaitlab
+
+    result = gaitlab("render", MODELS / "Fox.glb", "--herd", "3", "--path", "circle:r=3", "-o", tmp_path / "h.gif")
+    assert result.returncode == 2 and "herd of a rigged model" in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1 and not (tmp_path / "h.gif").exists()
+
+
+def test_front_legs_under_shoulders_are_one_pair_not_two() -> None:
+    """``Shoulder_L -> FrontLeg_L -> ...``: the shoulder chain holds the front leg; the legs
+    are two pairs, not three."""
+    names = ("Hips", "Shoulder_L", "FrontLeg_L", "FrontShin_L", "FrontFoot_L", "Shoulder_R", "FrontLeg_R",
+             "FrontShin_R", "FrontFoot_R", "BackLeg_L", "BackShin_L", "BackFoot_L", "BackToe_L", "BackLeg_R",
+             "BackShin_R", "BackFoot_R", "BackToe_R")
+    parents = np.array([-1, 0, 1, 2, 3, 0, 5, 6, 7, 0, 9, 10, 11, 0, 13, 14, 15])
+    points = np.array([[0, 0.5, 0], [0.05, 0.5, 0.3], [0.08, 0.45, 0.3], [0.08, 0.25, 0.3], [0.08, 0.02, 0.3],
+                       [-0.05, 0.5, 0.3], [-0.08, 0.45, 0.3], [-0.08, 0.25, 0.3], [-0.08, 0.02, 0.3],
+                       [0.08, 0.45, -0.3], [0.08, 0.25, -0.28], [0.08, 0.08, -0.32], [0.08, 0.0, -0.28],
+                       [-0.08, 0.45, -0.3], [-0.08, 0.25, -0.28], [-0.08, 0.08, -0.32], [-0.08, 0.0, -0.28]])
+    rest = np.tile(np.eye(4), (len(points), 1, 1))
+    rest[:, :3, 3] = points
+    none = np.zeros((0, 3))
+    model = RiggedModel(path=Path("quad.glb"), names=names, parents=parents, rest=rest,
+                        inverse_bind=np.linalg.inv(rest), positions=none, normals=none, colors=none,
+                        faces=np.zeros((0, 3), dtype=np.int64), joints=np.zeros((0, 4), dtype=np.int64),
+                        weights=np.zeros((0, 4)))
+    legs = find_legs(model)
+    assert len(legs.pairs) == 2
+    assert [model.names[c.joints[0]] for c in legs.chains] == ["FrontLeg_L", "FrontLeg_R", "BackLeg_L", "BackLeg_R"]

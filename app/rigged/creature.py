@@ -30,21 +30,24 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
     doc["description"] = f"the rigged model {model.path.name}, walking on its own legs"
     tables = list(doc["legs"])
     ratios = []
+    own_toes = set()  # the tables whose toe is the model's own
     points = model.rest_points * scale
+    mesh = model.rest_mesh() * scale
+    sole = float(mesh[:, 1].min()) if len(mesh) else float(points[:, 1].min())
     for k, (left, right) in enumerate(legs.pairs):
         table = doc["legs"][tables[0] if k == 0 else tables[-1]]
         bones = 0.5 * (chain_lengths(model, left) + chain_lengths(model, right)) * scale
-        ground = min(points[left.joints[-1], 1], points[right.joints[-1], 1])
         femur, tibia = float(bones[0]), float(bones[1])
         if len(bones) >= 3:
             metatarsus = float(bones[2])
         else:  # the chain ends at the wrist (a fox's fore leg): the paw below it
-            metatarsus = max(float(points[left.joints[-1], 1] - ground), 0.1 * (femur + tibia))
+            metatarsus = max(float(points[left.joints[-1], 1] - sole), 0.1 * (femur + tibia))
         old = table["femur"] + table["tibia"] + table["metatarsus"]
         ratios.append((femur + tibia + metatarsus) / old)
         table["femur"], table["tibia"], table["metatarsus"] = round(femur, 4), round(tibia, 4), round(metatarsus, 4)
         if len(bones) >= 4:
             table["toe"] = round(float(bones[3]), 4)
+            own_toes.add(id(table))
         # The legs hang from the model's own hip (or shoulder) joints.
         table["hip_offset"] = round(0.5 * float(np.linalg.norm(points[left.joints[0]] - points[right.joints[0]])), 4)
     ratio = float(np.mean(ratios))
@@ -55,8 +58,7 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
     body["radius"] = [round(r * ratio, 4) for r in body["radius"]]
     for table in doc["legs"].values():
         for key in ("toe", "heel", "radius"):
-            if key in table and not (key == "toe" and table is doc["legs"][tables[-1]] and
-                                     len(legs.pairs[-1][0].joints) >= 5):
+            if key in table and not (key == "toe" and id(table) in own_toes):
                 table[key] = round(table[key] * ratio, 4)
     hind_left, hind_right = legs.pairs[-1]
     body["width"] = round(float(np.linalg.norm(points[hind_left.joints[0]] - points[hind_right.joints[0]])), 4)

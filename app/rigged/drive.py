@@ -105,10 +105,12 @@ def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motio
 
 
 def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: NDArray[np.float64],
-                 root: NDArray[np.float64]) -> NDArray[np.float64]:
+                 root: NDArray[np.float64], clearance: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Every joint's world transform (T, J, 4, 4), rigid, in metres, for the creature's
     leg joints ``leg_joints`` (T, L, 5, 3; legs in the order of ``legs.chains``) and body
-    transforms ``root`` (T, 4, 4).
+    transforms ``root`` (T, 4, 4). ``clearance`` (L,) m: how far above its sole each
+    leg's last joint stands in the model (the creature's foot joints touch the ground;
+    the model's foot is raised by that much).
 
     The hind girdle (the joint the hindmost legs hang from) moves with the creature's
     hind hips; with two pairs of legs the spine between it and the fore girdle turns, in
@@ -142,7 +144,10 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
             if fore is not None and j == fore_girdle:
                 world[:, j, :3, :3] = fore[:, :3, :3] @ rest[j, :3, :3]
         elif k == 0:  # a leg's top: the whole leg, solved from where its parent puts it
-            _solve_chain(world, rest, chains[leg].joints, leg_joints[:, leg], side_now,
+            target = leg_joints[:, leg].copy()
+            if clearance is not None:
+                target[:, 2:, 1] += clearance[leg]
+            _solve_chain(world, rest, chains[leg].joints, target, side_now,
                          (above @ (rest[j] if p < 0 else local[j]))[:, :3, 3])
     return world
 

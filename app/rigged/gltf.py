@@ -55,6 +55,12 @@ class RiggedModel:
         """Each joint's position at rest (J, 3)."""
         return self.rest[:, :3, 3]
 
+    def rest_mesh(self) -> NDArray[np.float64]:
+        """The mesh skinned to the rest pose (V, 3), in the world (its own units)."""
+        skin = self.rest @ self.inverse_bind
+        vertices = np.concatenate([self.positions, np.ones((len(self.positions), 1))], axis=1)
+        return np.einsum("vk,vkab,vb->va", self.weights, skin[self.joints], vertices)[:, :3]
+
 
 def node_matrix(node) -> NDArray[np.float64]:
     """A node's local transform (4, 4)."""
@@ -141,6 +147,10 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
         raise RigError(f"{path}: not a readable glTF file ({type(exc).__name__})") from None
     if gltf is None:
         raise RigError(f"{path}: not a readable glTF file")
+    required = [e for e in (gltf.extensionsRequired or []) if e not in ("KHR_materials_unlit", "KHR_texture_transform")]
+    if required:
+        raise RigError(f"{path}: needs the glTF extension {required[0]} (compressed or extended data); export it "
+                       "without it")
     skinned = [i for i, node in enumerate(gltf.nodes) if node.skin is not None and node.mesh is not None]
     if not gltf.skins or not skinned:
         raise RigError(f"{path}: has no skinned mesh (a glTF with a skin: a skeleton and a mesh weighted to it)")
@@ -232,7 +242,10 @@ def _colors(reader: _Reader, prim, gltf, count: int) -> NDArray[np.float64]:
     texture = pbr.baseColorTexture if pbr else None
     if texture is None or prim.attributes.TEXCOORD_0 is None:
         return np.tile(factor, (count, 1))
-    image = gltf.images[gltf.textures[texture.index].source]
+    source = gltf.textures[texture.index].source
+    if source is None:  # an image only an extension gives (KTX2, WebP): the factor alone
+        return np.tile(factor, (count, 1))
+    image = gltf.images[source]
     from PIL import Image
 
     if image.bufferView is not None:

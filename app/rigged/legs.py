@@ -147,6 +147,8 @@ def find_legs(model: RiggedModel) -> ModelLegs:
     hip_height = float(np.mean([points[left.joints[0], 1] - points[left.joints[-1], 1] for left, _ in pairs]))
     ground = float(min(points[c.joints[-1], 1] for pair in pairs for c in pair))
     arms_as_legs = False
+    in_legs = {j for side in ("L", "R") for chain in legs[side] for j in chain}
+    arms = {side: [c for c in arms[side] if not in_legs & set(c)] for side in ("L", "R")}  # FrontLeg under Shoulder
     if len(arms["L"]) == 1 and len(arms["R"]) == 1:
         hands = [points[arms[s][0][-1], 1] - ground for s in ("L", "R")]
         if max(hands) < NEAR_GROUND * hip_height:

@@ -28,11 +28,12 @@ class LoadedModel:
     mesh: NDArray[np.float64]
     normals: NDArray[np.float64]
     bind: NDArray[np.float64]
+    clearance: NDArray[np.float64]  # (L,) m each leg's last joint stands above the sole (0: a wrist, the paw below)
 
     def skin(self, leg_joints: NDArray[np.float64], root: NDArray[np.float64]) -> NDArray[np.float32]:
         """Skinning matrices (T, J, 4, 4) for the creature's leg joints (T, L, 5, 3) and
         body transforms (T, 4, 4)."""
-        world = drive_joints(self.model, self.legs, self.scale, leg_joints, root)
+        world = drive_joints(self.model, self.legs, self.scale, leg_joints, root, self.clearance)
         return (world @ np.linalg.inv(self.bind)).astype(np.float32)
 
 
@@ -67,12 +68,14 @@ def _load(path: str, stamp: float, rig_map: str, map_stamp: float) -> LoadedMode
     else:
         legs = find_legs(model)
     scale = model_scale(model, legs)
-    skin = model.rest @ model.inverse_bind
-    vertices = np.concatenate([model.positions, np.ones((len(model.positions), 1))], axis=1)
-    mesh = np.einsum("vk,vkab,vb->va", model.weights, skin[model.joints], vertices)[:, :3] * scale
+    mesh = model.rest_mesh() * scale
     normals = np.asarray(trimesh.Trimesh(mesh, model.faces, process=False).vertex_normals)
+    sole = float(mesh[:, 1].min()) if len(mesh) else 0.0
+    ends = model.rest_points[[c.joints[-1] for c in legs.chains], 1] * scale
+    clearance = np.array([max(float(y) - sole, 0.0) if len(c.joints) >= 4 else 0.0
+                          for y, c in zip(ends, legs.chains)])
     return LoadedModel(model=model, legs=legs, scale=scale, mesh=mesh, normals=normals,
-                       bind=rest_in_metres(model, scale))
+                       bind=rest_in_metres(model, scale), clearance=clearance)
 
 
 def load_model(path: str) -> LoadedModel:
