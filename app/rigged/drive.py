@@ -26,7 +26,15 @@ FIT_HINT = 1e-3  # their weight against a hip's
 
 
 def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
-    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
+    return v / np.maximum(np.sqrt(np.sum(v * v, axis=-1, keepdims=True)), 1e-12)
+
+
+def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """a x b over the last axis (..., 3), broadcast (np.cross's overhead is most of the
+    cost on the few rows of one frame)."""
+    a, b = np.broadcast_arrays(a, b)
+    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1], a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+                     a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
 
 
 def rest_in_metres(model: RiggedModel, scale: float) -> NDArray[np.float64]:
@@ -87,6 +95,24 @@ def _girdle_fit(rest: NDArray[np.float64], tops: list[int], hips_now: NDArray[np
     return body_fit(source, target, weights)
 
 
+_PREPARED: dict[tuple[int, float], tuple] = {}  # (id(model), scale) -> (model, rest, local, order)
+
+
+def _prepared(model: RiggedModel, scale: float) -> tuple[NDArray[np.float64], NDArray[np.float64], list[int]]:
+    """The model's rest transforms in metres, each joint's rest transform in its parent's
+    frame, and the joints parents first: worked out once per model (the viewer drives it
+    every frame)."""
+    key = (id(model), scale)
+    known = _PREPARED.get(key)
+    if known is None or known[0] is not model:
+        rest = rest_in_metres(model, scale)
+        local = np.array([np.linalg.inv(rest[p]) @ rest[j] if p >= 0 else rest[j] for j, p in enumerate(model.parents)])
+        if len(_PREPARED) > 16:
+            _PREPARED.clear()
+        known = _PREPARED[key] = (model, rest, local, _order(model.parents))
+    return known[1], known[2], known[3]
+
+
 def _path(parents: NDArray[np.int64], top: int, bottom: int) -> list[int] | None:
     """The joints from ``top`` (excluded) down to ``bottom`` (included), or None when
     ``bottom`` is not below ``top``."""
@@ -117,10 +143,9 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
     one piece about the hind girdle, to reach where the creature's fore hips put the fore
     girdle, which then turns with them (the back bends and the shoulders roll on their
     own, as the creature's do)."""
-    rest = rest_in_metres(model, scale)
+    rest, local, order = _prepared(model, scale)
     frames = len(leg_joints)
     parents = model.parents
-    local = np.array([np.linalg.inv(rest[p]) @ rest[j] if p >= 0 else rest[j] for j, p in enumerate(parents)])
     chains = legs.chains
     hind = [chains[-2].joints[0], chains[-1].joints[0]]
     body = _girdle_fit(rest, hind, leg_joints[:, -2:, 0], root)  # (T, 4, 4)
@@ -133,7 +158,7 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
     side_now = body[:, :3, 0]
     world = np.zeros((frames, len(parents), 4, 4))
     placed: dict[int, tuple[int, int]] = {j: (leg, k) for leg, c in enumerate(chains) for k, j in enumerate(c.joints)}
-    for j in _order(parents):
+    for j in order:
         p = int(parents[j])
         above = body if p < 0 else world[:, p]
         leg, k = placed.get(j, (-1, -1))
@@ -170,7 +195,7 @@ def _aim_spine(first: NDArray[np.float64], pivot: NDArray[np.float64], rest: NDA
 
 def _rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
     """The smallest rotations (T, 3, 3) taking unit vectors ``a`` to ``b`` (T, 3)."""
-    v = np.cross(a, b)
+    v = _cross(a, b)
     c = np.sum(a * b, axis=-1)
     k = np.zeros((len(a), 3, 3))
     k[:, 0, 1], k[:, 0, 2], k[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
@@ -218,7 +243,7 @@ def _frame(u: NDArray[np.float64], side: NDArray[np.float64]) -> NDArray[np.floa
     """Orthonormal frames (T, 3, 3) whose columns are ``u``, the part of ``side``
     across it, and their cross product."""
     s = side - np.sum(side * u, axis=-1, keepdims=True) * u
-    fallback = np.cross(u, np.array([0.0, 0.0, 1.0]))
+    fallback = _cross(u, np.array([0.0, 0.0, 1.0]))
     s = np.where(np.linalg.norm(s, axis=-1, keepdims=True) < 1e-6, fallback, s)
     s = _unit(s)
-    return np.stack([u, s, np.cross(u, s)], axis=-1)
+    return np.stack([u, s, _cross(u, s)], axis=-1)

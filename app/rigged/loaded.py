@@ -5,7 +5,7 @@ for a creature's motion. The renderer draws the mesh with them."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -34,7 +34,12 @@ class LoadedModel:
         """Skinning matrices (T, J, 4, 4) for the creature's leg joints (T, L, 5, 3) and
         body transforms (T, 4, 4)."""
         world = drive_joints(self.model, self.legs, self.scale, leg_joints, root, self.clearance)
-        return (world @ np.linalg.inv(self.bind)).astype(np.float32)
+        return (world @ self.inverse_bind).astype(np.float32)
+
+    @cached_property
+    def inverse_bind(self) -> NDArray[np.float64]:
+        """The rest transforms' inverses (J, 4, 4)."""
+        return np.asarray(np.linalg.inv(self.bind), dtype=np.float64)
 
 
 _RIG_MAPS: dict[str, str] = {}  # model path (resolved) -> the --rig map file that names its legs
