@@ -385,7 +385,7 @@ def test_a_herds_legs_set_down_are_as_thick_as_on_flat_ground() -> None:
 def test_setting_legs_down_keeps_bones_even_for_straight_and_reversed_legs() -> None:
     """Edge cases of the leg solve: a leg straight along the hip-ankle line still bends
     with its bones' lengths; opposite bone directions give a real rotation."""
-    from app.kinematics.herd import _rotation_between, legs_to_ground
+    from app.kinematics.herd import legs_to_ground, rotation_between
 
     joints = np.array([[[[0, 1.0, 0], [0, 0.5, 0], [0, 0.0, 0], [0, -0.05, 0.05], [0, -0.05, 0.1]]]])
     raised = legs_to_ground(joints, lambda xz: np.full(len(xz), 0.1), np.zeros((1, 1)))
@@ -393,7 +393,7 @@ def test_setting_legs_down_keeps_bones_even_for_straight_and_reversed_legs() -> 
     assert np.allclose(bones, np.linalg.norm(np.diff(joints[0, 0], axis=0), axis=-1))
     assert raised.joints[0, 0, 3, 1] == pytest.approx(0.1)  # the ball on the raised ground
     a = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])
-    turn = _rotation_between(a, -a)
+    turn = rotation_between(a, -a)
     assert np.allclose(np.einsum("nij,nj->ni", turn, a), -a)
     assert np.allclose(turn @ np.swapaxes(turn, -1, -2), np.eye(3)) and np.allclose(np.linalg.det(turn), 1.0)
 

@@ -45,6 +45,17 @@ def unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
+def cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+    """a x b over the last axis (..., 3), broadcast: np.cross without its overhead on the
+    small arrays of one frame."""
+    a, b = np.broadcast_arrays(a, b)
+    out = np.empty(a.shape)
+    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    return out
+
+
 def rotate_y(v: NDArray[np.float64], angle: NDArray[np.float64]) -> NDArray[np.float64]:
     """Rotate vectors (..., 3) about +Y by ``angle`` (...) radians."""
     c, s = np.cos(angle), np.sin(angle)

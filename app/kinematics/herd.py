@@ -392,7 +392,7 @@ class LegAdjustment:
     lowered: NDArray[np.float64]
 
 
-def _rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+def rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
     """The smallest rotation (..., 3, 3) taking unit vectors a to b (..., 3) (Rodrigues);
     for opposite vectors, a half turn about an axis perpendicular to a."""
     v = np.cross(a, b)
@@ -478,8 +478,8 @@ def legs_to_ground(joints: NDArray[np.float64], ground_height, lift: NDArray[np.
     out = joints - shift[:, :, None, :]
     out[:, :, 1] = new_knee
     out[:, :, 2:] += foot_move[:, :, None, :]
-    thigh = _rotation_between(unit(knee - hip), unit(new_knee - hip))
-    shin = _rotation_between(unit(ankle - knee), unit(new_ankle - new_knee))
+    thigh = rotation_between(unit(knee - hip), unit(new_knee - hip))
+    shin = rotation_between(unit(ankle - knee), unit(new_ankle - new_knee))
     return LegAdjustment(joints=out, thigh=thigh, shin=shin, knee_move=new_knee - knee, foot_move=foot_move,
                          short=np.linalg.norm(target - new_ankle, axis=-1), lowered=lowered)
 

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import NDArray
 
+from ..kinematics.body import cross
 from ..kinematics.frames import UP
 from ..kinematics.motion import Motion, Pose
 from ..kinematics.rig import Rig
@@ -120,24 +121,13 @@ def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), 1e-12)
 
 
-def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    """a x b over the last axis (..., 3), broadcast: np.cross without its overhead on the
-    small arrays of one frame."""
-    a, b = np.broadcast_arrays(a, b)
-    out = np.empty(a.shape)
-    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
-    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
-    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-    return out
-
-
 def _frame_axes(z: NDArray[np.float64]) -> tuple[NDArray, NDArray, NDArray]:
     """Orthonormal (x, y, z) frames (..., 3) with z given and y as close to +Y as possible."""
     z = _unit(z)
-    x = _cross(_UP, z)
+    x = cross(_UP, z)
     degenerate = np.linalg.norm(x, axis=-1, keepdims=True) < 1e-6
     x = _unit(np.where(degenerate, np.array([1.0, 0.0, 0.0]), x))
-    return x, _cross(z, x), z
+    return x, cross(z, x), z
 
 
 def _capsules(a, b, ra, rb, color) -> NDArray[np.float64]:

@@ -17,24 +17,14 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..kinematics.body import cross, unit
+from ..kinematics.herd import rotation_between
 from ..kinematics.motion import Motion
 from .gltf import RiggedModel
 from .legs import ModelLegs
 
 FIT_REACH = 1.0  # m: how far ahead and above the hips the body's extra fit points lie
 FIT_HINT = 1e-3  # their weight against a hip's
-
-
-def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
-    return v / np.maximum(np.sqrt(np.sum(v * v, axis=-1, keepdims=True)), 1e-12)
-
-
-def _cross(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    """a x b over the last axis (..., 3), broadcast (np.cross's overhead is most of the
-    cost on the few rows of one frame)."""
-    a, b = np.broadcast_arrays(a, b)
-    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1], a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
-                     a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
 
 
 def rest_in_metres(model: RiggedModel, scale: float) -> NDArray[np.float64]:
@@ -186,21 +176,11 @@ def _aim_spine(first: NDArray[np.float64], pivot: NDArray[np.float64], rest: NDA
     first_rest_inv = np.linalg.inv(rest[spine[0]])
     carried = (first @ (first_rest_inv @ end_rest))[:, :3, 3]
     wanted = (fore @ end_rest)[:, :3, 3]
-    turn = _rotation_between(_unit(carried - pivot), _unit(wanted - pivot))
+    turn = rotation_between(unit(carried - pivot), unit(wanted - pivot))
     out = first.copy()
     out[:, :3, :3] = turn @ first[:, :3, :3]
     out[:, :3, 3] = pivot + np.einsum("tij,tj->ti", turn, first[:, :3, 3] - pivot)
     return out
-
-
-def _rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The smallest rotations (T, 3, 3) taking unit vectors ``a`` to ``b`` (T, 3)."""
-    v = _cross(a, b)
-    c = np.sum(a * b, axis=-1)
-    k = np.zeros((len(a), 3, 3))
-    k[:, 0, 1], k[:, 0, 2], k[:, 1, 2] = -v[:, 2], v[:, 1], -v[:, 0]
-    k = k - np.swapaxes(k, 1, 2)
-    return np.eye(3) + k + (k @ k) / np.maximum(1.0 + c, 1e-9)[:, None, None]
 
 
 def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: tuple[int, ...],
@@ -214,23 +194,23 @@ def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: 
     ankle = target[:, 2]
     to_ankle = ankle - top
     reach = np.clip(np.linalg.norm(to_ankle, axis=-1), abs(femur - tibia) + 1e-9, femur + tibia - 1e-9)
-    along = _unit(to_ankle)
+    along = unit(to_ankle)
     bend = target[:, 1] - target[:, 0]
-    bend = _unit(bend - np.sum(bend * along, axis=-1, keepdims=True) * along)
+    bend = unit(bend - np.sum(bend * along, axis=-1, keepdims=True) * along)
     cos_a = np.clip((femur ** 2 + reach ** 2 - tibia ** 2) / (2.0 * femur * reach), -1.0, 1.0)
     knee = top + femur * (cos_a[:, None] * along + np.sqrt(1.0 - cos_a ** 2)[:, None] * bend)
     new = [top, knee, top + along * reach[:, None]]
     for k in range(3, len(joints)):  # the foot's bones along the creature's foot (ankle -> ball -> toe)
         a, b = min(k - 1, 4), min(k, 4)
-        direction = _unit(target[:, b] - target[:, a]) if b > a else _unit(new[-1] - new[-2])
+        direction = unit(target[:, b] - target[:, a]) if b > a else unit(new[-1] - new[-2])
         new.append(new[-1] + lengths[k - 1] * direction)
     points = np.stack(new, axis=1)  # (T, n, 3)
     for k, j in enumerate(joints):
         world[:, j, :3, 3] = points[:, k]
         if k + 1 < len(joints):
-            u_rest, u_new = _unit(points_rest[k + 1] - points_rest[k]), _unit(points[:, k + 1] - points[:, k])
+            u_rest, u_new = unit(points_rest[k + 1] - points_rest[k]), unit(points[:, k + 1] - points[:, k])
         else:  # the last joint turns with the bone above it
-            u_rest, u_new = _unit(points_rest[k] - points_rest[k - 1]), _unit(points[:, k] - points[:, k - 1])
+            u_rest, u_new = unit(points_rest[k] - points_rest[k - 1]), unit(points[:, k] - points[:, k - 1])
         x_rest = np.array([1.0, 0.0, 0.0])
         frame_rest = _frame(u_rest[None], x_rest[None])[0]
         frame_new = _frame(u_new, side)
@@ -243,7 +223,7 @@ def _frame(u: NDArray[np.float64], side: NDArray[np.float64]) -> NDArray[np.floa
     """Orthonormal frames (T, 3, 3) whose columns are ``u``, the part of ``side``
     across it, and their cross product."""
     s = side - np.sum(side * u, axis=-1, keepdims=True) * u
-    fallback = _cross(u, np.array([0.0, 0.0, 1.0]))
+    fallback = cross(u, np.array([0.0, 0.0, 1.0]))
     s = np.where(np.linalg.norm(s, axis=-1, keepdims=True) < 1e-6, fallback, s)
-    s = _unit(s)
-    return np.stack([u, s, _cross(u, s)], axis=-1)
+    s = unit(s)
+    return np.stack([u, s, cross(u, s)], axis=-1)
