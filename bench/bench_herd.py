@@ -2,7 +2,7 @@
 
     python bench/bench_herd.py              # kinematics, then the viewer (needs Xvfb) at 1280x720
     python bench/bench_herd.py --no-viewer  # kinematics only
-    python bench/bench_herd.py --old DIR    # also one dog in another checkout's viewer, same run
+    python bench/bench_herd.py --old DIR    # also one dog and 100 in another checkout's viewer, same run
     python bench/bench_herd.py --ui         # the viewer with its UI shown (the sidebar and panels)
 
 Kinematics is one step of the herd's steering and clocks, every animal's leg joints and
@@ -110,8 +110,8 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None, ui: boo
         print(f"viewer at {size[0]}x{size[1]}, {shown}, no vsync (median of {repeats} runs of 240 frames):")
         floor = []
         results: dict[int, list[tuple[float, ...]]] = {n: [] for n in SIZES}
-        before: list[float] = []
-        after: list[float] = []  # this tree, the same command as the other checkout's
+        before: dict[str, list[float]] = {"one": [], "herd": []}
+        after: dict[str, list[float]] = {"one": [], "herd": []}  # this tree, the same commands as the other's
 
         def run(tree: Path, herd: list[str]) -> tuple[float, ...]:
             out = subprocess.run([sys.executable, "-m", "app", "view", "dog", *herd, "--frames", "240", "--no-vsync",
@@ -129,8 +129,9 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None, ui: boo
                 for n in SIZES:
                     results[n].append(run(ROOT, ["--herd", str(n)]))
                 if old is not None:
-                    before.append(run(old, [])[0])
-                    after.append(run(ROOT, [])[0])
+                    for key, herd in (("one", []), ("herd", ["--herd", "100"])):
+                        before[key].append(run(old, herd)[0])
+                        after[key].append(run(ROOT, herd)[0])
         base = statistics.median(floor)
         for n in SIZES:
             fps, sim, scene, ui_ms, rest = (statistics.median(r[k] for r in results[n]) for k in range(5))
@@ -139,10 +140,14 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None, ui: boo
         one = statistics.median(r[0] for r in results[1])
         print(f"EGL clear + readback at {size[0]}x{size[1]}: {base:.1f} fps; one dog in the viewer runs at "
               f"{one / base:.3f} of it")
-        if before:
-            old_fps, new_fps = statistics.median(before), statistics.median(after)
-            print(f"gaitlab view dog (no herd): {old}: {old_fps:.1f} fps, this tree: {new_fps:.1f} fps "
-                  f"({new_fps / old_fps:.2f}x)")
+        if before["one"]:
+            fps = {(tree, key): statistics.median(runs[key]) for tree, runs in (("old", before), ("new", after))
+                   for key in runs}
+            for tree, name in (("old", str(old)), ("new", "this tree")):
+                print(f"{name}: gaitlab view dog {fps[tree, 'one']:.1f} fps, --herd 100 {fps[tree, 'herd']:.1f} fps "
+                      f"({fps[tree, 'herd'] / fps[tree, 'one']:.3f} of one dog)")
+            print(f"one dog: this tree runs {fps['new', 'one'] / fps['old', 'one']:.2f}x the other's frame rate; "
+                  f"100 dogs: {fps['new', 'herd'] / fps['old', 'herd']:.2f}x")
     finally:
         xvfb.terminate()
         xvfb.wait(timeout=10)
@@ -152,7 +157,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--no-viewer", action="store_true", help="kinematics only")
     parser.add_argument("--repeats", type=int, default=3)
-    parser.add_argument("--old", type=Path, help="another Gaitlab checkout: its viewer's frame rate for one dog")
+    parser.add_argument("--old", type=Path, help="another Gaitlab checkout: its viewer's frame rates for one dog and 100")
     parser.add_argument("--ui", action="store_true", help="run the viewer with its UI shown")
     ns = parser.parse_args()
     print(f"# herds - {platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}")

@@ -170,6 +170,36 @@ def test_a_herd_is_drawn_with_the_same_draw_calls_as_one_animal(gl_ctx, monkeypa
     assert all((np.abs(p.astype(float) - body).max(axis=-1) < 60).sum() > 50 for p in pixels)
 
 
+def test_a_herd_draws_and_shadows_small_animals_with_coarser_meshes() -> None:
+    """Levels of detail by size on screen and in the shadow map: a lone dog near the
+    camera shows its full body and casts its shadow stand-in; a herd of 100 framed from
+    afar draws the coarsest meshes (a few hundred faces) and casts them into its shadow
+    map (each dog a few dozen texels long)."""
+    from app.render.bodies import body_levels
+    from app.render.lighting import light_view_proj
+
+    rig = build_rig(load_creature("dog"))
+    pixel = np.radians(40.0) / 720
+    herd = Herd(rig, 1)
+    scene = HerdInstances(herd).frame(herd)
+    body = scene.bodies[0].body
+    assert body.far is not None and body.far.shadow is not None and body.shadow is not None
+    assert len(body.faces) > len(body.shadow.faces) > len(body.far.faces) > len(body.far.shadow.faces)
+    eye = np.array([0.0, 1.0, 2.5])
+    (shown, caster), = body_levels(scene.bodies, eye, light_view_proj(scene)[1], pixel)
+    assert shown is body and caster is body.shadow
+    herd = Herd(rig, 100)
+    scene = HerdInstances(herd).frame(herd)
+    points = scene.spheres()[0]
+    camera = frame_points(points, "three-quarter", aspect=16 / 9)
+    levels = body_levels(scene.bodies, np.asarray(camera.eye), light_view_proj(scene)[1], pixel)
+    assert sum(shown is body.far.shadow for shown, _ in levels) > 80
+    assert all(caster is body.far.shadow for _, caster in levels)
+    # An orthographic view has no size in pixels: its far animals keep the far mesh.
+    levels = body_levels(scene.bodies, np.asarray(camera.eye), light_view_proj(scene)[1], None)
+    assert all(shown is body or shown is body.far for shown, _ in levels)
+
+
 def test_render_refuses_bad_herds_in_one_line(tmp_path) -> None:
     for args, words in ((["--herd", "0"], "give 1 to 1000"), (["--herd", "100000"], "give 1 to 1000"),
                         (["--herd", "5", "--in-place"], "drop --in-place")):

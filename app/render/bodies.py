@@ -13,6 +13,7 @@ import hashlib
 import pickle
 import threading
 from collections import OrderedDict
+from collections.abc import Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -71,6 +72,44 @@ def body_size(body: SkinnedBody) -> float:
     if cached is None or cached[0] is not body:
         cached = _SIZE[id(body)] = (body, float(np.ptp(body.positions, axis=0).max()))
     return cached[1]
+
+
+FAR_SIZES = 4.0  # body sizes from the camera beyond which a body is drawn with its far stand-in
+SPECK_PIXELS = 120.0  # ... and fewer pixels long than this, with the far stand-in's shadow mesh
+SHADOW_TEXELS = (64.0, 40.0)  # a body this many shadow-map texels long or more casts its shadow stand-in,
+# else one this long its far body, else the far body's own coarser shadow (a big herd's specks)
+
+
+def body_levels(draws: Sequence[BodyDraw], eye: NDArray[np.float64], shadow_texel: float,
+                pixel: float | None = None, far: float = FAR_SIZES) -> list[tuple[SkinnedBody, SkinnedBody]]:
+    """Each draw's levels of detail: the mesh drawn (the body; its ``far`` stand-in when
+    its root lies over ``far`` body sizes from the camera at ``eye`` (3,), m; that
+    stand-in's own coarser shadow mesh when the body spans fewer than
+    :data:`SPECK_PIXELS` pixels of ``pixel`` radians each, None for an orthographic
+    view) and the one casting its shadow, chosen by how many shadow-map texels
+    (``shadow_texel`` m each) the body spans (:data:`SHADOW_TEXELS`), never finer than
+    the mesh drawn.
+    Bodies without stand-ins (a user's model, a coarse body) cast and show themselves."""
+    if not draws:
+        return []
+    bodies = [d.body for d in draws]
+    first = np.stack([d.skin[0] for d in draws]).astype(np.float64)  # (N, 4, 4): the root joint's skinning
+    bind_root = np.stack([b.bind[0, :3, 3] for b in bodies])  # (N, 3)
+    roots = first[:, :3, 3] + np.einsum("nij,nj->ni", first[:, :3, :3], bind_root)
+    sizes = np.array([body_size(b) for b in bodies])
+    distance = np.linalg.norm(roots - eye, axis=1)
+    distant = distance > far * sizes
+    tiny = np.zeros(len(bodies), dtype=bool) if pixel is None else sizes < SPECK_PIXELS * pixel * distance
+    texels = sizes / max(shadow_texel, 1e-9)
+    out = []
+    for body, away, small, span in zip(bodies, distant, tiny, texels):
+        mid = body.far or body.shadow or body
+        speck = (body.far.shadow if body.far is not None else None) or mid
+        shown = (speck if small else body.far) if away and body.far is not None else body
+        fine = (body.shadow or body) if shown is body else shown
+        caster = fine if span >= SHADOW_TEXELS[0] else mid if span >= SHADOW_TEXELS[1] else speck
+        out.append((shown, caster if shown is body or shown is mid else speck))
+    return out
 
 
 def shape_key(rig: Rig) -> str:

@@ -20,7 +20,7 @@ from pyglm import glm
 
 from ..kinematics.motion import Pose
 from ..kinematics.rig import Rig
-from .bodies import body_size, pose_body, shared_body_cache
+from .bodies import body_levels, pose_body, shared_body_cache
 from .camera import Camera
 from .ground import ELLIPSOID_LAYOUT, GroundPass
 from .instanced import InstancedMesh
@@ -110,7 +110,6 @@ class BodyPass:
     body (a herd)."""
 
     FLOATS = 17  # position, normal, colour, four joints, four weights
-    FAR = 4.0  # body sizes from the camera beyond which the coarse stand-in is drawn
 
     def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary) -> None:
         self.ctx = ctx
@@ -136,25 +135,19 @@ class BodyPass:
         self._meshes[id(body)] = (entry[0], entry[1], self._frame)
         return entry[1][0], entry[1][1]
 
-    def upload(self, scene: SceneInstances, eye: np.ndarray) -> None:
-        """This frame's bodies and their joints: far from the camera ``eye`` (over
-        :data:`FAR` body sizes away) a body is drawn with its coarse stand-in; draws of the
-        same mesh go together (one instanced call each)."""
+    def upload(self, scene: SceneInstances, eye: np.ndarray, shadow_texel: float, pixel: float | None) -> None:
+        """This frame's bodies and their joints, each drawn and casting its shadow at the
+        level of detail :func:`~app.render.bodies.body_levels` chooses for the camera at
+        ``eye`` (pixels ``pixel`` radians across, None: orthographic) and shadow-map
+        texels ``shadow_texel`` m across; draws of the same meshes
+        go together (one instanced call each)."""
         self._frame += 1
         self._draws = []
         if not scene.bodies:
             return
-        chosen = []
-        for draw in scene.bodies:
-            body = draw.body
-            if body.far is not None:
-                size = body_size(body)
-                root = draw.skin[0, :3, 3] + draw.skin[0, :3, :3] @ body.bind[0, :3, 3]
-                if np.linalg.norm(root - eye) > self.FAR * size:
-                    body = body.far
-            chosen.append((body, draw))
-        chosen.sort(key=lambda c: id(c[0]))  # runs of one mesh
-        rows = np.concatenate([d.skin[:, :3, :].reshape(-1, 12) for _, d in chosen]).astype("f4")  # 3 rows of 4
+        levels = body_levels(scene.bodies, eye, shadow_texel, pixel)
+        order = sorted(range(len(levels)), key=lambda k: (id(levels[k][0]), id(levels[k][1])))  # runs of one mesh
+        rows = np.concatenate([scene.bodies[k].skin[:, :3, :].reshape(-1, 12) for k in order]).astype("f4")
         if self._bones is None or self._bones.height < len(rows):
             if self._bones is not None:
                 self._bones.release()
@@ -162,12 +155,11 @@ class BodyPass:
             self._bones.filter = (moderngl.NEAREST, moderngl.NEAREST)
         self._bones.write(rows.tobytes(), viewport=(0, 0, 3, len(rows)))
         offset = 0
-        for body, draw in chosen:
-            joints = draw.skin.shape[0]
-            lit, depth = self._mesh(body)
-            if body.shadow is not None:  # a coarser stand-in casts the (soft) shadow
-                depth = self._mesh(body.shadow)[1]
-            if self._draws and self._draws[-1][0] is lit:
+        for k in order:
+            shown, caster = levels[k]
+            joints = scene.bodies[k].skin.shape[0]
+            lit, depth = self._mesh(shown)[0], self._mesh(caster)[1]
+            if self._draws and self._draws[-1][0] is lit and self._draws[-1][1] is depth:
                 _, _, first, stride, count = self._draws[-1]
                 self._draws[-1] = (lit, depth, first, stride, count + 1)  # one more of the herd
             else:
@@ -264,11 +256,11 @@ class SceneRenderer:
         viewport = viewport or (0, 0, *target.size)
         pixel = None if camera.ortho else math.radians(camera.fov) / max(viewport[3], 1)
         self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32), pixel)
-        self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64))
         aspect = viewport[2] / max(viewport[3], 1)
         centre, radius = creature_bounds(scene, terrain)
         ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
         light_vp, shadow_texel = light_view_proj(scene, None if terrain.flat else ground_level)
+        self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64), shadow_texel, pixel)
         self._shadow_pass(light_vp, options)
         self._begin_main_pass(target, viewport, camera, aspect, light_vp, shadow_texel, options, clear_target)
         if multisampled is None:

@@ -32,6 +32,7 @@ MAX_CELLS = 400  # along its longest extent, at most
 FACES = {"full": 6000, "coarse": 4000}  # simplified to about this many triangles
 SHADOW_FACES = 2500  # the full body's stand-in for the (soft, low-resolution) shadow map
 FAR_FACES = 400  # ... and for an animal far from the camera (a herd's)
+SPECK_FACES = 160  # ... and for its shadow when it is a few shadow-map texels long (a big herd's)
 INFLUENCES = 4  # joints per vertex
 
 
@@ -53,6 +54,7 @@ class SkinnedBody:
     detail: Detail = "full"
     shadow: SkinnedBody | None = field(default=None, compare=False)  # a coarser body for the shadow pass
     far: SkinnedBody | None = field(default=None, compare=False)  # a much coarser one, drawn far away
+    # (whose own ``shadow`` is coarser still: a shadow a few shadow-map texels long)
     seconds: float = field(default=0.0, compare=False)
 
     @cached_property
@@ -220,4 +222,6 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     if detail != "full":
         return skinned(*shown, detail)
     stand_in = _simplify(*shown, SHADOW_FACES)
-    return skinned(*shown, detail, skinned(*stand_in, "coarse"), skinned(*_simplify(*stand_in, FAR_FACES), "coarse"))
+    far = _simplify(*stand_in, FAR_FACES)
+    speck = skinned(*_simplify(*far, SPECK_FACES), "coarse")  # the far body's shadow
+    return skinned(*shown, detail, skinned(*stand_in, "coarse"), skinned(*far, "coarse", shadow=speck))
