@@ -86,7 +86,7 @@ def test_blender_plays_a_rigged_model_s_export_with_its_feet_where_gaitlab_put_t
     motions, _ = cast_motions((Actor(model_creature(str(model_path)), make_world("circle:r=3")),), float(FPS),
                               1.0, None, 0.0)
     solved = drive_joints(loaded.model, loaded.legs, loaded.scale, motions[0].joints, motions[0].root,
-                          loaded.clearance)
+                          loaded.clearance, motions[0].rig.ankle_lift)
     feet = [loaded.model.names[chain.joints[-1]] for chain in loaded.legs.chains]
     blender = subprocess.run([python, str(SCRIPT), str(FPS), str(out)], capture_output=True, text=True, timeout=600)
     assert blender.returncode == 0, blender.stderr[-2000:]

@@ -48,6 +48,11 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
         if len(bones) >= 4:
             table["toe"] = round(float(bones[3]), 4)
             own_toes.add(id(table))
+        elif len(bones) == 3:  # the chain ends at the ball: the toes are the vertices it moves, ahead of it
+            toe = _toes_ahead(model, mesh, points, left.joints[-1])
+            if toe > 0.2 * metatarsus:
+                table["toe"] = round(toe, 4)
+                own_toes.add(id(table))
         # The legs hang from the model's own hip (or shoulder) joints.
         table["hip_offset"] = round(0.5 * float(np.linalg.norm(points[left.joints[0]] - points[right.joints[0]])), 4)
     ratio = float(np.mean(ratios))
@@ -81,6 +86,15 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
             if isinstance(doc["arms"].get(key), (int, float)):
                 doc["arms"][key] = round(doc["arms"][key] * ratio, 4)
     return creature_from_dict(doc, source=str(model.path)), scale
+
+
+def _toes_ahead(model: RiggedModel, mesh: np.ndarray, points: np.ndarray, joint: int) -> float:
+    """How far (m) the vertices that follow ``joint`` most reach ahead of it (+z) in the
+    rest pose: the length of the toes a ball joint carries (0 when none follow it)."""
+    own = model.joints[:, 0] == joint if len(model.joints) == len(mesh) else np.zeros(0, dtype=bool)
+    if not np.any(own):
+        return 0.0
+    return max(float(mesh[own, 2].max() - points[joint, 2]), 0.0)
 
 
 def model_creature(path: str) -> CreatureSpec:

@@ -117,22 +117,31 @@ def _path(parents: NDArray[np.int64], top: int, bottom: int) -> list[int] | None
 def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motion) -> NDArray[np.float64]:
     """Every joint's world transform (T, J, 4, 4) for ``motion`` of the model's creature
     (see :func:`drive_joints`)."""
-    return drive_joints(model, legs, scale, motion.joints, motion.root)
+    return drive_joints(model, legs, scale, motion.joints, motion.root, foot_angle=motion.rig.ankle_lift)
 
 
 def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: NDArray[np.float64],
-                 root: NDArray[np.float64], clearance: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+                 root: NDArray[np.float64], clearance: NDArray[np.float64] | None = None,
+                 foot_angle: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Every joint's world transform (T, J, 4, 4), rigid, in metres, for the creature's
     leg joints ``leg_joints`` (T, L, 5, 3; legs in the order of ``legs.chains``) and body
     transforms ``root`` (T, 4, 4). ``clearance`` (L,) m: how far above its sole each
     leg's last joint stands in the model (the creature's foot joints touch the ground;
-    the model's foot is raised by that much).
+    the model's foot is raised by that much). ``foot_angle`` (L,) rad: the creature's
+    metatarsus angle above the ground when its foot stands flat (its ankle lift).
 
     The hind girdle (the joint the hindmost legs hang from) moves with the creature's
     hind hips; with two pairs of legs the spine between it and the fore girdle turns, in
     one piece about the hind girdle, to reach where the creature's fore hips put the fore
     girdle, which then turns with them (the back bends and the shoulders roll on their
-    own, as the creature's do)."""
+    own, as the creature's do). Where a leg's hip is then too far from its foot (the
+    model's rigid spine cannot stretch as the creature's hips part on a hill), the whole
+    body comes down until every foot is within reach.
+
+    A foot's bones turn as the creature's foot turns from standing flat (with
+    ``foot_angle``; without it, they lie along the creature's foot), so a model's foot
+    keeps its own shape on the ground: its ball stands where the creature's does, and the
+    ankle is put where the model's foot puts it."""
     rest, local, order = _prepared(model, scale)
     frames = len(leg_joints)
     parents = model.parents
@@ -147,23 +156,52 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
             fore = _girdle_fit(rest, [chains[0].joints[0], chains[1].joints[0]], leg_joints[:, :2, 0], root)
     side_now = body[:, :3, 0]
     world = np.zeros((frames, len(parents), 4, 4))
-    placed: dict[int, tuple[int, int]] = {j: (leg, k) for leg, c in enumerate(chains) for k, j in enumerate(c.joints)}
+    in_chain = {j for c in chains for j in c.joints}
+    tops = {c.joints[0]: leg for leg, c in enumerate(chains)}
+    below_leg = np.zeros(len(parents), dtype=bool)  # joints under a leg's top (the leg, its toes' ends)
     for j in order:
         p = int(parents[j])
+        below_leg[j] = j in in_chain or (p >= 0 and below_leg[p])
+    # The body first (every joint not in or below a leg), and where each leg's top is.
+    top_at = np.zeros((frames, len(chains), 3))
+    for j in order:
+        p = int(parents[j])
+        if j in tops:
+            top_at[:, tops[j]] = ((world[:, p] if p >= 0 else body) @ (local[j] if p >= 0 else rest[j]))[:, :3, 3]
+        if below_leg[j]:
+            continue
         above = body if p < 0 else world[:, p]
-        leg, k = placed.get(j, (-1, -1))
-        if leg < 0:  # not a leg's: carried by its parent
-            world[:, j] = above @ (rest[j] if p < 0 else local[j])
-            if fore is not None and spine is not None and j == spine[0]:
-                world[:, j] = _aim_spine(world[:, j], world[:, p, :3, 3], rest, spine, fore)
-            if fore is not None and j == fore_girdle:
-                world[:, j, :3, :3] = fore[:, :3, :3] @ rest[j, :3, :3]
-        elif k == 0:  # a leg's top: the whole leg, solved from where its parent puts it
-            target = leg_joints[:, leg].copy()
-            if clearance is not None:
-                target[:, 2:, 1] += clearance[leg]
-            _solve_chain(world, rest, chains[leg].joints, target, side_now,
-                         (above @ (rest[j] if p < 0 else local[j]))[:, :3, 3])
+        world[:, j] = above @ (rest[j] if p < 0 else local[j])
+        if fore is not None and spine is not None and j == spine[0]:
+            world[:, j] = _aim_spine(world[:, j], world[:, p, :3, 3], rest, spine, fore)
+        if fore is not None and j == fore_girdle:
+            world[:, j, :3, :3] = fore[:, :3, :3] @ rest[j, :3, :3]
+    forward = unit(root[:, :3, 2] * np.array([1.0, 0.0, 1.0]) + np.array([0.0, 0.0, 1e-12]))  # (T, 3) level heading
+    solved = []
+    for leg, chain in enumerate(chains):
+        target = leg_joints[:, leg].copy()
+        if clearance is not None:
+            target[:, 2:, 1] += clearance[leg]
+        angle = None if foot_angle is None else float(foot_angle[leg])
+        solved.append(_foot(rest, chain.joints, target, forward, angle))
+    # Down, where a foot is out of its leg's reach.
+    drop = np.zeros(frames)
+    for leg, chain in enumerate(chains):
+        points = rest[list(chain.joints), :3, 3]
+        reach = 0.999 * float(np.sum(np.linalg.norm(np.diff(points[:3], axis=0), axis=1)))
+        v = solved[leg][0] - top_at[:, leg]
+        across = np.sum(v[:, [0, 2]] ** 2, axis=-1)
+        drop = np.maximum(drop, -np.sqrt(np.maximum(reach ** 2 - across, 0.0)) - v[:, 1])
+    drop = np.clip(drop, 0.0, None)
+    world[:, ~below_leg, 1, 3] -= drop[:, None]
+    top_at[..., 1] -= drop[:, None]
+    for leg, chain in enumerate(chains):
+        ankle, feet, last = solved[leg]
+        _solve_chain(world, rest, chain.joints, ankle, feet, last, leg_joints[:, leg], side_now, top_at[:, leg])
+    for j in order:  # what hangs below the legs, carried
+        p = int(parents[j])
+        if below_leg[j] and j not in in_chain:
+            world[:, j] = world[:, p] @ local[j]
     return world
 
 
@@ -183,32 +221,82 @@ def _aim_spine(first: NDArray[np.float64], pivot: NDArray[np.float64], rest: NDA
     return out
 
 
+def _foot(rest: NDArray[np.float64], joints: tuple[int, ...], target: NDArray[np.float64],
+          forward: NDArray[np.float64], angle: float | None
+          ) -> tuple[NDArray[np.float64], list[NDArray[np.float64]], NDArray[np.float64] | None]:
+    """Where one leg's ankle goes (T, 3) and the directions (T, 3) of its foot's bones
+    (ankle -> ball -> toe ...), for the creature's leg ``target`` (T, 5, 3: hip, knee,
+    ankle, ball, toe). Without ``angle`` the bones lie along the creature's foot from its
+    ankle. With it (the creature's flat-foot metatarsus angle, rad) each of the model's
+    foot bones turns from its rest direction as the creature's foot bone turns from
+    standing flat (facing the level heading ``forward`` (T, 3)), the ankle is set back
+    from the creature's ball along the model's foot, and the last joint's turn (T, 3, 3)
+    from its rest is given: as the creature's toes turn (the last joint, a ball whose
+    vertices are the toes: the toes stay flat on the ground as the heel rises), or for a
+    leg that ends at its ankle (a wrist, a rigid paw below it), as the creature's toes
+    turn too, about the creature's ball (the paw stands flat while the creature's heel
+    rises), the wrist set back from that ball. None without ``angle``."""
+    points_rest = rest[list(joints), :3, 3]
+    lengths = np.linalg.norm(np.diff(points_rest, axis=0), axis=1)
+    bones = len(joints) - 3  # the foot's bones below the ankle
+    if angle is None:
+        ankle = target[:, 2]
+        dirs = [unit(target[:, min(k + 1, 4)] - target[:, min(k, 3)]) for k in range(2, 2 + bones)]
+        return ankle, dirs, None
+    facing = rotation_between(np.broadcast_to([0.0, 0.0, 1.0], forward.shape), forward)  # the model's front -> now
+    up = np.array([0.0, 1.0, 0.0])
+    flat = [np.cos(angle) * forward - np.sin(angle) * up, forward]  # the creature's flat foot: metatarsus, toe
+    now = [unit(target[:, 3] - target[:, 2]), unit(target[:, 4] - target[:, 3])]
+    if bones <= 0:  # the leg ends at the ankle (a fox's wrist, its rigid paw below): the paw turns as the
+        # creature's toes do, about the creature's ball (where the creature's flat foot puts it under the wrist)
+        turn = rotation_between(flat[1], now[1]) @ facing
+        length = np.linalg.norm(target[:, 3] - target[:, 2], axis=-1)[:, None]
+        ball = length * np.array([0.0, -np.sin(angle), np.cos(angle)])  # (T, 3) from the wrist, at rest
+        return target[:, 3] - np.einsum("tij,tj->ti", turn, ball), [], turn
+    dirs = []
+    for k in range(bones):
+        c = min(k, 1)
+        turn = rotation_between(flat[c], now[c])
+        u_rest = unit(points_rest[3 + k] - points_rest[2 + k])
+        dirs.append(np.einsum("tij,tj->ti", turn @ facing, np.broadcast_to(u_rest, forward.shape)))
+    # The last joint (the ball: the toes' vertices are its) turns as the creature's toes do.
+    ankle = target[:, 3] - lengths[2] * dirs[0]  # the model's ball where the creature's is
+    return ankle, dirs, rotation_between(flat[1], now[1]) @ facing
+
+
 def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: tuple[int, ...],
+                 ankle: NDArray[np.float64], feet: list[NDArray[np.float64]], last: NDArray[np.float64] | None,
                  target: NDArray[np.float64], side: NDArray[np.float64], top: NDArray[np.float64]) -> None:
     """One leg's joints into ``world`` (T, J, 4, 4): from ``top`` (T, 3) by two-bone IK to
-    the creature's ankle ``target[:, 2]`` (``target`` (T, 5, 3): hip, knee, ankle, ball,
-    toe), bending towards its knee, the foot's bones along its foot."""
+    ``ankle`` (T, 3), bending towards the creature's knee (``target`` (T, 5, 3): hip,
+    knee, ankle, ball, toe), then the foot's bones along ``feet`` (each (T, 3)); the last
+    joint turned by ``last`` (T, 3, 3) from its rest (None: with the bone above it)."""
     points_rest = rest[list(joints), :3, 3]
     lengths = np.linalg.norm(np.diff(points_rest, axis=0), axis=1)
     femur, tibia = lengths[0], lengths[1]
-    ankle = target[:, 2]
     to_ankle = ankle - top
     reach = np.clip(np.linalg.norm(to_ankle, axis=-1), abs(femur - tibia) + 1e-9, femur + tibia - 1e-9)
     along = unit(to_ankle)
-    bend = target[:, 1] - target[:, 0]
+    # Towards the creature's knee, steadied by the way the model's own knee bends at rest
+    # across the body's side (a straight leg's knee says little about its way).
+    hip_r, knee_r, ankle_r = points_rest[:3]
+    way = np.sign(np.dot(knee_r - hip_r, cross(np.array([1.0, 0.0, 0.0]), unit(ankle_r - hip_r)))) or 1.0
+    bend = target[:, 1] - target[:, 0] + way * 0.3 * femur * unit(cross(side, along))
     bend = unit(bend - np.sum(bend * along, axis=-1, keepdims=True) * along)
     cos_a = np.clip((femur ** 2 + reach ** 2 - tibia ** 2) / (2.0 * femur * reach), -1.0, 1.0)
     knee = top + femur * (cos_a[:, None] * along + np.sqrt(1.0 - cos_a ** 2)[:, None] * bend)
     new = [top, knee, top + along * reach[:, None]]
-    for k in range(3, len(joints)):  # the foot's bones along the creature's foot (ankle -> ball -> toe)
-        a, b = min(k - 1, 4), min(k, 4)
-        direction = unit(target[:, b] - target[:, a]) if b > a else unit(new[-1] - new[-2])
-        new.append(new[-1] + lengths[k - 1] * direction)
+    for k in range(3, len(joints)):  # the foot's bones
+        new.append(new[-1] + lengths[k - 1] * feet[k - 3])
     points = np.stack(new, axis=1)  # (T, n, 3)
     for k, j in enumerate(joints):
         world[:, j, :3, 3] = points[:, k]
         if k + 1 < len(joints):
             u_rest, u_new = unit(points_rest[k + 1] - points_rest[k]), unit(points[:, k + 1] - points[:, k])
+        elif last is not None:
+            world[:, j, :3, :3] = last @ rest[j, :3, :3]
+            world[:, j, 3, 3] = 1.0
+            continue
         else:  # the last joint turns with the bone above it
             u_rest, u_new = unit(points_rest[k] - points_rest[k - 1]), unit(points[:, k] - points[:, k - 1])
         x_rest = np.array([1.0, 0.0, 0.0])
