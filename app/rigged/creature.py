@@ -91,7 +91,10 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
 def _toes_ahead(model: RiggedModel, mesh: np.ndarray, points: np.ndarray, joint: int) -> float:
     """How far (m) the vertices that follow ``joint`` most reach ahead of it (+z) in the
     rest pose: the length of the toes a ball joint carries (0 when none follow it)."""
-    own = model.joints[:, 0] == joint if len(model.joints) == len(mesh) else np.zeros(0, dtype=bool)
+    if len(model.joints) != len(mesh):
+        return 0.0
+    main = model.joints[np.arange(len(mesh)), np.argmax(model.weights, axis=1)]  # each vertex's heaviest joint
+    own = main == joint
     if not np.any(own):
         return 0.0
     return max(float(mesh[own, 2].max() - points[joint, 2]), 0.0)

@@ -182,6 +182,8 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
         target = leg_joints[:, leg].copy()
         if clearance is not None:
             target[:, 2:, 1] += clearance[leg]
+            if foot_angle is not None and len(chain.joints) >= 5:  # the ball stands at its own height, not the toe's
+                target[:, 3:, 1] += rest[chain.joints[3], 1, 3] - rest[chain.joints[-1], 1, 3]
         angle = None if foot_angle is None else float(foot_angle[leg])
         solved.append(_foot(rest, chain.joints, target, forward, angle))
     # Down, where a foot is out of its leg's reach.
@@ -280,7 +282,9 @@ def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: 
     # Towards the creature's knee, steadied by the way the model's own knee bends at rest
     # across the body's side (a straight leg's knee says little about its way).
     hip_r, knee_r, ankle_r = points_rest[:3]
-    way = np.sign(np.dot(knee_r - hip_r, cross(np.array([1.0, 0.0, 0.0]), unit(ankle_r - hip_r)))) or 1.0
+    # (none when the rest leg is all but straight: its way is then noise)
+    way = np.dot(knee_r - hip_r, cross(np.array([1.0, 0.0, 0.0]), unit(ankle_r - hip_r)))
+    way = np.sign(way) * min(abs(way) / (0.05 * femur), 1.0)
     bend = target[:, 1] - target[:, 0] + way * 0.3 * femur * unit(cross(side, along))
     bend = unit(bend - np.sum(bend * along, axis=-1, keepdims=True) * along)
     cos_a = np.clip((femur ** 2 + reach ** 2 - tibia ** 2) / (2.0 * femur * reach), -1.0, 1.0)
