@@ -103,6 +103,33 @@ def _prepared(model: RiggedModel, scale: float) -> tuple[NDArray[np.float64], ND
     return known[1], known[2], known[3]
 
 
+_LAYOUTS: dict[tuple[int, int, float], tuple] = {}  # (id(model), id(legs), scale) -> (model, legs, layout)
+
+
+def _leg_layout(model: RiggedModel, legs: ModelLegs, scale: float
+                ) -> tuple[set[int], dict[int, int], NDArray[np.bool_], NDArray[np.float64]]:
+    """Where the legs are in the model's skeleton, worked out once per model and legs: the
+    joints in a leg, each leg's top joint -> its leg, which joints hang under a leg's top
+    (the leg and what it carries, (J,)), and how far (m) each leg reaches, (L,) (just short
+    of femur + tibia)."""
+    key = (id(model), id(legs), scale)
+    known = _LAYOUTS.get(key)
+    if known is None or known[0] is not model or known[1] is not legs:
+        rest, _, order = _prepared(model, scale)
+        in_chain = {j for c in legs.chains for j in c.joints}
+        tops = {c.joints[0]: leg for leg, c in enumerate(legs.chains)}
+        below_leg = np.zeros(len(model.parents), dtype=bool)
+        for j in order:
+            p = int(model.parents[j])
+            below_leg[j] = j in in_chain or (p >= 0 and below_leg[p])
+        reach = 0.999 * np.array([np.linalg.norm(np.diff(rest[list(c.joints[:3]), :3, 3], axis=0), axis=1).sum()
+                                  for c in legs.chains])
+        if len(_LAYOUTS) > 16:
+            _LAYOUTS.clear()
+        known = _LAYOUTS[key] = (model, legs, (in_chain, tops, below_leg, reach))
+    return known[2]
+
+
 def _path(parents: NDArray[np.int64], top: int, bottom: int) -> list[int] | None:
     """The joints from ``top`` (excluded) down to ``bottom`` (included), or None when
     ``bottom`` is not below ``top``."""
@@ -156,12 +183,7 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
             fore = _girdle_fit(rest, [chains[0].joints[0], chains[1].joints[0]], leg_joints[:, :2, 0], root)
     side_now = body[:, :3, 0]
     world = np.zeros((frames, len(parents), 4, 4))
-    in_chain = {j for c in chains for j in c.joints}
-    tops = {c.joints[0]: leg for leg, c in enumerate(chains)}
-    below_leg = np.zeros(len(parents), dtype=bool)  # joints under a leg's top (the leg, its toes' ends)
-    for j in order:
-        p = int(parents[j])
-        below_leg[j] = j in in_chain or (p >= 0 and below_leg[p])
+    in_chain, tops, below_leg, reach = _leg_layout(model, legs, scale)
     # The body first (every joint not in or below a leg), and where each leg's top is.
     top_at = np.zeros((frames, len(chains), 3))
     for j in order:
@@ -186,15 +208,10 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
                 target[:, 3:, 1] += rest[chain.joints[3], 1, 3] - rest[chain.joints[-1], 1, 3]
         angle = None if foot_angle is None else float(foot_angle[leg])
         solved.append(_foot(rest, chain.joints, target, forward, angle))
-    # Down, where a foot is out of its leg's reach.
-    drop = np.zeros(frames)
-    for leg, chain in enumerate(chains):
-        points = rest[list(chain.joints), :3, 3]
-        reach = 0.999 * float(np.sum(np.linalg.norm(np.diff(points[:3], axis=0), axis=1)))
-        v = solved[leg][0] - top_at[:, leg]
-        across = np.sum(v[:, [0, 2]] ** 2, axis=-1)
-        drop = np.maximum(drop, -np.sqrt(np.maximum(reach ** 2 - across, 0.0)) - v[:, 1])
-    drop = np.clip(drop, 0.0, None)
+    # Down, where a foot is out of its leg's reach (every leg at once).
+    v = np.stack([ankle for ankle, _, _ in solved], axis=1) - top_at  # (T, L, 3) hip to ankle
+    across = np.sum(v[..., [0, 2]] ** 2, axis=-1)
+    drop = np.clip((-np.sqrt(np.maximum(reach ** 2 - across, 0.0)) - v[..., 1]).max(axis=1), 0.0, None)
     world[:, ~below_leg, 1, 3] -= drop[:, None]
     top_at[..., 1] -= drop[:, None]
     for leg, chain in enumerate(chains):
