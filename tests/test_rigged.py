@@ -173,6 +173,19 @@ def test_the_model_s_skeleton_walks_a_circle_over_hills_with_every_bone_its_leng
             point = np.einsum("tab,b->ta", world[:, last] @ np.linalg.inv(rest[last]), np.append(ball, 1.0))[:, :3]
         assert np.linalg.norm(point - motion.joints[:, leg, 3], axis=-1)[1:][planted].max() < 1e-6
         assert np.linalg.norm(np.diff(point, axis=0), axis=-1)[planted].max() < 1e-3
+    # A biped's arms swing as the creature's: each wrist where the creature's is from its
+    # shoulder, seen from the model's own shoulder and turned 8 degrees out from the side
+    # (they hung at rest, held out from the body).
+    assert len(legs.arms) == (2 if name == "CesiumMan.glb" else 0)
+    for a, chain in enumerate(legs.arms):
+        shoulder, wrist = pos[:, chain.joints[0]], pos[:, chain.joints[2]]
+        have, want = wrist - shoulder, motion.arms[:, a, 2] - motion.arms[:, a, 0]
+        assert np.abs(np.linalg.norm(have, axis=-1) - np.linalg.norm(want, axis=-1)).max() < 1e-9
+        cos = np.sum(have * want, axis=-1) / np.linalg.norm(have, axis=-1) / np.linalg.norm(want, axis=-1)
+        turned = np.degrees(np.arccos(np.clip(cos, -1, 1)))  # 8 about the body's forward axis: less as it swings
+        assert (turned > 5.0).all() and (turned < 8.0 + 1e-6).all()
+        assert np.ptp(wrist[:, 2] - shoulder[:, 2]) > 0.2  # swung back and forth
+        assert (wrist[:, 1] < shoulder[:, 1] - 0.3).all()  # hanging, not held out
 
 
 def test_a_model_s_feet_keep_their_own_shape_on_the_ground() -> None:

@@ -52,7 +52,7 @@ def write_model_glb(motion: Motion, output: str | os.PathLike[str], fps: float) 
     gltf.convert_buffers(gl.BufferFormat.BINARYBLOB)
     blob = bytearray(gltf.binary_blob() or b"")
     world_m = drive_joints(model, loaded.legs, loaded.scale, motion.joints, motion.root,
-                           loaded.clearance, motion.rig.ankle_lift)  # (T, J, 4, 4) metres
+                           loaded.clearance, motion.rig.ankle_lift, motion.arms)  # (T, J, 4, 4) metres
     frames = len(world_m)
     # Back to the model's units: its rest scales in the rotation part, positions / scale.
     rest_rot = _rotation_only(model.rest[:, :3, :3])

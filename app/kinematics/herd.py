@@ -392,14 +392,25 @@ class LegAdjustment:
     lowered: NDArray[np.float64]
 
 
+def skew(v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The cross-product matrices (..., 3, 3) of vectors ``v`` (..., 3): skew(v) @ x = v x x."""
+    k = np.zeros(v.shape[:-1] + (3, 3))
+    k[..., 0, 1], k[..., 0, 2], k[..., 1, 2] = -v[..., 2], v[..., 1], -v[..., 0]
+    return k - np.swapaxes(k, -1, -2)
+
+
+def rotation_about(axis: NDArray[np.float64], angle: float) -> NDArray[np.float64]:
+    """Rotations (..., 3, 3) by ``angle`` rad about unit axes ``axis`` (..., 3) (Rodrigues)."""
+    k = skew(axis)
+    return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
+
+
 def rotation_between(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
     """The smallest rotation (..., 3, 3) taking unit vectors a to b (..., 3) (Rodrigues);
     for opposite vectors, a half turn about an axis perpendicular to a."""
     v = np.cross(a, b)
     c = np.sum(a * b, axis=-1)[..., None, None]
-    k = np.zeros(a.shape[:-1] + (3, 3))
-    k[..., 0, 1], k[..., 0, 2], k[..., 1, 2] = -v[..., 2], v[..., 1], -v[..., 0]
-    k = k - np.swapaxes(k, -1, -2)
+    k = skew(v)
     turn = np.eye(3) + k + (k @ k) / np.maximum(1.0 + c, 1e-9)
     opposite = c[..., 0, 0] < -1.0 + 1e-9
     if np.any(opposite):

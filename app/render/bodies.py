@@ -242,7 +242,7 @@ def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> Bod
     """The body of a pose (``live``: the viewer's, which never waits for a full body; a
     creature that drives a user's model: that model's mesh)."""
     if rig.model:
-        body, skin = model_skin(rig.model, pose.joints[None], pose.root[None], rig.ankle_lift)
+        body, skin = model_skin(rig.model, pose.joints[None], pose.root[None], rig.ankle_lift, pose.arms[None])
         return BodyDraw(body, skin[0])
     body = cache.live(rig) if live else cache.get(rig)
     world = joint_matrices(skeleton_clip(pose_motion(pose, rig), body.layout), 0)
@@ -252,7 +252,8 @@ def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> Bod
 def motion_body(motion: Motion, cache: BodyCache) -> BodyDraw:
     """The body through every frame of a clip: skinning matrices (T, J, 4, 4)."""
     if motion.rig.model:
-        return BodyDraw(*model_skin(motion.rig.model, motion.joints, motion.root, motion.rig.ankle_lift))
+        return BodyDraw(*model_skin(motion.rig.model, motion.joints, motion.root, motion.rig.ankle_lift,
+                                   motion.arms))
     body = cache.get(motion.rig)
     clip = skeleton_clip(motion, body.layout)
     world = np.tile(np.eye(4), clip.world_position.shape[:2] + (1, 1))
@@ -265,10 +266,11 @@ _MODEL_BODIES: dict[int, tuple[object, SkinnedBody]] = {}
 
 
 def model_skin(path: str, leg_joints: NDArray[np.float64], root: NDArray[np.float64],
-               foot_angle: NDArray[np.float64] | None = None) -> tuple[SkinnedBody, NDArray[np.float32]]:
+               foot_angle: NDArray[np.float64] | None = None,
+               arms: NDArray[np.float64] | None = None) -> tuple[SkinnedBody, NDArray[np.float32]]:
     """A user's rigged model (``path``) as a skinned body, and its skinning matrices
     (T, J, 4, 4) for a creature's leg joints (T, L, 5, 3), body transforms (T, 4, 4) and
-    flat-foot angles (L,) rad (its rig's ankle lifts):
+    flat-foot angles (L,) rad (its rig's ankle lifts) and arms (T, A, 4, 3):
     its own mesh, weights and colours, its own skeleton moved by the creature."""
     from ..rigged.loaded import load_model
 
@@ -281,4 +283,4 @@ def model_skin(path: str, leg_joints: NDArray[np.float64], root: NDArray[np.floa
                            faces=model.faces.astype(np.int32), joints=model.joints.astype(np.int32),
                            weights=model.weights.astype(np.float32), bind=loaded.bind)
         known = _MODEL_BODIES[id(loaded)] = (loaded, body)
-    return known[1], loaded.skin(leg_joints, root, foot_angle)
+    return known[1], loaded.skin(leg_joints, root, foot_angle, arms)

@@ -85,6 +85,11 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
         for key in ("upper", "fore", "hand", "shoulder_width", "radius"):
             if isinstance(doc["arms"].get(key), (int, float)):
                 doc["arms"][key] = round(doc["arms"][key] * ratio, 4)
+        if legs.arms:  # the model's own upper arm and forearm, and its shoulders' width
+            bones = 0.5 * (chain_lengths(model, legs.arms[0]) + chain_lengths(model, legs.arms[1])) * scale
+            doc["arms"]["upper"], doc["arms"]["fore"] = round(float(bones[0]), 4), round(float(bones[1]), 4)
+            tops = points[[legs.arms[0].joints[0], legs.arms[1].joints[0]]]
+            doc["arms"]["shoulder_width"] = round(float(np.linalg.norm(tops[0] - tops[1])), 4)
     return creature_from_dict(doc, source=str(model.path)), scale
 
 

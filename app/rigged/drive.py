@@ -18,13 +18,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..kinematics.body import cross, unit
-from ..kinematics.herd import rotation_between
+from ..kinematics.herd import rotation_about, rotation_between
 from ..kinematics.motion import Motion
 from .gltf import RiggedModel
 from .legs import ModelLegs
 
 FIT_REACH = 1.0  # m: how far ahead and above the hips the body's extra fit points lie
 FIT_HINT = 1e-3  # their weight against a hip's
+SIDE, FRONT = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])  # a model's left and front at rest (+x, +z)
+ARM_OUT = np.radians(8.0)  # a biped model's arms hang this far out from its sides
+
 
 
 def rest_in_metres(model: RiggedModel, scale: float) -> NDArray[np.float64]:
@@ -103,21 +106,23 @@ def _prepared(model: RiggedModel, scale: float) -> tuple[NDArray[np.float64], ND
     return known[1], known[2], known[3]
 
 
-_LAYOUTS: dict[tuple[int, int, float], tuple] = {}  # (id(model), id(legs), scale) -> (model, legs, layout)
+_LAYOUTS: dict[tuple[int, int, float, bool], tuple] = {}  # (id(model), id(legs), scale, arms) -> (model, legs, layout)
 
 
-def _leg_layout(model: RiggedModel, legs: ModelLegs, scale: float
+def _leg_layout(model: RiggedModel, legs: ModelLegs, scale: float, with_arms: bool
                 ) -> tuple[set[int], dict[int, int], NDArray[np.bool_], NDArray[np.float64]]:
-    """Where the legs are in the model's skeleton, worked out once per model and legs: the
-    joints in a leg, each leg's top joint -> its leg, which joints hang under a leg's top
-    (the leg and what it carries, (J,)), and how far (m) each leg reaches, (L,) (just short
-    of femur + tibia)."""
-    key = (id(model), id(legs), scale)
+    """Where the limbs are in the model's skeleton (the legs, and ``with_arms`` a biped's
+    arms after them), worked out once per model and legs: the joints in a limb, each
+    limb's top joint -> its limb, which joints hang under a limb's top (the limb and what
+    it carries, (J,)), and how far (m) each leg reaches, (L,) (just short of femur +
+    tibia)."""
+    key = (id(model), id(legs), scale, with_arms)
     known = _LAYOUTS.get(key)
     if known is None or known[0] is not model or known[1] is not legs:
         rest, _, order = _prepared(model, scale)
-        in_chain = {j for c in legs.chains for j in c.joints}
-        tops = {c.joints[0]: leg for leg, c in enumerate(legs.chains)}
+        limbs = legs.chains + (legs.arms if with_arms else ())
+        in_chain = {j for c in limbs for j in c.joints}
+        tops = {c.joints[0]: limb for limb, c in enumerate(limbs)}
         below_leg = np.zeros(len(model.parents), dtype=bool)
         for j in order:
             p = int(model.parents[j])
@@ -144,18 +149,23 @@ def _path(parents: NDArray[np.int64], top: int, bottom: int) -> list[int] | None
 def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motion) -> NDArray[np.float64]:
     """Every joint's world transform (T, J, 4, 4) for ``motion`` of the model's creature
     (see :func:`drive_joints`)."""
-    return drive_joints(model, legs, scale, motion.joints, motion.root, foot_angle=motion.rig.ankle_lift)
+    return drive_joints(model, legs, scale, motion.joints, motion.root, foot_angle=motion.rig.ankle_lift,
+                        arms=motion.arms)
 
 
 def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: NDArray[np.float64],
                  root: NDArray[np.float64], clearance: NDArray[np.float64] | None = None,
-                 foot_angle: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+                 foot_angle: NDArray[np.float64] | None = None,
+                 arms: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
     """Every joint's world transform (T, J, 4, 4), rigid, in metres, for the creature's
     leg joints ``leg_joints`` (T, L, 5, 3; legs in the order of ``legs.chains``) and body
     transforms ``root`` (T, 4, 4). ``clearance`` (L,) m: how far above its sole each
     leg's last joint stands in the model (the creature's foot joints touch the ground;
     the model's foot is raised by that much). ``foot_angle`` (L,) rad: the creature's
     metatarsus angle above the ground when its foot stands flat (its ankle lift).
+    ``arms`` (T, 2, 4, 3): the creature's arms (shoulder, elbow, wrist, hand tip; left,
+    right); a biped model's arms (``legs.arms``) swing as they do, each solved from the
+    model's own shoulder to where the creature's wrist is from its shoulder.
 
     The hind girdle (the joint the hindmost legs hang from) moves with the creature's
     hind hips; with two pairs of legs the spine between it and the fore girdle turns, in
@@ -183,9 +193,10 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
             fore = _girdle_fit(rest, [chains[0].joints[0], chains[1].joints[0]], leg_joints[:, :2, 0], root)
     side_now = body[:, :3, 0]
     world = np.zeros((frames, len(parents), 4, 4))
-    in_chain, tops, below_leg, reach = _leg_layout(model, legs, scale)
-    # The body first (every joint not in or below a leg), and where each leg's top is.
-    top_at = np.zeros((frames, len(chains), 3))
+    arm_chains = legs.arms if arms is not None and len(legs.arms) == arms.shape[1] > 0 else ()
+    in_chain, tops, below_leg, reach = _leg_layout(model, legs, scale, bool(arm_chains))
+    # The body first (every joint not in or below a limb), and where each limb's top is.
+    top_at = np.zeros((frames, len(chains) + len(arm_chains), 3))
     for j in order:
         p = int(parents[j])
         if j in tops:
@@ -209,7 +220,7 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
         angle = None if foot_angle is None else float(foot_angle[leg])
         solved.append(_foot(rest, chain.joints, target, forward, angle))
     # Down, where a foot is out of its leg's reach (every leg at once).
-    v = np.stack([ankle for ankle, _, _ in solved], axis=1) - top_at  # (T, L, 3) hip to ankle
+    v = np.stack([ankle for ankle, _, _ in solved], axis=1) - top_at[:, :len(chains)]  # (T, L, 3) hip to ankle
     across = np.sum(v[..., [0, 2]] ** 2, axis=-1)
     drop = np.clip((-np.sqrt(np.maximum(reach ** 2 - across, 0.0)) - v[..., 1]).max(axis=1), 0.0, None)
     world[:, ~below_leg, 1, 3] -= drop[:, None]
@@ -217,6 +228,18 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
     for leg, chain in enumerate(chains):
         ankle, feet, last = solved[leg]
         _solve_chain(world, rest, chain.joints, ankle, feet, last, leg_joints[:, leg], side_now, top_at[:, leg])
+    if arm_chains:
+        assert arms is not None
+        forward_now = body[:, :3, 2]
+        for a, chain in enumerate(arm_chains):
+            shoulder = top_at[:, len(chains) + a]
+            # The creature's arm from its shoulder, turned a little out from the side (the
+            # model's chest is as wide as its shoulders: arms hung straight would pass into it).
+            out = rotation_about(forward_now, ARM_OUT if chain.side == "L" else -ARM_OUT)  # (T, 3, 3)
+            reach = np.einsum("tij,tkj->tki", out, arms[:, a, [0, 1, 2, 3, 3]] - arms[:, a, :1])
+            target = shoulder[:, None, :] + reach  # (T, 5, 3): shoulder, elbow, wrist, hand, hand
+            _solve_chain(world, rest, chain.joints, target[:, 2], [], None, target, forward_now, shoulder,
+                         axis_rest=FRONT, steady=False)
     for j in order:  # what hangs below the legs, carried
         p = int(parents[j])
         if below_leg[j] and j not in in_chain:
@@ -285,11 +308,15 @@ def _foot(rest: NDArray[np.float64], joints: tuple[int, ...], target: NDArray[np
 
 def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: tuple[int, ...],
                  ankle: NDArray[np.float64], feet: list[NDArray[np.float64]], last: NDArray[np.float64] | None,
-                 target: NDArray[np.float64], side: NDArray[np.float64], top: NDArray[np.float64]) -> None:
+                 target: NDArray[np.float64], side: NDArray[np.float64], top: NDArray[np.float64],
+                 axis_rest: NDArray[np.float64] = SIDE, steady: bool = True) -> None:
     """One leg's joints into ``world`` (T, J, 4, 4): from ``top`` (T, 3) by two-bone IK to
     ``ankle`` (T, 3), bending towards the creature's knee (``target`` (T, 5, 3): hip,
     knee, ankle, ball, toe), then the foot's bones along ``feet`` (each (T, 3)); the last
-    joint turned by ``last`` (T, 3, 3) from its rest (None: with the bone above it)."""
+    joint turned by ``last`` (T, 3, 3) from its rest (None: with the bone above it). Each
+    bone turns from rest so that ``axis_rest`` (the body's side at rest; an arm: its
+    front) goes to ``side`` (T, 3) across it; ``steady``: a leg's knee is steadied in the
+    body's side plane by the way the model's knee bends at rest."""
     points_rest = rest[list(joints), :3, 3]
     lengths = np.linalg.norm(np.diff(points_rest, axis=0), axis=1)
     femur, tibia = lengths[0], lengths[1]
@@ -301,7 +328,7 @@ def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: 
     hip_r, knee_r, ankle_r = points_rest[:3]
     # (none when the rest leg is all but straight: its way is then noise)
     way = np.dot(knee_r - hip_r, cross(np.array([1.0, 0.0, 0.0]), unit(ankle_r - hip_r)))
-    way = np.sign(way) * min(abs(way) / (0.05 * femur), 1.0)
+    way = np.sign(way) * min(abs(way) / (0.05 * femur), 1.0) if steady else 0.0
     bend = target[:, 1] - target[:, 0] + way * 0.3 * femur * unit(cross(side, along))
     bend = unit(bend - np.sum(bend * along, axis=-1, keepdims=True) * along)
     cos_a = np.clip((femur ** 2 + reach ** 2 - tibia ** 2) / (2.0 * femur * reach), -1.0, 1.0)
@@ -320,8 +347,7 @@ def _solve_chain(world: NDArray[np.float64], rest: NDArray[np.float64], joints: 
             continue
         else:  # the last joint turns with the bone above it
             u_rest, u_new = unit(points_rest[k] - points_rest[k - 1]), unit(points[:, k] - points[:, k - 1])
-        x_rest = np.array([1.0, 0.0, 0.0])
-        frame_rest = _frame(u_rest[None], x_rest[None])[0]
+        frame_rest = _frame(u_rest[None], axis_rest[None])[0]
         frame_new = _frame(u_new, side)
         turn = frame_new @ frame_rest.T
         world[:, j, :3, :3] = turn @ rest[j, :3, :3]

@@ -41,11 +41,13 @@ class LegChain:
 
 @dataclass(frozen=True)
 class ModelLegs:
-    """A model's leg pairs, front first (each pair left, right), and whether its arms
-    are its front legs."""
+    """A model's leg pairs, front first (each pair left, right), whether its arms are its
+    front legs, and a biped's arms (left, right: upper arm, forearm and wrist joints; empty
+    when it has none it can name, or they are legs)."""
 
     pairs: tuple[tuple[LegChain, LegChain], ...]
     arms_as_legs: bool
+    arms: tuple[LegChain, ...] = ()
 
     @property
     def chains(self) -> tuple[LegChain, ...]:
@@ -155,7 +157,20 @@ def find_legs(model: RiggedModel) -> ModelLegs:
             arms_as_legs = True
             pairs.insert(0, (LegChain("L", arms["L"][0]), LegChain("R", arms["R"][0])))
     pairs.sort(key=lambda pair: -float(points[pair[0].joints[0], 2]))  # front first (+z forward)
-    return ModelLegs(pairs=tuple(pairs), arms_as_legs=arms_as_legs)
+    biped_arms: tuple[LegChain, ...] = ()
+    if len(pairs) == 1 and len(arms["L"]) == 1 and len(arms["R"]) == 1:
+        biped_arms = tuple(LegChain(s, _upper_arm_down(points, arms[s][0])) for s in ("L", "R"))
+        if any(len(c.joints) < 3 for c in biped_arms):
+            biped_arms = ()
+    return ModelLegs(pairs=tuple(pairs), arms_as_legs=arms_as_legs, arms=biped_arms)
+
+
+def _upper_arm_down(points: NDArray[np.float64], chain: tuple[int, ...]) -> tuple[int, ...]:
+    """An arm chain's upper arm, forearm and wrist: a collarbone first (a bone much shorter
+    than the next) is left to the trunk; the hand's joints below the wrist follow it."""
+    bones = np.linalg.norm(np.diff(points[list(chain)], axis=0), axis=1)
+    start = 1 if len(chain) >= 4 and bones[0] < 0.5 * bones[1] else 0
+    return chain[start:start + 3]
 
 
 def chain_lengths(model: RiggedModel, chain: LegChain) -> NDArray[np.float64]:

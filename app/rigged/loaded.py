@@ -31,10 +31,12 @@ class LoadedModel:
     clearance: NDArray[np.float64]  # (L,) m each leg's last joint stands above the sole (0: a wrist, the paw below)
 
     def skin(self, leg_joints: NDArray[np.float64], root: NDArray[np.float64],
-             foot_angle: NDArray[np.float64] | None = None) -> NDArray[np.float32]:
+             foot_angle: NDArray[np.float64] | None = None,
+             arms: NDArray[np.float64] | None = None) -> NDArray[np.float32]:
         """Skinning matrices (T, J, 4, 4) for the creature's leg joints (T, L, 5, 3), body
-        transforms (T, 4, 4) and flat-foot angles (L,) rad (see :func:`drive_joints`)."""
-        world = drive_joints(self.model, self.legs, self.scale, leg_joints, root, self.clearance, foot_angle)
+        transforms (T, 4, 4), flat-foot angles (L,) rad and arms (T, A, 4, 3) (see
+        :func:`drive_joints`)."""
+        world = drive_joints(self.model, self.legs, self.scale, leg_joints, root, self.clearance, foot_angle, arms)
         return (world @ self.inverse_bind).astype(np.float32)
 
     @cached_property
