@@ -415,3 +415,22 @@ def test_front_legs_under_shoulders_are_one_pair_not_two() -> None:
     legs = find_legs(model)
     assert len(legs.pairs) == 2
     assert [model.names[c.joints[0]] for c in legs.chains] == ["FrontLeg_L", "FrontLeg_R", "BackLeg_L", "BackLeg_R"]
+
+
+def test_the_viewer_opens_a_model_from_its_file_field_and_greys_its_bones(tmp_path) -> None:
+    """The File panel loads a .glb as it loads a creature file: the model's creature, its
+    bone lengths marked as the model's own (the panel greys their sliders); a model that
+    cannot be driven is one error line and the creature shown stays."""
+    from app.spec import load_creature
+    from app.ui.state import ViewerState
+
+    state = ViewerState(load_creature("dog"))
+    assert not state.bones_from_model
+    assert state.load(str(MODELS / "Fox.glb"))
+    assert state.spec.name == "Fox" and state.bones_from_model and state.error is None
+    assert state.recent and str(MODELS / "Fox.glb") in state.recent[0]
+    broken = tmp_path / "broken.glb"
+    broken.write_bytes(b"not a glTF at all")
+    assert not state.load(str(broken))
+    assert state.spec.name == "Fox" and state.error is not None and "broken.glb" in state.error
+    assert len(state.error.splitlines()) == 1

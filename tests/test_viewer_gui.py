@@ -268,6 +268,38 @@ def test_the_file_field_loads_where_no_dialog_opens(display: str, tmp_path: Path
         quit_viewer(display, proc, window)
 
 
+def test_the_file_field_opens_a_rigged_model(display: str, tmp_path: Path) -> None:
+    """A .glb typed in the File panel's field and loaded: the model walks in the view (its
+    own mesh: the fox's orange), its bone lengths marked as its own."""
+    fox = Path(__file__).parent / "data" / "models" / "Fox.glb"
+    with running_viewer(display, tmp_path, "--size", "1024x700") as (proc, dump, window):
+        for title in ("Creature", "Gait"):
+            click_widget(display, dump, f"panel.{title}")
+        state = read_state(dump, until=lambda s: s["widgets"]["panel.File"][3] < 650)
+        x, y = centre(state["widgets"]["panel.File"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+        state = read_state(dump, until=lambda s: "file" in s["widgets"] and "load" in s["widgets"])
+        x, y = centre(state["widgets"]["file"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1", "sleep", "0.3", "keydown", "ctrl",
+                "sleep", "0.3", "key", "a", "sleep", "0.3", "keyup", "ctrl", "sleep", "0.2", "type", "--delay", "30",
+                str(fox))
+        read_state(dump, until=lambda s: True)
+        time.sleep(0.5)
+        x, y = centre(read_state(dump)["widgets"]["load"])
+        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+        state = read_state(dump, until=lambda s: s["creature"]["name"] == "Fox")
+        assert state["model_bones"] and state["error"] is None and str(fox) in state["status"]
+        time.sleep(1.0)
+        xdotool(display, "mousemove", "--window", window, "700", "300", "key", "F12")
+        read_state(dump, until=lambda s: "screenshot saved" in (s["status"] or ""))
+        (scene,) = tmp_path.glob("gaitlab-Fox-*.png")
+        image = np.asarray(Image.open(scene).convert("RGB")).astype(int)
+        orange = (image[..., 0] > 150) & (image[..., 1] > 50) & (image[..., 1] < 0.75 * image[..., 0]) \
+            & (image[..., 2] < 0.5 * image[..., 0])
+        assert orange.sum() > 500  # the fox's own coat
+        quit_viewer(display, proc, window)
+
+
 def gif_frames(path: Path) -> list[np.ndarray]:
     frames = []
     with Image.open(path) as gif:

@@ -27,7 +27,7 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
     scale = model_scale(model, legs)
     doc: dict[str, Any] = load_creature(BASE[pairs]).to_dict()
     doc["name"] = model.path.stem
-    doc["description"] = f"the rigged model {model.path.name}, walking on its own legs"
+    doc["description"] = f"the rigged model {model.path.name}, walking on its own legs (its bones' lengths are its own)"
     tables = list(doc["legs"])
     ratios = []
     own_toes = set()  # the tables whose toe is the model's own

@@ -255,6 +255,15 @@ class EditingMixin(StateBase):
         meta = self.spec.leg(pair).metatarsus
         return self.set_many({f"legs.{pair}.ankle_lift": lift, f"legs.{pair}.toe": round(meta * toe_ratio, 4)})
 
+    @property
+    def bones_from_model(self) -> bool:
+        """Whether the creature is a rigged model's, whose bone lengths and girdle spacing
+        are the model's own (the viewer greys their sliders: the model's skeleton cannot
+        stretch to other lengths)."""
+        from ..rigged import is_model_path
+
+        return is_model_path(self.spec.source)
+
     def leg_type(self, pair: str) -> LegType:
         return leg_type(self.spec.leg(pair).ankle_lift)
 

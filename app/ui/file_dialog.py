@@ -10,6 +10,7 @@ from typing import Any, Literal
 DialogKind = Literal["open", "save"]
 _TOOLS = ("zenity", "kdialog", "qarma", "matedialog")  # what portable-file-dialogs drives on Linux
 _FILTERS = ["Creature files (*.toml)", "*.toml"]
+_OPEN_FILTERS = ["Creatures and rigged models (*.toml *.glb *.gltf)", "*.toml *.glb *.gltf", *_FILTERS]
 
 
 def dialogs_available() -> bool:
@@ -37,7 +38,7 @@ class FileDialog:
             return
         self.kind = kind
         if kind == "open":
-            self._dialog = pfd.open_file("Load a creature", start_path, _FILTERS)
+            self._dialog = pfd.open_file("Load a creature or a rigged model", start_path, _OPEN_FILTERS)
         else:
             self._dialog = pfd.save_file("Save the creature", start_path, _FILTERS)
 

@@ -83,10 +83,14 @@ class FilesMixin(StateBase):
         return self.load(name)
 
     def load(self, name_or_path: str) -> bool:
-        """Load a preset or a creature file. A file that fails to load leaves the current
-        creature untouched and shows its error."""
+        """Load a preset, a creature file or a rigged model (.glb, .gltf). A file that
+        fails to load leaves the current creature untouched and shows its error."""
+        from ..rigged import MODEL_SUFFIXES, is_model_path
+        from ..rigged.creature import model_creature
+
+        text = str(name_or_path)
         try:
-            spec = load_creature(name_or_path)
+            spec = model_creature(text) if is_model_path(text) else load_creature(name_or_path)
         except GaitlabError as exc:
             self.error = str(exc)
             return False
@@ -96,11 +100,12 @@ class FilesMixin(StateBase):
         self._redo.clear()
         self.base = spec
         self.file_path = self._save_path_for(spec)
-        if str(name_or_path).endswith(".toml"):
+        from_file = text.lower().endswith((".toml", *MODEL_SUFFIXES))
+        if from_file:
             self._remember_file(spec.source)
-            self._know(spec.source)
-        self.status = f"loaded {spec.name}" + (f" from {Path(spec.source).resolve()}"
-                                               if str(name_or_path).endswith(".toml") else "")
+            if text.endswith(".toml"):
+                self._know(spec.source)
+        self.status = f"loaded {spec.name}" + (f" from {Path(spec.source).resolve()}" if from_file else "")
         self.frame_view()
         return True
 

@@ -423,7 +423,8 @@ class Viewer:
         state = self.state
         doc = {
             "frame": frame, "playing": state.playing, "show_ui": state.show_ui, "show_help": state.show_help,
-            "creature": state.spec.to_dict(), "duty_factor": state.get("gait.duty_factor"),
+            "creature": state.spec.to_dict(), "model_bones": state.bones_from_model,
+            "duty_factor": state.get("gait.duty_factor"),
             "gait": state.spec.gait.preset, "clock": state.live.clock, "time": state.live.time,
             "camera": {"target": list(state.camera.target), "azimuth": state.camera.azimuth,
                        "elevation": state.camera.elevation, "distance": state.camera.distance,

@@ -46,6 +46,7 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
     if choice_made is not None:
         state.load_preset(choice_made)
     _wrapped_note(state.creature_description, lines=DESCRIPTION_LINES)
+    model = state.bones_from_model
     for pair in (leg.name for leg in state.spec.legs):
         imgui.separator_text("Legs" if pair == "legs" else f"{pair.capitalize()} legs")
         current = state.leg_type(pair)
@@ -64,17 +65,21 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
         if _begin_rows(f"legs-{pair}", pc):
             p = f"legs.{pair}"
             slider(state, pc, f"{p}.ankle_lift", "ankle lift", 0.0, 90.0, "%.1f deg")
+            imgui.begin_disabled(model)  # a rigged model's bones are its own
             slider(state, pc, f"{p}.toe", "toe", 0.0, 0.3, "%.3f m")
             slider(state, pc, f"{p}.femur", "femur", 0.02, 1.0, "%.3f m")
             slider(state, pc, f"{p}.tibia", "tibia", 0.02, 1.0, "%.3f m")
             slider(state, pc, f"{p}.metatarsus", "metatarsus", 0.01, 0.6, "%.3f m")
+            imgui.end_disabled()
             slider(state, pc, f"{p}.natural_bend", "natural bend", 0.0, 0.6, "%.2f")
             choice(state, pc, f"{p}.knee", "knee points", KNEE_DIRECTIONS)
             imgui.end_table()
     imgui.separator_text("Body")
     if _begin_rows("body-size", pc):
+        imgui.begin_disabled(model)
         slider(state, pc, "body.length", "length", 0.1, 2.5, "%.3f m")
         slider(state, pc, "body.width", "width", 0.03, 1.0, "%.3f m")
+        imgui.end_disabled()
         int_slider(state, pc, "body.segments", "segments", 2, 24)
         imgui.end_table()
 
