@@ -235,6 +235,13 @@ def test_render_refuses_a_model_it_cannot_drive_in_one_line(tmp_path) -> None:
     result = gaitlab("render", plain, "-o", tmp_path / "box.gif")
     assert result.returncode == 2 and "no skinned mesh" in result.stderr and len(result.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "box.gif").exists()
+    # A model's bones and body size are its own: --set on them is refused; its gait is not.
+    for key in ("legs.hind.femur=0.3", "body.length=0.8"):
+        result = gaitlab("render", MODELS / "Fox.glb", "--set", key, "-o", tmp_path / "fox.png", "--size", "160x120")
+        assert result.returncode == 2 and "its own" in result.stderr and len(result.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "fox.png").exists()
+    assert gaitlab("render", MODELS / "Fox.glb", "--set", "gait.duty_factor=0.7", "-o", tmp_path / "fox.png",
+                   "--size", "160x120").returncode == 0
 
 
 def _animated_world(path: Path, names: tuple[str, ...]) -> np.ndarray:

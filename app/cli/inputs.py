@@ -13,6 +13,10 @@ from ..errors import GaitlabError, did_you_mean
 from ..gaits import GAIT_PRESETS
 from ..styles import WALK_STYLES
 
+# A rigged model's own: bone lengths (legs.PAIR.KEY) and body size (body.KEY), which its
+# skeleton cannot stretch to follow.
+MODEL_OWN_KEYS = ("femur", "tibia", "metatarsus", "toe", "length", "width")
+
 if TYPE_CHECKING:
     from ..cast import Cast
     from ..spec import CreatureSpec
@@ -70,6 +74,9 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
     overrides = creature_changes(args)
     for text in args.overrides:
         key, value = parse_override(text, spec)
+        if is_model_path(name) and key.rsplit(".", 1)[-1] in MODEL_OWN_KEYS and key.split(".", 1)[0] in ("legs", "body"):
+            raise GaitlabError(f"--set {text}: {Path(name).name} is a rigged model, and its bones' lengths and body "
+                               "size are its own; change its gait, speed, path or ground instead")
         overrides[key] = value
     spec = spec.with_overrides(overrides) if overrides else spec
     style = args.style
