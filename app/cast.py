@@ -33,8 +33,6 @@ class Actor:
         check_herd_size(self.herd)
         if self.herd > 1 and self.world.in_place:
             raise GaitlabError(f"a herd of {self.herd} travels: drop --in-place")
-        if self.herd > 1 and self.spec.source.lower().endswith((".glb", ".gltf")):
-            raise GaitlabError(f"{self.spec.source}: a herd of a rigged model is not drawn yet; give --herd 1")
 
 
 Cast = tuple[Actor, ...]

@@ -393,12 +393,43 @@ def test_a_driven_fox_s_paws_rest_on_the_ground_not_in_it() -> None:
     assert min(lowest) > -0.006 and max(lowest) < 0.01
 
 
-def test_a_herd_of_a_model_is_refused_plainly(tmp_path) -> None:
-    from cli_runner import gaitlab
+@pytest.mark.parametrize("name", ["Fox.glb", "CesiumMan.glb"])
+def test_a_herd_of_a_model_walks_each_on_its_own_skeleton(name: str) -> None:
+    """A herd of a rigged model (it was refused): every animal the model's own size, its
+    skeleton driven from its legs as the herd sets them down on the hills and locks them,
+    all animals in one call; every bone keeps its length and every foot's ball stands
+    where the herd put it."""
+    from app import build_rig
+    from app.kinematics.herd import Herd
+    from app.render.herd import HerdInstances
+    from app.rigged.creature import model_creature
+    from app.rigged.loaded import load_model
+    from app.worlds import make_world
 
-    result = gaitlab("render", MODELS / "Fox.glb", "--herd", "3", "--path", "circle:r=3", "-o", tmp_path / "h.gif")
-    assert result.returncode == 2 and "herd of a rigged model" in result.stderr
-    assert len(result.stderr.strip().splitlines()) == 1 and not (tmp_path / "h.gif").exists()
+    loaded = load_model(str(MODELS / name))
+    rig = build_rig(model_creature(str(MODELS / name)))
+    herd = Herd(rig, 5)
+    assert np.all(herd.size == 1.0)
+    rows = HerdInstances(herd)
+    hills = make_world("straight", "hills").terrain.height
+    bind = np.concatenate([loaded.bind[:, :, 3][:, :3], np.ones((len(loaded.bind), 1))], axis=1)
+    rest = np.linalg.norm(loaded.bind[1:, :3, 3] - loaded.bind[loaded.model.parents[1:], :3, 3], axis=-1)
+    leader = np.zeros(2)
+    balls = [c for c in range(len(loaded.legs.chains)) if len(loaded.legs.chains[c].joints) >= 4]
+    for _ in range(30):
+        leader = leader + np.array([0.0, herd.cycle_speed / 30.0])
+        herd.step(1.0 / 30.0, leader, 0.0, ground_height=hills)
+        scene = rows.frame(herd, hills)
+        assert len(scene.bodies) == 5 and all(b.body is scene.bodies[0].body for b in scene.bodies)
+        legs = herd.legs(hills)[0]  # (N, L, 5, 3)
+        for k, body in enumerate(scene.bodies):
+            pos = np.einsum("jab,jb->ja", body.skin.astype(np.float64), bind)[:, :3]
+            bones = np.linalg.norm(pos[1:] - pos[loaded.model.parents[1:]], axis=-1)
+            parented = loaded.model.parents[1:] >= 0
+            assert np.abs(bones - rest)[parented].max() < 1e-5  # float32 skinning matrices
+            for leg in balls:
+                ball = legs[k, leg, 3] + np.array([0.0, loaded.clearance[leg], 0.0])
+                assert np.linalg.norm(pos[loaded.legs.chains[leg].joints[-1]] - ball) < 1e-4
 
 
 def test_front_legs_under_shoulders_are_one_pair_not_two() -> None:

@@ -119,6 +119,8 @@ class Herd:
         self.count = count
         self.variation = variation
         self.size = 1.0 + variation.size * rng.uniform(-1.0, 1.0, count)
+        if rig.model:  # a rigged model's bones are its own: every animal is its size
+            self.size = np.ones(count)
         self.pace = 1.0 + variation.speed * rng.uniform(-1.0, 1.0, count)  # each one's preferred speed factor
         self.phase = rng.uniform(0.0, 1.0, count)
         self.rate = self.pace.copy()

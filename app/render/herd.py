@@ -19,6 +19,7 @@ from ..choices import BodyStyle
 from ..kinematics.herd import Herd, LegAdjustment
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import LEG_JOINTS, skeleton_points
+from ..rigged.loaded import LoadedModel, load_model
 from .bodies import BodyDraw, motion_body, shared_body_cache
 from .scene import Cap, Ell, SceneInstances, leg_instances, motion_instances
 
@@ -36,6 +37,7 @@ class HerdInstances:
         self._body_rows: SceneInstances | None = None  # without them (legs set down on uneven ground)
         self._skins: BodyDraw | None = None
         self._leg_bones: NDArray[np.int64] | None = None  # (L, 5) skeleton joint of each leg joint
+        self._model: LoadedModel | None = None  # a rigged model's herd: each animal's skeleton driven
         self._update(herd)
 
     def matches(self, show_joints: bool, body: BodyStyle, by_side: bool) -> bool:
@@ -52,7 +54,8 @@ class HerdInstances:
             self._body_rows = motion_instances(herd.cycle, show_joints=False, parts=not skin, by_side=self.by_side,
                                                legs=False)
             self._skins = motion_body(herd.cycle, shared_body_cache()) if skin else None
-            if skin:
+            self._model = load_model(herd.cycle.rig.model) if skin and herd.cycle.rig.model else None
+            if skin and self._model is None:
                 assert self._skins is not None
                 names = skeleton_points(herd.cycle.frames(0), self._skins.body.layout)[0].names
                 self._leg_bones = np.array([[names.index(f"{leg}_{part}") for part in LEG_JOINTS]
@@ -66,7 +69,7 @@ class HerdInstances:
         f0, f1, w = herd.blend()
         scale, rot, move = herd.transforms(ground_height)
         rows = self._rows
-        legs = herd.legs(ground_height, (scale, rot, move))[1]  # None: the cycle's legs as they are
+        leg_joints, legs = herd.legs(ground_height, (scale, rot, move))  # legs None: the cycle's as they are
         if legs is not None:
             move = move.copy()
             move[:, 1] -= legs.lowered
@@ -95,19 +98,42 @@ class HerdInstances:
         out_caps = out_c.reshape(-1, caps.shape[-1])
         ellipsoids = np.concatenate(parts)
         bodies: tuple[BodyDraw, ...] = ()
-        if self._skins is not None:  # each animal's body: its blended skin, placed
+        if self._model is not None and self._skins is not None:  # each animal's own skeleton, driven at once
+            driven = _drive_models(self._model, herd.cycle, f0, f1, w, leg_joints, scale, rot, move)
+            bodies = tuple(BodyDraw(self._skins.body, driven[k]) for k in range(n))
+        elif self._skins is not None:  # each animal's body: its blended skin, placed
             skins = self._skins.skin.astype(np.float64)
             skin = skins[f0] + (skins[f1] - skins[f0]) * w[:, None, None, None]  # (N, J, 4, 4)
-            place = np.tile(np.eye(4), (n, 1, 1))
-            place[:, :3, :3] = rot * scale[:, None, None]
-            place[:, :3, 3] = move
-            posed = place[:, None] @ skin
+            posed = _placement(scale, rot, move)[:, None] @ skin
             if legs is not None:
                 assert self._leg_bones is not None
                 posed = _set_down(posed, self._leg_bones, legs)
             posed = posed.astype(np.float32)
             bodies = tuple(BodyDraw(self._skins.body, posed[k]) for k in range(n))
         return SceneInstances(out_caps.astype(np.float32), ellipsoids.astype(np.float32), n * casters, bodies)
+
+
+def _placement(scale: NDArray[np.float64], rot: NDArray[np.float64], move: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each animal's placing in the world (N, 4, 4): scaled, turned, moved."""
+    place = np.tile(np.eye(4), (len(scale), 1, 1))
+    place[:, :3, :3] = rot * scale[:, None, None]
+    place[:, :3, 3] = move
+    return place
+
+
+def _drive_models(model: LoadedModel, cycle: Motion, f0: NDArray[np.int64], f1: NDArray[np.int64],
+                  w: NDArray[np.float64], leg_joints: NDArray[np.float64], scale: NDArray[np.float64],
+                  rot: NDArray[np.float64], move: NDArray[np.float64]) -> NDArray[np.float32]:
+    """Skinning matrices (N, J, 4, 4) of a rigged model's herd: every animal's skeleton
+    driven in one call (:func:`app.rigged.drive.drive_joints`, vectorised over animals as
+    over frames) from its leg joints in the world ``leg_joints`` (N, L, 5, 3; set down and
+    locked), its blended cycle body transform and arms, placed."""
+    root = _placement(scale, rot, move) @ (cycle.root[f0] + (cycle.root[f1] - cycle.root[f0]) * w[:, None, None])
+    arms = None
+    if cycle.arms.shape[1]:
+        blended = _blend(cycle.arms.reshape(cycle.frame_count, -1, 3).astype(np.float32), f0, f1, w)
+        arms = _place(blended, scale, rot, move).reshape(len(w), *cycle.arms.shape[1:])
+    return model.skin(leg_joints, root, cycle.rig.ankle_lift, arms)
 
 
 def _set_down(posed: NDArray[np.float64], bones: NDArray[np.int64], legs: LegAdjustment) -> NDArray[np.float64]:

@@ -138,8 +138,6 @@ class PlaybackMixin(StateBase):
 
         try:
             count = check_herd_size(count)
-            if count > 1 and self.spec.source.lower().endswith((".glb", ".gltf")):
-                raise GaitlabError(f"{self.spec.name}: a herd of a rigged model is not drawn yet")
             if count > 1:
                 self.leave_in_place()
         except GaitlabError as exc:
