@@ -73,12 +73,27 @@ def test_legs_are_found_by_common_naming_conventions(names: tuple[str, ...]) -> 
     assert left.joints == (1, 2, 3, 4) and right.joints == (5, 6, 7, 8)
 
 
+def test_legs_whose_names_say_nothing_are_found_by_the_skeleton_s_shape() -> None:
+    """Joints named j0, j1, ...: the legs are the mirrored chains that branch off the trunk
+    and run down to the ground, the same chains the names give (the fox's arms, its front
+    legs, included)."""
+    for name in ("Fox.glb", "CesiumMan.glb"):
+        model = load_rigged_model(MODELS / name)
+        anonymous = dataclasses.replace(model, names=tuple(f"j{k}" for k in range(len(model.names))))
+        by_shape, by_name = find_legs(anonymous), find_legs(model)
+        assert [(c.side, c.joints) for c in by_shape.chains] == [(c.side, c.joints) for c in by_name.chains]
+    legs = find_legs(_biped(("root", "a", "b", "c", "d", "e", "f", "g", "h")))
+    assert [c.joints for c in legs.chains] == [(1, 2, 3, 4), (5, 6, 7, 8)]
+
+
 def test_a_model_without_legs_or_skin_is_one_clear_line(tmp_path) -> None:
-    model = _biped(("root", "a", "b", "c", "d", "e", "f", "g", "h"))
+    biped = _biped(("root", "a", "b", "c", "d", "e", "f", "g", "h"))
+    one_legged = dataclasses.replace(biped, names=biped.names[:5], parents=biped.parents[:5], rest=biped.rest[:5],
+                                     inverse_bind=biped.inverse_bind[:5])
     with pytest.raises(RigError) as err:
-        find_legs(model)
+        find_legs(one_legged)
     message = str(err.value)
-    assert "\n" not in message and "root, a, b" in message and "LeftUpLeg" in message
+    assert "\n" not in message and "root, a, b" in message and "LeftUpLeg" in message and "--rig" in message
     import trimesh
 
     plain = tmp_path / "box.glb"

@@ -8,8 +8,9 @@ Names first, in the common conventions: Mixamo (``mixamorig:LeftUpLeg``, with an
 (``lfemur``). A chain starts at the highest joint of its side
 named for the leg and runs down its children to the end. Arms become the front legs when
 their hands reach down near the ground at rest (a quadruped's fore legs); a biped's arms
-stay arms. A model whose legs cannot be found is a one-line :class:`RigError` naming the
-joints it has.
+stay arms. Failing names, by the skeleton's shape (:func:`legs_by_shape`): mirrored
+chains that branch off the trunk and run down to the ground. A model whose legs cannot be
+found is a one-line :class:`RigError` naming the joints it has.
 """
 
 from __future__ import annotations
@@ -138,9 +139,13 @@ def find_legs(model: RiggedModel) -> ModelLegs:
     legs = limbs(model, LEG_WORDS, ARM_WORDS)
     arms = limbs(model, ARM_WORDS, ("upleg", "thigh", "foot", "toe", "shin", "calf"))
     if len(legs["L"]) != len(legs["R"]) or not legs["L"]:
+        by_shape = legs_by_shape(model)
+        if by_shape is not None:
+            return by_shape
         found = ", ".join(model.names[:40]) + (" ..." if len(model.names) > 40 else "")
-        raise RigError(f"{model.path}: no left and right legs found among its joints ({found}); name each leg's "
-                       "joints for its side and part, e.g. LeftUpLeg/RightUpLeg, thigh.L/thigh.R or L_Thigh/R_Thigh")
+        raise RigError(f"{model.path}: no left and right legs found among its joints ({found}), by their names or "
+                       "by their shape; name each leg's joints for its side and part, e.g. LeftUpLeg/RightUpLeg, "
+                       "thigh.L/thigh.R or L_Thigh/R_Thigh, or list them in a map file (--rig)")
     points = model.rest_points
     pairs = []
     for left, right in zip(sorted(legs["L"], key=lambda c: -points[c[0], 2]),
@@ -171,6 +176,70 @@ def _upper_arm_down(points: NDArray[np.float64], chain: tuple[int, ...]) -> tupl
     bones = np.linalg.norm(np.diff(points[list(chain)], axis=0), axis=1)
     start = 1 if len(chain) >= 4 and bones[0] < 0.5 * bones[1] else 0
     return chain[start:start + 3]
+
+
+SHAPE_GROUND = 0.15  # by shape: a leg's lowest joint within this fraction of the model's height of the ground
+SHAPE_SIDE = 0.02  # ... its top this far (of the height) to a side of the middle
+SHAPE_MIRROR = 0.05  # ... and its pair's top where the mirror puts it, within this much
+
+
+def legs_by_shape(model: RiggedModel) -> ModelLegs | None:
+    """Legs found by the skeleton's shape when their names say nothing: chains that
+    branch off the trunk to one side (+x is left) and run down to the ground, in mirrored
+    pairs (each pair's tops where a mirror across the middle puts them), front pair first;
+    None unless one or two pairs are found and nothing else reaches the ground off the
+    middle."""
+    points = model.rest_points
+    if len(points) < 7:
+        return None
+    children: dict[int, list[int]] = {}
+    for j, p in enumerate(model.parents):
+        children.setdefault(int(p), []).append(j)
+    ground = float(points[:, 1].min())
+    height = float(points[:, 1].max()) - ground
+    if height <= 0:
+        return None
+    lowest = points[:, 1].copy()
+    for j in sorted(range(len(points)), key=lambda k: -_depth(model.parents, k)):  # children before parents
+        p = int(model.parents[j])
+        if p >= 0:
+            lowest[p] = min(lowest[p], lowest[j])
+    tops = [c for branch, kids in children.items() if branch >= 0 and len(kids) >= 2 for c in kids
+            if lowest[c] - ground < SHAPE_GROUND * height and abs(points[c, 0]) > SHAPE_SIDE * height]
+    tops = [t for t in tops if not any(_below(model.parents, t, other) for other in tops if other != t)]
+    left = [t for t in tops if points[t, 0] > 0]
+    right = [t for t in tops if points[t, 0] < 0]
+    if len(left) != len(right) or len(left) not in (1, 2):
+        return None
+    pairs = []
+    for top in sorted(left, key=lambda t: -points[t, 2]):
+        mirror = points[top] * np.array([-1.0, 1.0, 1.0])
+        partner = min(right, key=lambda t: float(np.linalg.norm(points[t] - mirror)))
+        if np.linalg.norm(points[partner] - mirror) > SHAPE_MIRROR * height:
+            return None
+        right.remove(partner)
+        chains = _chain_from(model, top), _chain_from(model, partner)
+        if min(len(c) for c in chains) < 3:
+            return None
+        pairs.append((LegChain("L", chains[0]), LegChain("R", chains[1])))
+    return ModelLegs(pairs=tuple(pairs), arms_as_legs=False)
+
+
+def _depth(parents: NDArray[np.int64], j: int) -> int:
+    depth = 0
+    while parents[j] >= 0:
+        j, depth = int(parents[j]), depth + 1
+    return depth
+
+
+def _below(parents: NDArray[np.int64], j: int, top: int) -> bool:
+    """Whether joint ``j`` hangs somewhere under ``top``."""
+    j = int(parents[j])
+    while j >= 0:
+        if j == top:
+            return True
+        j = int(parents[j])
+    return False
 
 
 def chain_lengths(model: RiggedModel, chain: LegChain) -> NDArray[np.float64]:
