@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from PIL import Image
 
 from app.rigged.gltf import RigError, RiggedModel, load_rigged_model
 from app.rigged.legs import chain_lengths, find_legs
@@ -487,3 +488,24 @@ def test_the_viewer_opens_a_model_from_its_file_field_and_greys_its_bones(tmp_pa
     assert not state.load(str(broken))
     assert state.spec.name == "Fox" and state.error is not None and "broken.glb" in state.error
     assert len(state.error.splitlines()) == 1
+
+
+def test_a_scene_file_walks_rigged_models_beside_each_other(tmp_path) -> None:
+    """Models go in scene files as presets do: the fox and the man, each on its own line."""
+    from cli_runner import gaitlab
+
+    for name in ("Fox.glb", "CesiumMan.glb"):
+        (tmp_path / name).write_bytes((MODELS / name).read_bytes())
+    (tmp_path / "models.toml").write_text(
+        'name = "models"\n'
+        '[paths.a]\nkind = "waypoints"\npoints = [[0, 0], [0, 40]]\n'
+        '[paths.b]\nkind = "waypoints"\npoints = [[1.2, 0], [1.2, 40]]\n'
+        '[[creatures]]\ncreature = "Fox.glb"\npath = "a"\n'
+        '[[creatures]]\ncreature = "CesiumMan.glb"\npath = "b"\nherd = 2\n')
+    result = gaitlab("render", tmp_path / "models.toml", "--time", "1", "-o", tmp_path / "models.png",
+                     "--size", "320x240", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "Fox" in result.stdout and "CesiumMan" in result.stdout
+    image = np.asarray(Image.open(tmp_path / "models.png").convert("RGB")).astype(int)
+    orange = (image[..., 0] > 150) & (image[..., 2] < 0.5 * image[..., 0]) & (image[..., 1] < 0.75 * image[..., 0])
+    assert orange.sum() > 200  # the fox's coat
