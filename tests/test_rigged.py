@@ -374,6 +374,11 @@ def test_a_rig_map_names_the_legs_of_a_model_whose_names_do_not_say(tmp_path) ->
         'RH = ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021"]\n': "does not hang below",
         '[legs]\nLH = ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017"]\n': "in pairs",
         '[legz]\nLH = []\n': "give a [legs] table",
+        '[legs]\nLF = ["b_LeftUpperArm_09", "b_LeftForeArm_010", "b_LeftHand_011"]\n'
+        'RF = ["b_RightUpperArm_06", "b_RightForeArm_07", "b_RightHand_08"]\n'
+        'LH = ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017"]\n'
+        'RH = ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021"]\n'
+        '[arms]\nL = ["b_LeftUpperArm_09", "b_LeftForeArm_010", "b_LeftHand_011"]\n': "is for a biped",
     }
     for text, expected in cases.items():
         bad = tmp_path / "bad.toml"
@@ -384,6 +389,15 @@ def test_a_rig_map_names_the_legs_of_a_model_whose_names_do_not_say(tmp_path) ->
         assert not (tmp_path / "bad.gif").exists()
     result = gaitlab("render", "dog", "--rig", good, "-o", tmp_path / "dog.gif")
     assert result.returncode == 2 and "--rig" in result.stderr
+    # A biped's map may name its arms too: they swing.
+    man = load_rigged_model(MODELS / "CesiumMan.glb")
+    named = find_legs(man)
+    arms = {"L": [man.names[j] for j in named.arms[0].joints], "R": [man.names[j] for j in named.arms[1].joints]}
+    legs = {side: [man.names[j] for j in chain.joints] for side, chain in zip(("L", "R"), named.chains)}
+    mapped = legs_from_map(man, {"legs": legs, "arms": arms}, "man.toml")
+    assert mapped.arms == named.arms and mapped.chains == named.chains
+    with pytest.raises(RigError, match="man.toml: arms.L: give 3 joint names"):
+        legs_from_map(man, {"legs": legs, "arms": {"L": arms["L"][:2], "R": arms["R"]}}, "man.toml")
     # A later command without --rig goes by the joint names again.
     assert gaitlab("render", MODELS / "Fox.glb", "--time", "0.5", "-o", tmp_path / "again.png",
                    "--size", "160x120").returncode == 0

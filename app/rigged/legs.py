@@ -264,21 +264,43 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
     if not isinstance(table, dict) or not table:
         raise RigError(f"{where}: give a [legs] table, e.g. LH = [\"thigh.L\", \"shin.L\", \"foot.L\"], one list of "
                        "joint names per leg")
-    unknown = sorted(set(mapping) - {"legs"})
+    unknown = sorted(set(mapping) - {"legs", "arms"})
     if unknown:
-        raise RigError(f"{where}: unknown table {unknown[0]!r}; a rig map has [legs] only")
+        raise RigError(f"{where}: unknown table {unknown[0]!r}; a rig map has [legs] and, for a biped, [arms]")
+    chains = _mapped_chains(model, table, "legs", 3, "from the hip down to the foot", where)
+    if len(chains) % 2 or any(a.side != "L" or b.side != "R" for a, b in zip(chains[::2], chains[1::2])):
+        raise RigError(f"{where}: [legs] lists legs in pairs, left then right (LF, RF, LH, RH), front pair first")
+    if len(chains) // 2 not in (1, 2):
+        raise RigError(f"{where}: {len(chains)} legs; a biped (2) or a quadruped (4) is driven")
+    pairs = tuple((chains[k], chains[k + 1]) for k in range(0, len(chains), 2))
+    arms: tuple[LegChain, ...] = ()
+    if "arms" in mapping:
+        if not isinstance(mapping["arms"], dict) or len(pairs) != 1:
+            raise RigError(f"{where}: [arms] is for a biped: L and R, each [\"upper arm\", \"forearm\", \"wrist\"]")
+        arms = tuple(_mapped_chains(model, mapping["arms"], "arms", 3, "upper arm, forearm and wrist", where, exact=True))
+        if [a.side for a in arms] != ["L", "R"]:
+            raise RigError(f"{where}: [arms] lists the left arm (L) then the right (R)")
+    return ModelLegs(pairs=pairs, arms_as_legs=False, arms=arms)
+
+
+def _mapped_chains(model: RiggedModel, table: dict, kind: str, least: int, order: str, where: str,
+                   exact: bool = False) -> list[LegChain]:
+    """The chains a map's table names (key: side first, L or R; value: joint names, each
+    under the one before), in the table's order. Every mistake is one line."""
     index = {name: j for j, name in enumerate(model.names)}
     chains: list[LegChain] = []
     for key, names in table.items():
         side = str(key)[:1].upper()
         if side not in ("L", "R"):
-            raise RigError(f"{where}: legs.{key}: a leg's key starts with L or R (its side), e.g. LF, RF, LH, RH")
-        if not isinstance(names, list) or len(names) < 3 or not all(isinstance(n, str) for n in names):
-            raise RigError(f"{where}: legs.{key}: give three or more joint names, from the hip down to the foot")
+            raise RigError(f"{where}: {kind}.{key}: a key starts with L or R (its side), e.g. LF, RF, LH, RH")
+        count_ok = isinstance(names, list) and (len(names) == least if exact else len(names) >= least)
+        if not count_ok or not all(isinstance(n, str) for n in names):
+            many = f"{least}" if exact else f"{least} or more"
+            raise RigError(f"{where}: {kind}.{key}: give {many} joint names: {order}")
         missing = [n for n in names if n not in index]
         if missing:
             shown = ", ".join(model.names[:30]) + (" ..." if len(model.names) > 30 else "")
-            raise RigError(f"{where}: legs.{key} names {missing[0]!r}, which {model.path.name} has not; its joints: "
+            raise RigError(f"{where}: {kind}.{key} names {missing[0]!r}, which {model.path.name} has not; its joints: "
                            f"{shown}")
         joints = tuple(index[n] for n in names)
         for upper, lower in zip(joints, joints[1:]):
@@ -286,12 +308,7 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
             while j >= 0 and j != upper:
                 j = int(model.parents[j])
             if j != upper:
-                raise RigError(f"{where}: legs.{key}: {model.names[lower]!r} does not hang below "
-                               f"{model.names[upper]!r}; list each leg's joints from the top down")
+                raise RigError(f"{where}: {kind}.{key}: {model.names[lower]!r} does not hang below "
+                               f"{model.names[upper]!r}; list each chain's joints from the top down")
         chains.append(LegChain(side, joints))
-    if len(chains) % 2 or any(a.side != "L" or b.side != "R" for a, b in zip(chains[::2], chains[1::2])):
-        raise RigError(f"{where}: [legs] lists legs in pairs, left then right (LF, RF, LH, RH), front pair first")
-    if len(chains) // 2 not in (1, 2):
-        raise RigError(f"{where}: {len(chains)} legs; a biped (2) or a quadruped (4) is driven")
-    pairs = tuple((chains[k], chains[k + 1]) for k in range(0, len(chains), 2))
-    return ModelLegs(pairs=pairs, arms_as_legs=False)
+    return chains
