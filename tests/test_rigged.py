@@ -523,3 +523,22 @@ def test_a_scene_file_walks_rigged_models_beside_each_other(tmp_path) -> None:
     image = np.asarray(Image.open(tmp_path / "models.png").convert("RGB")).astype(int)
     orange = (image[..., 0] > 150) & (image[..., 2] < 0.5 * image[..., 0]) & (image[..., 1] < 0.75 * image[..., 0])
     assert orange.sum() > 200  # the fox's coat
+
+
+def test_a_leg_s_type_comes_from_its_foot() -> None:
+    """A heel on the ground makes a plantigrade leg (the man's ankle moves the vertices of
+    his heel, down to the sole); an ankle high above the sole a digitigrade one (the fox's
+    hock, 6.6 cm up)."""
+    from app.rigged.creature import creature_from_model, foot_kind
+    from app.rigged.loaded import load_model
+    from app.spec import leg_type
+
+    kinds = {}
+    for name in ("Fox.glb", "CesiumMan.glb"):
+        loaded = load_model(str(MODELS / name))
+        chain = loaded.legs.chains[-1]
+        length = float(np.linalg.norm(loaded.bind[chain.joints[3], :3, 3] - loaded.bind[chain.joints[2], :3, 3]))
+        kinds[name] = foot_kind(loaded.model, loaded.mesh, chain.joints[2], float(loaded.mesh[:, 1].min()), length)
+        spec, _ = creature_from_model(loaded.model, loaded.legs)
+        assert leg_type(spec.legs[-1].ankle_lift) == kinds[name]
+    assert kinds == {"Fox.glb": "digitigrade", "CesiumMan.glb": "plantigrade"}

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..spec import CreatureSpec, creature_from_dict, load_creature
+from ..spec import LEG_TYPE_SHAPES, CreatureSpec, LegType, creature_from_dict, leg_type, load_creature
 from .gltf import RigError, RiggedModel
 from .legs import ARM_WORDS, ModelLegs, chain_lengths, limbs, model_scale
 from .loaded import load_model
@@ -53,6 +53,14 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
             if toe > 0.2 * metatarsus:
                 table["toe"] = round(toe, 4)
                 own_toes.add(id(table))
+        if len(bones) >= 3:  # the leg's type from its foot: a heel on the ground is plantigrade
+            kind = foot_kind(model, mesh, left.joints[2], sole, metatarsus)
+            if (kind == "plantigrade") != (leg_type(float(table["ankle_lift"])) == "plantigrade"):
+                lift, toe_ratio = LEG_TYPE_SHAPES[kind]
+                table["ankle_lift"] = lift
+                if id(table) not in own_toes:
+                    table["toe"] = round(toe_ratio * metatarsus, 4)
+                    own_toes.add(id(table))
         # The legs hang from the model's own hip (or shoulder) joints.
         table["hip_offset"] = round(0.5 * float(np.linalg.norm(points[left.joints[0]] - points[right.joints[0]])), 4)
     ratio = float(np.mean(ratios))
@@ -93,13 +101,31 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
     return creature_from_dict(doc, source=str(model.path)), scale
 
 
+def _owned(model: RiggedModel, mesh: np.ndarray, joint: int) -> np.ndarray:
+    """Which vertices (V,) ``joint`` moves most (its heaviest weight; none when the mesh
+    and weights do not match)."""
+    if len(model.joints) != len(mesh) or not len(mesh):
+        return np.zeros(len(mesh), dtype=bool)
+    return model.joints[np.arange(len(mesh)), np.argmax(model.weights, axis=1)] == joint
+
+
+HEEL_DOWN = 0.15  # of the metatarsus: an ankle whose own vertices come this near the sole stands on its heel
+
+
+def foot_kind(model: RiggedModel, mesh: np.ndarray, ankle: int, sole: float, metatarsus: float) -> LegType:
+    """Whether a leg stands on its heel (plantigrade: the vertices its ankle moves most
+    reach down to the sole, as a person's heel) or on its toes (digitigrade: they stay
+    well above it, as a fox's hock)."""
+    own = _owned(model, mesh, ankle)
+    if not np.any(own):
+        return "digitigrade"
+    return "plantigrade" if float(mesh[own, 1].min()) - sole <= HEEL_DOWN * metatarsus else "digitigrade"
+
+
 def _toes_ahead(model: RiggedModel, mesh: np.ndarray, points: np.ndarray, joint: int) -> float:
     """How far (m) the vertices that follow ``joint`` most reach ahead of it (+z) in the
     rest pose: the length of the toes a ball joint carries (0 when none follow it)."""
-    if len(model.joints) != len(mesh):
-        return 0.0
-    main = model.joints[np.arange(len(mesh)), np.argmax(model.weights, axis=1)]  # each vertex's heaviest joint
-    own = main == joint
+    own = _owned(model, mesh, joint)
     if not np.any(own):
         return 0.0
     return max(float(mesh[own, 2].max() - points[joint, 2]), 0.0)
