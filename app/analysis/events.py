@@ -28,10 +28,9 @@ from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.ndimage import percentile_filter
-from scipy.signal import find_peaks, savgol_filter
 
 from ..errors import GaitlabError
+from .filters import find_peaks, running_percentile, savgol
 from .tracks import FootTracks
 
 EventKind = Literal["lift", "liftoff", "strike", "landing", "stance"]
@@ -327,25 +326,25 @@ def _signals(tracks: FootTracks, frames: int) -> _Signals:
     heights = {"heel": tracks.heel[..., 1], "toe": tracks.toe[..., 1]}
     ground_window = _odd(int(min(1.5 * frames, tracks.frame_count)))
     rel = tracks.forward_velocity(tracks.heel) - tracks.forward_velocity(tracks.body[:, None, :])[:, :1]
-    rel = savgol_filter(rel, smooth, 2, axis=0, mode="interp")
+    rel = savgol(rel, smooth, 2)
 
     def horizontal_speed(points: NDArray) -> NDArray:
         velocity = np.gradient(points, tracks.times, axis=0)
-        return savgol_filter(np.hypot(velocity[..., 0], velocity[..., 2]), smooth, 2, axis=0, mode="interp")
+        return savgol(np.hypot(velocity[..., 0], velocity[..., 2]), smooth, 2)
 
     speeds = {"heel": horizontal_speed(tracks.heel), "toe": horizontal_speed(tracks.toe)}
     # In exact motion rising counts as moving too (a heel turning up about the ball barely
     # moves forward); in recorded motion vertical jitter would hide the ground.
-    rising = {part: np.abs(savgol_filter(np.gradient(p[..., 1], tracks.times, axis=0), smooth, 2, axis=0,
-                                         mode="interp")) for part, p in (("heel", tracks.heel), ("toe", tracks.toe))}
+    rising = {part: np.abs(savgol(np.gradient(p[..., 1], tracks.times, axis=0), smooth, 2))
+              for part, p in (("heel", tracks.heel), ("toe", tracks.toe))}
     body_velocity = np.gradient(tracks.body, tracks.times, axis=0)
     static_speed = max(STATIC_SPEED * float(np.median(np.hypot(body_velocity[:, 0], body_velocity[:, 2]))), 0.02)
     above, slope, bend = {}, {}, {}
     for part, h in heights.items():
-        hs = savgol_filter(h, smooth, 3, axis=0, mode="interp")
-        above[part] = hs - percentile_filter(hs, 10, size=(ground_window, 1), mode="nearest")
-        slope[part] = savgol_filter(h, smooth, 3, deriv=1, axis=0, mode="interp")
-        bend[part] = savgol_filter(h, smooth, 3, deriv=2, axis=0, mode="interp")
+        hs = savgol(h, smooth, 3)
+        above[part] = hs - running_percentile(hs, 10, ground_window)
+        slope[part] = savgol(h, smooth, 3, deriv=1)
+        bend[part] = savgol(h, smooth, 3, deriv=2)
     return _Signals(smooth, above, slope, bend, speeds, rising, rel, static_speed)
 
 
@@ -404,7 +403,7 @@ def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> Foot
     a_heel, a_toe = curves["heel"][0], curves["toe"][0]
     speed_n = foot_speed / max(float(np.percentile(foot_speed, 95)), 1e-9)
     score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
-    score = savgol_filter(score, smooth, 2, mode="interp")
+    score = savgol(score, smooth, 2)
     low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
     # Candidate stance frames at least a third of a stride apart (cadence may change
     # over the clip); two minima in one long stance are merged below.

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.signal import find_peaks
 
 from .angles import SAMPLES, cycle_curves, leg_angles, strikes_from_contact
+from .filters import find_peaks
 
 G = 9.81
 

@@ -73,7 +73,7 @@ def foremost_strikes(ankle: NDArray[np.float64], root: NDArray[np.float64], forw
     but not for the foremost point). Falls back to ``events`` with fewer than three."""
     if len(events) < 3:
         return events
-    from scipy.signal import find_peaks
+    from .filters import find_peaks
 
     unit = forward / np.maximum(np.linalg.norm(forward, axis=-1, keepdims=True), 1e-12)
     ahead = np.sum((ankle - root) * unit, axis=-1)

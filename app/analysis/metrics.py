@@ -6,13 +6,16 @@ from __future__ import annotations
 import functools
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..gaits import GAIT_PRESETS, TETRAPOD_FEET, foot_names, phases_from_offsets, preset_phases
-from ..kinematics.motion import Motion
 from .events import AnalysisError, FootEvents, clip_period, detect_events
 from .tracks import FootTracks
+
+if TYPE_CHECKING:
+    from ..kinematics.motion import Motion
 
 # Biped gaits, for two-footed clips: left/right phase and a typical duty factor.
 BIPED_GAITS: dict[str, tuple[float, float]] = {"walk": (0.5, 0.62), "run": (0.5, 0.35), "hop": (0.0, 0.4)}

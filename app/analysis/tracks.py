@@ -9,11 +9,14 @@ and the body's position for the direction and speed of travel.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from ..kinematics.motion import Motion
+if TYPE_CHECKING:  # (the kinematics, and scipy.interpolate with them, load only when a motion is analysed)
+    from ..kinematics.motion import Motion
+
 
 
 @dataclass(frozen=True)
@@ -50,11 +53,11 @@ class FootTracks:
     def travel_direction(self, smoothing_seconds: float = 0.5) -> NDArray[np.float64]:
         """Unit horizontal direction of travel per frame (T, 3), from the body's velocity
         averaged over ``smoothing_seconds``; +Z where the body hardly moves."""
-        from scipy.ndimage import uniform_filter1d
+        from .filters import running_mean
 
         velocity = np.gradient(self.body, self.times, axis=0) * np.array([1.0, 0.0, 1.0])
         window = max(1, int(round(smoothing_seconds * self.fps)))
-        smooth = uniform_filter1d(velocity, size=window, axis=0, mode="nearest")
+        smooth = running_mean(velocity, window)
         norm = np.linalg.norm(smooth, axis=1, keepdims=True)
         fallback = np.array([0.0, 0.0, 1.0])
         if float(np.median(norm)) < 1e-3:  # in place: use the overall heading of the feet's swings
