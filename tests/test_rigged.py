@@ -252,7 +252,7 @@ def test_render_refuses_a_model_it_cannot_drive_in_one_line(tmp_path) -> None:
     assert result.returncode == 2 and "no skinned mesh" in result.stderr and len(result.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "box.gif").exists()
     # A model's bones and body size are its own: --set on them is refused; its gait is not.
-    for key in ("legs.hind.femur=0.3", "body.length=0.8"):
+    for key in ("legs.hind.femur=0.3", "body.length=0.8", "legs.fore.hip_offset=0.1"):
         result = gaitlab("render", MODELS / "Fox.glb", "--set", key, "-o", tmp_path / "fox.png", "--size", "160x120")
         assert result.returncode == 2 and "its own" in result.stderr and len(result.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "fox.png").exists()
@@ -496,6 +496,9 @@ def test_the_viewer_opens_a_model_from_its_file_field_and_greys_its_bones(tmp_pa
     assert not state.bones_from_model
     assert state.load(str(MODELS / "Fox.glb"))
     assert state.spec.name == "Fox" and state.bones_from_model and state.error is None
+    toe = state.spec.leg("hind").toe
+    assert state.set_leg_type("hind", "plantigrade")  # the ankle lift changes; the model's toes stay
+    assert state.spec.leg("hind").toe == toe and state.spec.leg("hind").ankle_lift < 20
     assert state.recent and str(MODELS / "Fox.glb") in state.recent[0]
     broken = tmp_path / "broken.glb"
     broken.write_bytes(b"not a glTF at all")
@@ -519,6 +522,11 @@ def test_a_scene_file_walks_rigged_models_beside_each_other(tmp_path) -> None:
     result = gaitlab("render", tmp_path / "models.toml", "--time", "1", "-o", tmp_path / "models.png",
                      "--size", "320x240", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
+    # A scene's own settings cannot stretch a model's bones either.
+    (tmp_path / "stretched.toml").write_text('name = "stretched"\n[[creatures]]\ncreature = "Fox.glb"\n'
+                                             '[creatures.set]\n"legs.hind.femur" = 0.3\n')
+    bad = gaitlab("render", tmp_path / "stretched.toml", "-o", tmp_path / "bad.png", cwd=tmp_path)
+    assert bad.returncode == 2 and "its own" in bad.stderr and len(bad.stderr.strip().splitlines()) == 1
     assert "Fox" in result.stdout and "CesiumMan" in result.stdout
     image = np.asarray(Image.open(tmp_path / "models.png").convert("RGB")).astype(int)
     orange = (image[..., 0] > 150) & (image[..., 2] < 0.5 * image[..., 0]) & (image[..., 1] < 0.75 * image[..., 0])
@@ -538,7 +546,17 @@ def test_a_leg_s_type_comes_from_its_foot() -> None:
         loaded = load_model(str(MODELS / name))
         chain = loaded.legs.chains[-1]
         length = float(np.linalg.norm(loaded.bind[chain.joints[3], :3, 3] - loaded.bind[chain.joints[2], :3, 3]))
-        kinds[name] = foot_kind(loaded.model, loaded.mesh, chain.joints[2], float(loaded.mesh[:, 1].min()), length)
+        kinds[name] = foot_kind(loaded.model, loaded.mesh, loaded.bind[:, :3, 3], chain.joints[2],
+                                float(loaded.mesh[:, 1].min()), length)
         spec, _ = creature_from_model(loaded.model, loaded.legs)
         assert leg_type(spec.legs[-1].ankle_lift) == kinds[name]
     assert kinds == {"Fox.glb": "digitigrade", "CesiumMan.glb": "plantigrade"}
+    # A hock that owns the whole metatarsus down to the pads is still digitigrade: the pads
+    # lie ahead of it, and a heel behind.
+    fox = load_model(str(MODELS / "Fox.glb"))
+    hock, paw = fox.legs.chains[-1].joints[2:4]
+    joints = fox.model.joints.copy()
+    joints[joints == paw] = hock
+    moved = dataclasses.replace(fox.model, joints=joints)
+    length = float(np.linalg.norm(fox.bind[paw, :3, 3] - fox.bind[hock, :3, 3]))
+    assert foot_kind(moved, fox.mesh, fox.bind[:, :3, 3], hock, float(fox.mesh[:, 1].min()), length) == "digitigrade"

@@ -13,10 +13,6 @@ from ..errors import GaitlabError, did_you_mean
 from ..gaits import GAIT_PRESETS
 from ..styles import WALK_STYLES
 
-# A rigged model's own: bone lengths (legs.PAIR.KEY) and body size (body.KEY), which its
-# skeleton cannot stretch to follow.
-MODEL_OWN_KEYS = ("femur", "tibia", "metatarsus", "toe", "length", "width")
-
 if TYPE_CHECKING:
     from ..cast import Cast
     from ..spec import CreatureSpec
@@ -52,6 +48,16 @@ def creature_changes(args: argparse.Namespace) -> dict[str, object]:
     return overrides
 
 
+def _not_the_model_s(name: str, key: str, given: str) -> None:
+    """Refuse a change to what a rigged model's creature takes from the model (its bones'
+    lengths, hip spacing, body size, arms): its skeleton cannot follow."""
+    from ..rigged import is_model_path, model_owns
+
+    if is_model_path(name) and model_owns(key):
+        raise GaitlabError(f"{given}: {Path(name).name} is a rigged model, and its bones' lengths and body size are "
+                           "its own; change its gait, speed, path or ground instead")
+
+
 def load_creature_args(args: argparse.Namespace, creature: str | None = None,
                        base_overrides: dict[str, object] | None = None, origin: str = "--set") -> CreatureSpec:
     """The creature named on the command line (or in a scene) with the scene's settings,
@@ -70,13 +76,13 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
         use_rig_map(name, rig_map or "")  # this command's map, or none (names decide)
     spec = model_creature(name) if is_model_path(name) else load_creature(name)
     if base_overrides:
+        for key in base_overrides:
+            _not_the_model_s(name, key, f"{origin} {key}")
         spec = spec.with_overrides(base_overrides, origin=origin)
     overrides = creature_changes(args)
     for text in args.overrides:
         key, value = parse_override(text, spec)
-        if is_model_path(name) and key.rsplit(".", 1)[-1] in MODEL_OWN_KEYS and key.split(".", 1)[0] in ("legs", "body"):
-            raise GaitlabError(f"--set {text}: {Path(name).name} is a rigged model, and its bones' lengths and body "
-                               "size are its own; change its gait, speed, path or ground instead")
+        _not_the_model_s(name, key, f"--set {text}")
         overrides[key] = value
     spec = spec.with_overrides(overrides) if overrides else spec
     style = args.style

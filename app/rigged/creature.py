@@ -54,7 +54,7 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
                 table["toe"] = round(toe, 4)
                 own_toes.add(id(table))
         if len(bones) >= 3:  # the leg's type from its foot: a heel on the ground is plantigrade
-            kind = foot_kind(model, mesh, left.joints[2], sole, metatarsus)
+            kind = foot_kind(model, mesh, points, left.joints[2], sole, metatarsus)
             if (kind == "plantigrade") != (leg_type(float(table["ankle_lift"])) == "plantigrade"):
                 lift, toe_ratio = LEG_TYPE_SHAPES[kind]
                 table["ankle_lift"] = lift
@@ -112,14 +112,18 @@ def _owned(model: RiggedModel, mesh: np.ndarray, joint: int) -> np.ndarray:
 HEEL_DOWN = 0.15  # of the metatarsus: an ankle whose own vertices come this near the sole stands on its heel
 
 
-def foot_kind(model: RiggedModel, mesh: np.ndarray, ankle: int, sole: float, metatarsus: float) -> LegType:
+def foot_kind(model: RiggedModel, mesh: np.ndarray, points: np.ndarray, ankle: int, sole: float,
+              metatarsus: float) -> LegType:
     """Whether a leg stands on its heel (plantigrade: the vertices its ankle moves most
-    reach down to the sole, as a person's heel) or on its toes (digitigrade: they stay
-    well above it, as a fox's hock)."""
-    own = _owned(model, mesh, ankle)
-    if not np.any(own):
+    reach down to the sole behind it, as a person's heel) or on its toes (digitigrade:
+    they stay well above it, as a fox's hock). ``mesh`` (V, 3) and ``points`` (J, 3) in
+    the rest pose, in the same units as ``sole`` and ``metatarsus``."""
+    # Only the vertices behind the ankle count: a digitigrade ankle can own the whole
+    # metatarsus down to the pads, but they lie ahead of it.
+    behind = _owned(model, mesh, ankle) & (mesh[:, 2] <= points[ankle, 2])
+    if not np.any(behind):
         return "digitigrade"
-    return "plantigrade" if float(mesh[own, 1].min()) - sole <= HEEL_DOWN * metatarsus else "digitigrade"
+    return "plantigrade" if float(mesh[behind, 1].min()) - sole <= HEEL_DOWN * metatarsus else "digitigrade"
 
 
 def _toes_ahead(model: RiggedModel, mesh: np.ndarray, points: np.ndarray, joint: int) -> float:

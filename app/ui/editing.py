@@ -247,13 +247,17 @@ class EditingMixin(StateBase):
     def set_leg_type(self, pair: str, kind: LegType) -> bool:
         """Make a leg pair plantigrade, digitigrade or unguligrade: the loaded creature's
         own ankle lift and toe when it is of that type (the dog's 72 degrees, not a typical
-        62), otherwise typical ones (both stay editable)."""
+        62), otherwise typical ones (both stay editable; a rigged model keeps its toes)."""
         own = self.base.leg(pair) if pair in {leg.name for leg in self.base.legs} else None
         if own is not None and leg_type(own.ankle_lift) == kind:
-            return self.set_many({f"legs.{pair}.ankle_lift": own.ankle_lift, f"legs.{pair}.toe": own.toe})
-        lift, toe_ratio = LEG_TYPE_SHAPES[kind]
-        meta = self.spec.leg(pair).metatarsus
-        return self.set_many({f"legs.{pair}.ankle_lift": lift, f"legs.{pair}.toe": round(meta * toe_ratio, 4)})
+            change = {f"legs.{pair}.ankle_lift": own.ankle_lift, f"legs.{pair}.toe": own.toe}
+        else:
+            lift, toe_ratio = LEG_TYPE_SHAPES[kind]
+            meta = self.spec.leg(pair).metatarsus
+            change = {f"legs.{pair}.ankle_lift": lift, f"legs.{pair}.toe": round(meta * toe_ratio, 4)}
+        if self.bones_from_model:  # a rigged model's toes are its own: only the ankle lift changes
+            change.pop(f"legs.{pair}.toe")
+        return self.set_many(change)
 
     @property
     def bones_from_model(self) -> bool:
