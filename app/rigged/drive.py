@@ -236,8 +236,8 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
             # The creature's arm from its shoulder, turned a little out from the side (the
             # model's chest is as wide as its shoulders: arms hung straight would pass into it).
             out = rotation_about(forward_now, ARM_OUT if chain.side == "L" else -ARM_OUT)  # (T, 3, 3)
-            reach = np.einsum("tij,tkj->tki", out, arms[:, a, [0, 1, 2, 3, 3]] - arms[:, a, :1])
-            target = shoulder[:, None, :] + reach  # (T, 5, 3): shoulder, elbow, wrist, hand, hand
+            arm = np.einsum("tij,tkj->tki", out, arms[:, a, [0, 1, 2, 3, 3]] - arms[:, a, :1])
+            target = shoulder[:, None, :] + arm  # (T, 5, 3): shoulder, elbow, wrist, hand, hand
             _solve_chain(world, rest, chain.joints, target[:, 2], [], None, target, forward_now, shoulder,
                          axis_rest=FRONT, steady=False)
     for j in order:  # what hangs below the legs, carried
