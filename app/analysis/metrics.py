@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..gaits import GAIT_PRESETS, TETRAPOD_FEET, foot_names, phases_from_offsets, preset_phases
-from .events import AnalysisError, FootEvents, clip_period, detect_events
+from .events import AnalysisError, FootEvents, Step, clip_period, detect_events
 from .tracks import FootTracks
 
 if TYPE_CHECKING:
@@ -240,16 +240,18 @@ def gait_distance(phases: dict[str, float], duty: float) -> tuple[str, float]:
 
 
 def _step_phases(times: np.ndarray, strikes: dict[str, np.ndarray], ref: str) -> dict[str, list[float]]:
-    """Per foot, the phase of each touchdown within the reference foot's cycle around it."""
+    """Per foot, the phase of each touchdown within the reference foot's cycle around it;
+    a touchdown before the reference's first or after its last (a short clip's edges)
+    within the nearest of its cycles."""
     ref_strikes = strikes[ref]
     out: dict[str, list[float]] = {}
+    if len(ref_strikes) < 2:
+        return {name: [] for name in strikes}
     for name, ts in strikes.items():
         values = []
         for t in ts:
-            i = np.searchsorted(ref_strikes, t, side="right") - 1
-            if i < 0 or i + 1 >= len(ref_strikes):
-                continue
-            values.append((t - ref_strikes[i]) / (ref_strikes[i + 1] - ref_strikes[i]))
+            j = min(max(int(np.searchsorted(ref_strikes, t, side="right")) - 1, 0), len(ref_strikes) - 2)
+            values.append(float((t - ref_strikes[j]) / (ref_strikes[j + 1] - ref_strikes[j])) % 1.0)
         out[name] = values
     return out
 
@@ -269,13 +271,23 @@ def skating_ratio(fe: FootEvents, point: np.ndarray, times: np.ndarray, scale: f
     return float(both.mean())
 
 
+def _landed(fe: FootEvents, frame_count: int) -> list[Step]:
+    """The steps of ``fe`` whose touchdown was seen: the complete ones and a last one that
+    lands inside the clip and is still down at its end."""
+    return [s for i, s in enumerate(fe.steps)
+            if s.complete or (i == len(fe.steps) - 1 and s.strike > 0 and s.liftoff >= frame_count - 1)]
+
+
 def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> GaitReport:
     """Events and gait numbers for foot trajectories. Raises :class:`AnalysisError`."""
     period = clip_period(tracks)
     events = detect_events(tracks, period)
     times = tracks.times
     ref = reference_foot(tracks.names)
-    strikes = {fe.name: np.array([times[s.strike] for s in fe.steps if s.complete]) for fe in events}
+    # Touchdowns seen: every complete step's, and that of a last contact still down when
+    # the clip ends (it was seen landing; only its liftoff is unknown).
+    landed = {fe.name: _landed(fe, tracks.frame_count) for fe in events}
+    strikes = {name: np.array([times[s.strike] for s in steps]) for name, steps in landed.items()}
     notes: list[str] = []
     if tracks.compromised:
         notes.append(f"{tracks.compromised} stance(s) stood on compromised footholds: uneven ground with no "
@@ -302,8 +314,9 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
     for f, fe in enumerate(events):
         complete = [s for s in fe.steps if s.complete]
         duties = []
-        for a, b in zip(complete, complete[1:]):
-            duties.append((times[a.liftoff] - times[a.strike]) / max(times[b.strike] - times[a.strike], 1e-9))
+        for a, b in zip(landed[fe.name], landed[fe.name][1:]):
+            if a.complete:
+                duties.append((times[a.liftoff] - times[a.strike]) / max(times[b.strike] - times[a.strike], 1e-9))
         if single:
             duties = [(times[a.liftoff] - times[a.strike]) / cycle for a in complete]
         heel = tracks.heel[:, f]

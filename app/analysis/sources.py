@@ -7,7 +7,7 @@ import csv
 import io
 import os
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Literal
 
 import numpy as np
@@ -281,6 +281,8 @@ def tracks_from_bvh(path: str, feet: dict[str, tuple[str, str | None]] | None = 
                 break
     times = np.arange(clip.frames.shape[0]) * clip.frame_time
     tracks, note = _finish(path, times, names, heel, toe, body, units, up, hands)
+    if mapping.rig == "Gaitlab export":  # Gaitlab's own motion, noise-free: read as exactly as it was made
+        tracks = replace(tracks, exact=True)
     return tracks, f"{mapping.rig}: " + ", ".join(f"{n}={a}:{t}" for n, (a, t) in mapping.feet.items()) + (
         f"; {note}" if note else "")
 

@@ -2,10 +2,13 @@
 
     python tests/data/corpus/make_excerpts.py SOURCE_DIR
 
-SOURCE_DIR holds the original takes (Tencent-RoboticsX/lifelike-agility-and-play,
-data/raw_mocap_data/*.bvh at commit cc9eaa9). Each excerpt keeps the take's hierarchy
-and the frames [first, last) of its motion, every ``step``-th (120 fps -> 60 fps with
-step 2), numbers rounded to three decimals (centimetres and degrees: 0.01 mm, 0.001 deg).
+SOURCE_DIR holds the original takes: Tencent-RoboticsX/lifelike-agility-and-play,
+data/raw_mocap_data/*.bvh at commit cc9eaa9 (dog), and the CMU clips of
+shared/reference/motion (human). Each excerpt keeps the frames [first, last) of its
+take at the take's own rate, and of the take's hierarchy only the joints that lead to
+the feet (root, spine, legs, paws and what hangs below the paws: ears, tail, armour and
+fingers are dropped; nothing a kept joint's position depends on is), numbers rounded to
+two decimals (the takes' units are centimetres or CMU units and degrees).
 """
 
 from __future__ import annotations
@@ -13,32 +16,85 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-# name: (source take, first frame, last frame, step)
-EXCERPTS = {
-    "dog_walk_tencent_walkrun007_f120-300": ("dog_quad_walkrun_007", 120, 300, 2),
-    "dog_trot_tencent_walkrun007_f240-480": ("dog_quad_walkrun_007", 240, 480, 2),
-    "dog_gallop_tencent_walkrun007_f600-800": ("dog_quad_walkrun_007", 600, 800, 2),
-    "dog_trot_tencent_walkrun006_f480-600": ("dog_quad_walkrun_006", 480, 600, 2),
-    "dog_gallop_tencent_walkrun006_f720-840": ("dog_quad_walkrun_006", 720, 840, 2),
-    "dog_walk_tencent_walkrun001_f120-360": ("dog_quad_walkrun_001", 120, 360, 2),
-    "dog_gallop_tencent_walkrun001_f600-840": ("dog_quad_walkrun_001", 600, 840, 2),
-    "dog_gallop_tencent_walkrun005_f600-720": ("dog_quad_walkrun_005", 600, 720, 2),
-    "dog_backwards_tencent_back001_f300-700": ("dog_back_001", 300, 700, 2),
+sys.path.insert(0, str(Path(__file__).resolve().parents[3]))
+
+from app.analysis.bvh import BvhClip, read_bvh
+
+DOG_FEET = ("b__LeftFinger", "b_RightFinger", "b_LeftToe", "b_RightToe")
+HUMAN_FEET = ("LeftToeBase", "RightToeBase", "LeftHand", "RightHand")
+
+# name: (source take, first frame, last frame, the joints to keep with what leads to them)
+EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
+    "dog_walk_tencent_walkrun001_f200-560": ("dog_quad_walkrun_001", 200, 560, DOG_FEET),
+    "dog_walk_tencent_walkrun005_f200-560": ("dog_quad_walkrun_005", 200, 560, DOG_FEET),
+    "dog_backwards_tencent_back001_f330-730": ("dog_back_001", 330, 730, DOG_FEET),
+    "dog_trot_tencent_walkrun006_f480-660": ("dog_quad_walkrun_006", 480, 660, DOG_FEET),
+    "dog_trot_tencent_walkrun007_f440-580": ("dog_quad_walkrun_007", 440, 580, DOG_FEET),
+    "dog_walk_tencent_walkrun006_f360-520": ("dog_quad_walkrun_006", 360, 520, DOG_FEET),
+    "dog_gallop_tencent_walkrun005_f590-710": ("dog_quad_walkrun_005", 590, 710, DOG_FEET),
+    "dog_gallop_tencent_walkrun006_f690-810": ("dog_quad_walkrun_006", 690, 810, DOG_FEET),
+    "dog_gallop_tencent_walkrun007_f560-680": ("dog_quad_walkrun_007", 560, 680, DOG_FEET),
+    "human_walk_cmu_12_01_f1-524": ("human_walk_cmu_12_01", 1, 524, HUMAN_FEET),
+    "human_run_cmu_09_01_f1-149": ("human_run_cmu_09_01", 1, 149, HUMAN_FEET),
 }
 
 
-def excerpt(source: Path, first: int, last: int, step: int) -> str:
-    lines = source.read_text().splitlines()
-    motion = next(i for i, line in enumerate(lines) if line.strip() == "MOTION")
-    frame_time = float(lines[motion + 2].split(":")[1])
-    frames = lines[motion + 3:][first:last:step]
-    rounded = [" ".join(f"{float(v):.3f}" for v in line.split()) for line in frames]
-    head = lines[:motion + 1] + [f"Frames: {len(rounded)}", f"Frame Time: {frame_time * step:.6f}"]
-    return "\n".join(head + rounded) + "\n"
+def _kept(clip: BvhClip, wanted: tuple[str, ...]) -> list[int]:
+    """Indices of the joints ``wanted``, their ancestors and their descendants."""
+    roots = {clip.index(name) for name in wanted}
+    keep: set[int] = set()
+    for i in range(len(clip.joints)):
+        chain = [i] + _ancestors(clip, i)
+        if i in roots or roots & set(chain):  # a wanted joint or below one
+            keep.add(i)
+    for i in roots:
+        keep.update([i] + _ancestors(clip, i))
+    return sorted(keep)
+
+
+def _ancestors(clip: BvhClip, i: int) -> list[int]:
+    out = []
+    while clip.joints[i].parent >= 0:
+        i = clip.joints[i].parent
+        out.append(i)
+    return out
+
+
+def excerpt(source: Path, first: int, last: int, wanted: tuple[str, ...]) -> str:
+    clip = read_bvh(source)
+    keep = _kept(clip, wanted)
+    children: dict[int, list[int]] = {i: [] for i in keep}
+    for i in keep:
+        if clip.joints[i].parent >= 0:
+            children[clip.joints[i].parent].append(i)
+    lines: list[str] = ["HIERARCHY"]
+    columns: list[int] = []
+
+    def write(i: int, depth: int) -> None:
+        joint, pad = clip.joints[i], "  " * depth
+        if joint.end_site:
+            lines.extend([f"{pad}End Site", f"{pad}{{", f"{pad}  OFFSET " + " ".join(f"{v:.4f}" for v in joint.offset),
+                          f"{pad}}}"])
+            return
+        lines.extend([f"{pad}{'ROOT' if joint.parent < 0 else 'JOINT'} {joint.name}", f"{pad}{{",
+                      f"{pad}  OFFSET " + " ".join(f"{v:.4f}" for v in joint.offset),
+                      f"{pad}  CHANNELS {len(joint.channels)} " + " ".join(joint.channels)])
+        columns.extend(range(joint.first_channel, joint.first_channel + len(joint.channels)))
+        for c in children[i]:
+            write(c, depth + 1)
+        if not children[i]:  # a joint whose children were all dropped ends in a site at itself
+            lines.extend([f"{pad}  End Site", f"{pad}  {{", f"{pad}    OFFSET 0.0000 0.0000 0.0000", f"{pad}  }}"])
+        lines.append(f"{pad}}}")
+
+    write(keep[0], 0)
+    data = clip.frames[first:last][:, columns]
+    lines += ["MOTION", f"Frames: {len(data)}", f"Frame Time: {clip.frame_time:.7f}"]
+    lines += [" ".join(f"{v:.2f}" for v in row) for row in data]
+    return "\n".join(lines) + "\n"
 
 
 if __name__ == "__main__":
     source_dir, out = Path(sys.argv[1]), Path(__file__).parent
-    for name, (take, first, last, step) in EXCERPTS.items():
-        (out / f"{name}.bvh").write_text(excerpt(source_dir / f"{take}.bvh", first, last, step))
+    for name, (take, first, last, wanted) in EXCERPTS.items():
+        (out / f"{name}.bvh").write_text(excerpt(source_dir / f"{take}.bvh", first, last, wanted))
         print(name)
