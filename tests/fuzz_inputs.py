@@ -61,9 +61,10 @@ def _csv_seed() -> str:
     for ti in t:
         values = [f"{ti:.4f}"]
         for x, z, phase in ((-0.3, 0.1, 0.0), (-0.3, -0.1, 0.5), (0.3, 0.1, 0.5), (0.3, -0.1, 0.0)):
-            p = (2.0 * ti + phase) % 1.0
+            cycle, p = divmod(2.0 * ti + phase, 1.0)
             lift = max(0.0, np.sin(2 * np.pi * (p - 0.6) / 0.8)) * 0.06 if p > 0.6 else 0.0
-            values += [f"{x + 1.0 * ti:.4f}", f"{lift:.4f}", f"{z:.4f}"]
+            ahead = 0.5 * (cycle + max(0.0, p - 0.6) / 0.4)  # planted in stance, 0.5 m a stride in swing
+            values += [f"{x + ahead:.4f}", f"{lift:.4f}", f"{z:.4f}"]
         values += [f"{1.0 * ti:.4f}", "0.45", "0"]
         rows.append(",".join(values))
     return "\n".join(rows) + "\n"
