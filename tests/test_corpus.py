@@ -1,17 +1,24 @@
-"""Real clips against a small independent detector (issue 23's corpus).
+"""Real clips against small independent methods (issue 23's corpus).
 
-Each clip's cycle, duty factors and phases are computed twice: by ``analyze`` and by the
-method below, written here and sharing nothing with the analysis but the BVH reader. A
-foot is down where one of its two tracked points (the ankle or wrist, the tip of the
-toes or paw) is within 4 cm of that point's own lowest level within half a second, and one moves
-over the ground at under 0.35 of the body's speed over the last half second (blips under
-1/20 s closed or dropped; a rest pose that jumps into the clip skipped); the cycle is the median time between a foot's successive
-touchdowns; a foot's duty factor the median share of its strides spent down; its phase the
-circular mean of its touchdowns' delays after the reference foot's (the left hind foot,
-or a biped's left), in cycles; the gait's family from those numbers (:func:`gait_family`).
-Tolerances (issue 23): cycle 5 %, duty 0.05, phase 0.05, and the gait named within that
-family. Clips where the two still disagree
-are strict xfails that say by how much: the list the analysis has yet to close.
+Each clip's cycle, duty factors and phases are computed twice: by ``analyze`` and by a
+method written here that shares nothing with the analysis but the BVH reader.
+
+- ``contacts`` (:func:`independent`, any animal): a foot is down where one of its two
+  tracked points (the ankle or wrist, the tip of the toes or paw) is within 4 cm of that
+  point's own lowest level within half a second, and one moves over the ground at under
+  0.35 of the body's speed over the last half second (blips under 1/20 s closed or
+  dropped; a rest pose that jumps into the clip skipped).
+- ``zeni`` (:func:`zeni`, people walking): Zeni et al. 2008's kinematic events, heel
+  strike where the heel is farthest ahead of the pelvis, toe-off where the toe tip is
+  farthest behind it.
+
+From either, the cycle is the median time between a foot's successive touchdowns; a
+foot's duty factor the median share of its strides spent down; its phase the circular
+mean of its touchdowns' delays after the reference foot's (the left hind foot, or a
+biped's left), in cycles; the gait's family follows from those numbers
+(:func:`gait_family`). Tolerances (issue 23): cycle 5 %, duty 0.05, phase 0.05, and the
+gait named within that family. Clips where the two still disagree are strict xfails that
+say by how much: the list the analysis has yet to close.
 
 The clips and their licences: tests/data/corpus/README.md.
 """
@@ -50,28 +57,26 @@ DOG = Skeleton({"LF": ("b_LeftHand", "b__LeftFinger"), "RF": ("b_RightHand", "b_
                 "LH": ("b_LeftAnkle", "b_LeftToe"), "RH": ("b_RightAnkle", "b_RightToe")}, "b_Hips", 0.01, "LH")
 CMU = Skeleton({"L": ("LeftFoot", "LeftToeBase/End"), "R": ("RightFoot", "RightToeBase/End")}, "Hips", 0.056444, "L")
 
-# clip -> (skeleton, where the analysis still disagrees with the detector, or "")
-CLIPS: dict[str, tuple[Skeleton, str]] = {
-    "corpus/dog_walk_tencent_walkrun001_f200-560": (DOG, ""),
-    "corpus/dog_walk_tencent_walkrun005_f200-560": (DOG, ""),
-    "corpus/dog_walk_tencent_walkrun006_f360-520": (DOG, "speeding up from 1.1 to 1.9 m/s: phase RF 0.65 vs 0.71 "
-                                                         "(each touchdown in its own reference cycle vs one median cycle)"),
-    "dog_walk_tencent_walkrun005_f120-419": (DOG, ""),
-    "corpus/dog_backwards_tencent_back001_f330-730": (DOG, ""),
-    "corpus/dog_trot_tencent_walkrun006_f480-660": (DOG, ""),
-    "corpus/dog_trot_tencent_walkrun007_f440-580": (DOG, ""),
-    "dog_trot_tencent_walkrun001_f960-1156": (DOG, ""),
-    "corpus/dog_gallop_tencent_walkrun005_f590-710": (DOG, ""),
-    "corpus/dog_gallop_tencent_walkrun006_f690-810": (DOG, ""),
-    "corpus/dog_gallop_tencent_walkrun007_f560-680": (DOG, ""),
-    # People: the analysis still finds their steps by the seed's heel and toe curves, which
-    # put the strike ~0.15 of a cycle early and the liftoff at the heel rise; the contacts
-    # used for dogs agree with the detector on all four (with the toes' End Sites as toes),
-    # but move the fitted walker's knee curve 1.8 degrees past issue 23's 10 (next step).
-    "human_walk_cmu_12_01": (CMU, "duty R 0.61 vs 0.56; phase R 0.49 vs 0.43"),
-    "corpus/human_walk_cmu_12_01_f1-524": (CMU, "duty R 0.60 vs 0.54"),
-    "human_run_cmu_09_01": (CMU, "one stride: duty R 0.28 vs 0.34; phase R 0.60 vs 0.51"),
-    "corpus/human_run_cmu_09_01_f1-149": (CMU, "one stride: phase R 0.60 vs 0.51"),
+# clip -> (skeleton, the reference method, where the analysis still disagrees with it, or "")
+# Methods: "contacts" (:func:`independent`, any animal) or "zeni" (:func:`zeni`, people
+# walking: the standard kinematic events, which it was validated on; not for running).
+CLIPS: dict[str, tuple[Skeleton, str, str]] = {
+    "corpus/dog_walk_tencent_walkrun001_f200-560": (DOG, "contacts", ""),
+    "corpus/dog_walk_tencent_walkrun005_f200-560": (DOG, "contacts", ""),
+    "corpus/dog_walk_tencent_walkrun006_f360-520": (DOG, "contacts", "speeding up from 1.1 to 1.9 m/s: phase RF 0.65 "
+                                                    "vs 0.71 (each touchdown in its own reference cycle vs one median)"),
+    "dog_walk_tencent_walkrun005_f120-419": (DOG, "contacts", ""),
+    "corpus/dog_backwards_tencent_back001_f330-730": (DOG, "contacts", ""),
+    "corpus/dog_trot_tencent_walkrun006_f480-660": (DOG, "contacts", ""),
+    "corpus/dog_trot_tencent_walkrun007_f440-580": (DOG, "contacts", ""),
+    "dog_trot_tencent_walkrun001_f960-1156": (DOG, "contacts", ""),
+    "corpus/dog_gallop_tencent_walkrun005_f590-710": (DOG, "contacts", ""),
+    "corpus/dog_gallop_tencent_walkrun006_f690-810": (DOG, "contacts", ""),
+    "corpus/dog_gallop_tencent_walkrun007_f560-680": (DOG, "contacts", ""),
+    "human_walk_cmu_12_01": (CMU, "zeni", ""),
+    "corpus/human_walk_cmu_12_01_f1-524": (CMU, "zeni", ""),
+    "human_run_cmu_09_01": (CMU, "contacts", ""),
+    "corpus/human_run_cmu_09_01_f1-149": (CMU, "contacts", ""),
 }
 
 
@@ -111,15 +116,32 @@ def _contacts(down: np.ndarray, fps: float) -> np.ndarray:
     return down
 
 
-def independent(path: Path, skeleton: Skeleton = DOG) -> tuple[float, dict[str, float], dict[str, float]]:
-    """(cycle s, duty per foot, phase per foot) by height and speed thresholds."""
+def _points(path: Path, skeleton: Skeleton) -> tuple[np.ndarray, float, list[str]]:
+    """Every foot's ankle (or wrist), then every foot's toe tip, then the body: (T, 2F + 1,
+    3) metres, without a rest pose that jumps into the clip; the frame rate; the feet."""
     clip = read_bvh(str(path))
     names = list(skeleton.feet)
     joints = [skeleton.feet[n][0] for n in names] + [skeleton.feet[n][1] for n in names] + [skeleton.root]
     points = clip.positions(joints) * skeleton.metres
-    jumps = np.flatnonzero(np.abs(np.diff(points, axis=0)).max(axis=(1, 2)) > 0.2)  # a rest pose leading the clip
-    points = points[jumps[0] + 1:] if jumps.size and jumps[0] < 3 else points
-    fps = 1.0 / clip.frame_time
+    jumps = np.flatnonzero(np.abs(np.diff(points, axis=0)).max(axis=(1, 2)) > 0.2)
+    return (points[jumps[0] + 1:] if jumps.size and jumps[0] < 3 else points), 1.0 / clip.frame_time, names
+
+
+def _phases(starts: dict[str, np.ndarray], reference: str, period: float) -> dict[str, float]:
+    """Hildebrand's phase: the circular mean of each foot's touchdown delays after the
+    reference foot's last touchdown, in cycles of ``period`` frames."""
+    ref = starts[reference]
+    phase = {}
+    for name, times in starts.items():
+        lags = [(t - ref[ref <= t][-1]) / period for t in times if (ref <= t).any()]
+        angle = np.angle(np.mean(np.exp(2j * np.pi * np.asarray(lags)))) if lags else np.nan
+        phase[name] = float((angle / (2 * np.pi)) % 1.0)
+    return phase
+
+
+def independent(path: Path, skeleton: Skeleton = DOG) -> tuple[float, dict[str, float], dict[str, float]]:
+    """(cycle s, duty per foot, phase per foot) by height and speed thresholds."""
+    points, fps, names = _points(path, skeleton)
     feet, body = points[:, :-1].reshape(len(points), 2, len(names), 3), points[:, -1]
     k = int(round(fps / 120))  # (speeds are central differences; at 120 fps averaged over 3 frames)
 
@@ -150,13 +172,32 @@ def independent(path: Path, skeleton: Skeleton = DOG) -> tuple[float, dict[str, 
         duty[name] = float(np.median(strides)) if strides else float(down[:, i].mean())
     # Phase (Hildebrand): when a foot touches down after the reference foot, as a fraction
     # of the cycle; the circular mean over its touchdowns.
-    ref = starts[skeleton.reference]
-    phase = {}
-    for name in names:
-        lags = [(t - ref[ref <= t][-1]) / period for t in starts[name] if (ref <= t).any()]
-        angle = np.angle(np.mean(np.exp(2j * np.pi * np.asarray(lags)))) if lags else np.nan
-        phase[name] = float((angle / (2 * np.pi)) % 1.0)
-    return period / fps, duty, phase
+    return period / fps, duty, _phases(starts, skeleton.reference, period)
+
+
+def zeni(path: Path, skeleton: Skeleton = CMU) -> tuple[float, dict[str, float], dict[str, float]]:
+    """People's (cycle s, duty per foot, phase per foot) by Zeni et al. 2008 (Gait & Posture
+    27:710): heel strike where the heel (here the ankle) is farthest forward of the pelvis
+    along the walk, toe-off where the toe tip is farthest behind it."""
+    from scipy.signal import find_peaks
+
+    points, fps, names = _points(path, skeleton)
+    pelvis = points[:, -1, [0, 2]]
+    walk = pelvis[-1] - pelvis[0]
+    walk /= np.linalg.norm(walk)
+    ahead = (points[:, :-1, [0, 2]] - pelvis[:, None, :]) @ walk  # (T, 2F)
+    gap = int(0.3 * fps)  # events of one foot at least 0.3 s apart
+    strikes = {n: find_peaks(ahead[:, i], distance=gap, prominence=0.05)[0] for i, n in enumerate(names)}
+    offs = {n: find_peaks(-ahead[:, len(names) + i], distance=gap, prominence=0.05)[0] for i, n in enumerate(names)}
+    period = float(np.median(np.concatenate([np.diff(t) for t in strikes.values()])))
+    duty = {}
+    for n in names:
+        shares = [(offs[n][(offs[n] > a) & (offs[n] < b)][0] - a) / (b - a)
+                  for a, b in zip(strikes[n][:-1], strikes[n][1:]) if ((offs[n] > a) & (offs[n] < b)).any()]
+        if not shares:  # a single stride: the one stance seen, over the cycle
+            shares = [(o - a) / period for a in strikes[n] for o in offs[n][offs[n] > a][:1]]
+        duty[n] = float(np.median(shares))
+    return period / fps, duty, _phases(strikes, skeleton.reference, period)
 
 
 def _cyclic(a: float, b: float) -> float:
@@ -166,11 +207,11 @@ def _cyclic(a: float, b: float) -> float:
 
 @pytest.mark.parametrize("clip", [
     pytest.param(name, marks=[pytest.mark.xfail(strict=True, reason=why)] if why else [])
-    for name, (_, why) in CLIPS.items()])
+    for name, (_, _, why) in CLIPS.items()])
 def test_a_real_clip_agrees_with_an_independent_detector(clip: str) -> None:
-    skeleton = CLIPS[clip][0]
+    skeleton, method, _ = CLIPS[clip]
     path = DATA / f"{clip}.bvh"
-    cycle, duty, phase = independent(path, skeleton)
+    cycle, duty, phase = zeni(path, skeleton) if method == "zeni" else independent(path, skeleton)
     report = analyze_tracks(load_tracks(str(path))[0])
     for foot in report.feet:  # never a number that cannot be
         assert foot.duty_factor is None or np.isnan(foot.duty_factor) or 0.0 < foot.duty_factor < 1.0

@@ -63,10 +63,14 @@ def test_analysing_the_export_measures_the_same_gait(tmp_path: Path, creature: s
     tracks, note = load_tracks(str(tmp_path / "x.bvh"))
     exported = analyze_tracks(tracks)
     assert note.startswith("Gaitlab export") and exported.gait_match == own.gait_match
+    # Within a frame and a half of the cycle (the file's rounded positions may move an
+    # event by a frame: 0.036 of a horse's 28-frame gallop) and never more than 0.05.
+    frame = float(tracks.times[1] - tracks.times[0])
+    tolerance = min(max(0.01, 1.5 * frame / own.cycle_seconds), 0.05)
     for a, b in zip(own.feet, exported.feet):
         assert a.name == b.name
-        assert abs(a.duty_factor - b.duty_factor) <= 0.01
-        assert min(abs(a.phase - b.phase), 1 - abs(a.phase - b.phase)) <= 0.01
+        assert abs(a.duty_factor - b.duty_factor) <= tolerance
+        assert min(abs(a.phase - b.phase), 1 - abs(a.phase - b.phase)) <= tolerance
 
 
 def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:

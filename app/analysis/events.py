@@ -20,7 +20,7 @@ or sink into it from fooling the height rules.
 The ground level of each curve is a rolling low percentile of the curve itself, so a
 sloping floor or an ankle that never reaches y = 0 (a digitigrade heel) is handled.
 
-A recorded quadruped (motion capture: paws that slide, dip near the ground in swing, jitter)
+Recorded motion (motion capture: feet that slide, dip near the ground in swing, jitter)
 first finds each foot's contacts directly: a foot is down once one of its points is
 within a few centimetres of its own local ground and one moves over the ground at under
 a third of the body's current speed, and stays down until it is clearly higher or faster
@@ -52,7 +52,13 @@ MIN_SWING = 0.10  # of a stride: a shorter lift between two contacts is a stance
 PAW_LOW = 0.075  # of the hip height: a recorded foot this close to its own ground level may be down...
 PAW_LOW_MAX = 0.045  # ...up to 4.5 cm (a tracked joint sits a few cm above the sole: a person's feet are no higher)
 PAW_SLOW = 0.35  # of the body's current speed: a low paw slower than this over the ground is down
-IN_PLACE = 0.1  # a body slower than this share of its feet's swing speed walks in place
+# Two feet (people): the tracked joint centres roll over the ground with the sole (the
+# ankle through the heel rocker, the toe tip through push-off) at up to the body's own
+# speed, so a foot is down while low and falling behind the body: the events this gives
+# on CMU 12_01 are within two frames of Zeni et al. 2008's (heel most forward, toe most
+# backward of the pelvis), the standard kinematic definition.
+FOOT_SLOW = 1.0
+IN_PLACE = 0.1  # a body that travels less than this share of its feet's path walks in place
 PAW_RELEASE = 1.2  # hysteresis: it stays down until it is this many times higher or faster
 
 
@@ -330,13 +336,13 @@ def _clean_contacts(down: NDArray[np.bool_], frames: int) -> NDArray[np.bool_]:
 
 
 def paw_contacts(height: NDArray[np.float64], speed: NDArray[np.float64], body_speed: NDArray[np.float64],
-                 low: float, frames: int) -> NDArray[np.bool_]:
+                 low: float, frames: int, slow_share: float = PAW_SLOW) -> NDArray[np.bool_]:
     """Which frames a recorded paw is on the ground, (T,) bool: down once it is lower
     than ``low`` (m) above its own ground (``height``, (T,) m) and slower over the ground
-    than PAW_SLOW of the body's current speed (``speed``, ``body_speed``, (T,) m/s), and
+    than ``slow_share`` of the body's current speed (``speed``, ``body_speed``, (T,) m/s), and
     up once it is PAW_RELEASE times higher or faster than that; then lifts and contacts
     too short for a stride of ``frames`` frames are taken out."""
-    slow = PAW_SLOW * np.maximum(body_speed, 0.05)
+    slow = slow_share * np.maximum(body_speed, 0.05)
     enter = (height < low) & (speed < slow)
     leave = (height > PAW_RELEASE * low) | (speed > PAW_RELEASE * slow)
     return _clean_contacts(hysteresis(enter, leave), frames)
@@ -445,7 +451,9 @@ def recorded_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) ->
     velocities = [np.gradient(points[:, f], tracks.times, axis=0)[:, [0, 2]] for points in (tracks.heel, tracks.toe)]
     body_speed = sig.body_speed
     swing = float(np.percentile(np.hypot(*velocities[1].T), 90))
-    if float(np.median(body_speed)) < IN_PLACE * swing:
+    body_path = float(np.sum(np.hypot(*np.diff(tracks.body[:, [0, 2]], axis=0).T)))
+    foot_path = float(np.sum(np.hypot(*np.diff(tracks.toe[:, f][:, [0, 2]], axis=0).T)))
+    if body_path < IN_PLACE * foot_path:
         # A clip that walks in place (a treadmill, a game loop): the standing foot moves
         # with the belt, at the velocity the foot has when it is low; slow means slow
         # against that, and the belt's speed is the body's.
@@ -453,16 +461,16 @@ def recorded_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) ->
         velocities = [v - belt for v in velocities]
         body_speed = np.full_like(body_speed, max(float(np.hypot(*belt)), IN_PLACE * swing))
     speed = np.minimum(*(running_mean(np.hypot(v[:, 0], v[:, 1]), k) for v in velocities))
-    return runs(paw_contacts(height, speed, body_speed, low, frames))
+    share = FOOT_SLOW if len(tracks.names) == 2 else PAW_SLOW
+    return runs(paw_contacts(height, speed, body_speed, low, frames, share))
 
 
 def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> FootEvents:
     """One foot's steps, then each stance's lift, liftoff, strike and landing on both
     curves, checked by speed. Exact motion: stance centres where heel and toe are low
-    and slow, each step from the curves. A recorded quadruped (whose paws slide, dip in
-    swing and jitter): the contacts of :func:`recorded_contacts` give strike and liftoff,
-    and each contact's firmest frame is its stance. (Recorded bipeds still go by the
-    curves: corpus clips of people are the open cases in tests/test_corpus.py.)"""
+    and slow, each step from the curves. Recorded motion (feet that slide, dip in swing
+    and jitter): the contacts of :func:`recorded_contacts` give strike and liftoff, and
+    each contact's firmest frame is its stance."""
     curves, contact = _contact_curves(tracks, sig, f)
     smooth = sig.smooth
     foot_speed = np.minimum(sig.speeds["heel"][:, f] if contact["heel"] else np.inf,
@@ -471,7 +479,7 @@ def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> Foot
     speed_n = foot_speed / max(float(np.percentile(foot_speed, 95)), 1e-9)
     score = a_heel / curves["heel"][3] + a_toe / curves["toe"][3] + speed_n
     score = savgol(score, smooth, 2)
-    recorded = not tracks.exact and len(tracks.names) == 4
+    recorded = not tracks.exact
     if not recorded:
         low = np.minimum(a_heel / curves["heel"][3], a_toe / curves["toe"][3])
         # Candidate stance frames at least a third of a stride apart (cadence may change

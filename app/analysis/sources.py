@@ -127,7 +127,16 @@ def resolve_feet(feet: dict[str, tuple[str, str | None]], names: list[str]) -> d
 
 
 def find_feet(names: list[str], path: str) -> FootMap:
-    """The feet of a skeleton with one of the known naming schemes (see KNOWN_RIGS)."""
+    """The feet of a skeleton with one of the known naming schemes (see KNOWN_RIGS); a
+    toe joint that ends in an End Site stands for that tip (the tips of the toes stay
+    down through push-off while the toe joint rolls forward)."""
+    found = _find_feet(names, path)
+    present = set(names)
+    return FootMap({foot: (ankle, f"{toe}/End" if toe and toe != ankle and f"{toe}/End" in present else toe)
+                    for foot, (ankle, toe) in found.feet.items()}, found.rig)
+
+
+def _find_feet(names: list[str], path: str) -> FootMap:
     present = set(names)
     for rig, mapping in KNOWN_RIGS:
         feet = {}
