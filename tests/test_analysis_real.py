@@ -199,3 +199,12 @@ def test_a_leading_rest_pose_changes_nothing(tmp_path: Path, clip: str) -> None:
     for a, b in zip(full.feet, cut.feet):
         assert b.duty_factor == pytest.approx(a.duty_factor, abs=0.01)
         assert cyclic_distance(b.phase, a.phase) < 0.01
+
+
+def test_a_take_that_begins_standing_names_no_gait_while_it_stands() -> None:
+    """A whole take often begins with the animal standing: a paw shuffled then is no
+    stride, and the gaits over time start where it walks (this take's first second read
+    "canter")."""
+    report = analyze_tracks(load_tracks(str(DATA / "corpus" / "dog_stand_walk_tencent_walkrun005_f0-420.bvh"))[0])
+    assert report.spans and report.spans[0].start >= 0.9 and report.spans[0].gait == "walk", report.spans
+    assert report.gait_match == "walk"

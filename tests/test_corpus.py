@@ -66,6 +66,7 @@ CLIPS: dict[str, tuple[Skeleton, str, str]] = {
     "corpus/dog_walk_tencent_walkrun006_f360-520": (DOG, "contacts", "speeding up from 1.1 to 1.9 m/s: phase RF 0.65 "
                                                     "vs 0.71 (each touchdown in its own reference cycle vs one median)"),
     "dog_walk_tencent_walkrun005_f120-419": (DOG, "contacts", ""),
+    "corpus/dog_stand_walk_tencent_walkrun005_f0-420": (DOG, "contacts", ""),
     "corpus/dog_backwards_tencent_back001_f330-730": (DOG, "contacts", ""),
     "corpus/dog_trot_tencent_walkrun006_f480-660": (DOG, "contacts", ""),
     "corpus/dog_trot_tencent_walkrun007_f440-580": (DOG, "contacts", ""),

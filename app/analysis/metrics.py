@@ -340,7 +340,7 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
     if set(TETRAPOD_FEET) <= set(phases):
         limb_phase = circular_mean([(phases["LF"] - phases["LH"]) % 1.0, (phases["RF"] - phases["RH"]) % 1.0])
     gait_match = match_gait(phases, duty)
-    spans = gait_spans(times, events, strikes, ref)
+    spans = gait_spans(times, events, strikes, ref, cycle)
     arms = arm_phases(tracks, strikes.get(ref, np.array([])), cycle)
     return GaitReport(source=tracks.source, gait=requested_gait, cycle_seconds=cycle, speed=tracks.speed(),
                       limb_phase=limb_phase, gait_match=gait_match, feet=feet, spans=spans, foot_events=events,
@@ -398,14 +398,17 @@ def _single_stride_phases(events: list[FootEvents], times: np.ndarray, ref: str,
     return {name: circular_mean(((t - t0) / cycle) % 1.0) for name, t in downs.items() if len(t)}
 
 
-def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, np.ndarray], ref: str) -> list[GaitSpan]:
+def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, np.ndarray], ref: str,
+               cycle: float = math.inf) -> list[GaitSpan]:
     """The gait over time, as spans of one gait.
 
     Every foot's cycles (touchdown to touchdown) are classified, with the phases taken
     relative to the reference foot as everywhere else, so the stretch before the
     reference foot's first touchdown, and a cycle in which the reference foot's
     neighbours miss a step, are still named. Each moment takes the gait most of the
-    cycles around it agree on ("transition" where none is near a named gait)."""
+    cycles around it agree on ("transition" where none is near a named gait). A foot's
+    "cycle" over twice the clip's ``cycle`` (s) is a pause, a shuffle while standing, and
+    names nothing: a take that begins or ends standing has no gait there."""
     # Each foot's complete steps as sorted strike and liftoff times: one binary search per cycle.
     contacts = []
     for fe in events:
@@ -417,6 +420,8 @@ def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, n
     windows: list[tuple[float, float, str]] = []
     for _, cycle_on, _ in contacts:
         for t0, t1 in zip(cycle_on, cycle_on[1:]):
+            if t1 - t0 > 2.0 * cycle:
+                continue
             phases, duties = {}, []
             for name, on, off in contacts:
                 i = int(np.searchsorted(on, t0, side="left"))

@@ -34,6 +34,7 @@ EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
     "dog_gallop_tencent_walkrun005_f590-710": ("dog_quad_walkrun_005", 590, 710, DOG_FEET),
     "dog_gallop_tencent_walkrun006_f690-810": ("dog_quad_walkrun_006", 690, 810, DOG_FEET),
     "dog_gallop_tencent_walkrun007_f560-680": ("dog_quad_walkrun_007", 560, 680, DOG_FEET),
+    "dog_stand_walk_tencent_walkrun005_f0-420": ("dog_quad_walkrun_005", 0, 420, DOG_FEET),
     "human_walk_cmu_12_01_f1-524": ("human_walk_cmu_12_01", 1, 524, HUMAN_FEET),
     "human_run_cmu_09_01_f1-149": ("human_run_cmu_09_01", 1, 149, HUMAN_FEET),
 }
