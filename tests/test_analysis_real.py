@@ -208,3 +208,19 @@ def test_a_take_that_begins_standing_names_no_gait_while_it_stands() -> None:
     report = analyze_tracks(load_tracks(str(DATA / "corpus" / "dog_stand_walk_tencent_walkrun005_f0-420.bvh"))[0])
     assert report.spans and report.spans[0].start >= 0.9 and report.spans[0].gait == "walk", report.spans
     assert report.gait_match == "walk"
+
+
+def test_a_whole_take_that_starts_walks_and_stops_is_read() -> None:
+    """CMU 131_01 whole (another converter's BVH: 3ds Max names LeftAnkle/LeftToe): ten
+    seconds of standing, a stylised start, walking and a stop. Its stride is found from
+    the feet's touchdowns ("no repeating step found in 10.38 s" when it came from the
+    heights' autocorrelation, whose strongest repeat there was 4.7 s): a walk of a
+    person's cycle, the feet half a cycle apart, and no gait named while it stands at
+    the start."""
+    tracks, notes = load_tracks(str(DATA / "corpus" / "human_start_walk_stop_cmu_131_01_max.bvh"))
+    assert tracks.names == ("L", "R") and "cmu" in notes
+    report = analyze_tracks(tracks)
+    assert report.gait_match == "walk" and 1.0 <= report.cycle_seconds <= 1.4
+    assert all(0.5 < foot.duty_factor < 0.85 for foot in report.feet), report.feet
+    assert cyclic_distance(report.foot("R").phase, 0.5) <= 0.1
+    assert report.spans and report.spans[0].start > 0.2 and all(span.gait == "walk" for span in report.spans)

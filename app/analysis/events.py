@@ -48,6 +48,7 @@ SPEED_CHANGE = 0.50  # the forward-speed check: more than 50% away from the stan
 CONTACT_SPEED = 0.5  # a contact point's foot moves at under half its typical speed when it is down
 STATIC_SPEED = 0.25  # a foot slower than this fraction of the body's speed stands still
 MIN_STANCE = 0.08  # of a stride: a shorter contact within the clip is a toe or heel dipping in swing, not a stance
+PROVISIONAL_STRIDE = 0.5  # s: the stride recorded contacts are first found for, before the clip's own is known
 MIN_SWING = 0.10  # of a stride: a shorter lift between two contacts is a stance split in two (marker noise)
 PAW_LOW = 0.075  # of the hip height: a recorded foot this close to its own ground level may be down...
 PAW_LOW_MAX = 0.045  # ...up to 4.5 cm (a tracked joint sits a few cm above the sole: a person's feet are no higher)
@@ -395,9 +396,25 @@ def _signals(tracks: FootTracks, frames: int) -> _Signals:
     return _Signals(smooth, above, slope, bend, speeds, rising, rel, static_speed, body_speed)
 
 
+def stride_period(tracks: FootTracks) -> float:
+    """The stride period (s). Recorded motion: the median time between a foot's successive
+    touchdowns, all feet pooled, from provisional contacts (:func:`recorded_contacts` as
+    for a half-second stride), which a take that stands, shuffles or changes gait does
+    not fool; exact motion, or a clip in which no foot lands twice: :func:`clip_period`."""
+    if not tracks.exact and tracks.frame_count >= 8:
+        guess = max(3, int(round(PROVISIONAL_STRIDE * tracks.fps)))
+        sig = _signals(tracks, guess)
+        gaps = [np.diff(spans[spans[:, 0] > 0, 0])
+                for spans in (recorded_contacts(tracks, sig, f, guess) for f in range(len(tracks.names)))]
+        pooled = np.concatenate(gaps)
+        if pooled.size >= 2:
+            return max(float(np.median(pooled)) / tracks.fps, 0.15)
+    return clip_period(tracks)
+
+
 def detect_events(tracks: FootTracks, period: float | None = None) -> list[FootEvents]:
-    """Steps of every foot of ``tracks``; ``period`` (s) defaults to :func:`clip_period`."""
-    period = clip_period(tracks) if period is None else period
+    """Steps of every foot of ``tracks``; ``period`` (s) defaults to :func:`stride_period`."""
+    period = stride_period(tracks) if period is None else period
     frames = max(3, int(round(period * tracks.fps)))
     if tracks.frame_count < 1.2 * frames:
         raise AnalysisError(f"the clip is {tracks.duration:.2f} s long but one stride takes {period:.2f} s; "

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..gaits import GAIT_PRESETS, TETRAPOD_FEET, foot_names, phases_from_offsets, preset_phases
-from .events import AnalysisError, FootEvents, Step, clip_period, detect_events
+from .events import AnalysisError, FootEvents, Step, detect_events, stride_period
 from .tracks import FootTracks
 
 if TYPE_CHECKING:
@@ -280,7 +280,7 @@ def _landed(fe: FootEvents, frame_count: int) -> list[Step]:
 
 def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> GaitReport:
     """Events and gait numbers for foot trajectories. Raises :class:`AnalysisError`."""
-    period = clip_period(tracks)
+    period = stride_period(tracks)
     events = detect_events(tracks, period)
     times = tracks.times
     ref = reference_foot(tracks.names)

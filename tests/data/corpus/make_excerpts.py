@@ -3,8 +3,9 @@
     python tests/data/corpus/make_excerpts.py SOURCE_DIR
 
 SOURCE_DIR holds the original takes: Tencent-RoboticsX/lifelike-agility-and-play,
-data/raw_mocap_data/*.bvh at commit cc9eaa9 (dog), and the CMU clips of
-shared/reference/motion (human). Each excerpt keeps the frames [first, last) of its
+data/raw_mocap_data/*.bvh at commit cc9eaa9 (dog), the CMU clips of
+shared/reference/motion (human), and yuki-koyama/bvh11's resources/131_01.bvh (CMU's
+3ds Max-friendly BVH conversion). Each excerpt keeps the frames [first, last) of its
 take at the take's own rate, and of the take's hierarchy only the joints that lead to
 the feet (root, spine, legs, paws and what hangs below the paws: ears, tail, armour and
 fingers are dropped; nothing a kept joint's position depends on is), numbers rounded to
@@ -22,6 +23,7 @@ from app.analysis.bvh import BvhClip, read_bvh
 
 DOG_FEET = ("b__LeftFinger", "b_RightFinger", "b_LeftToe", "b_RightToe")
 HUMAN_FEET = ("LeftToeBase", "RightToeBase", "LeftHand", "RightHand")
+MAX_FEET = ("LeftToe", "RightToe", "LeftWrist", "RightWrist")  # the 3ds Max-friendly conversion's names
 
 # name: (source take, first frame, last frame, the joints to keep with what leads to them)
 EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
@@ -37,6 +39,7 @@ EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
     "dog_stand_walk_tencent_walkrun005_f0-420": ("dog_quad_walkrun_005", 0, 420, DOG_FEET),
     "human_walk_cmu_12_01_f1-524": ("human_walk_cmu_12_01", 1, 524, HUMAN_FEET),
     "human_run_cmu_09_01_f1-149": ("human_run_cmu_09_01", 1, 149, HUMAN_FEET),
+    "human_start_walk_stop_cmu_131_01_max": ("131_01", 0, 994, MAX_FEET),
 }
 
 
