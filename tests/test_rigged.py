@@ -560,3 +560,62 @@ def test_a_leg_s_type_comes_from_its_foot() -> None:
     moved = dataclasses.replace(fox.model, joints=joints)
     length = float(np.linalg.norm(fox.bind[paw, :3, 3] - fox.bind[hock, :3, 3]))
     assert foot_kind(moved, fox.mesh, fox.bind[:, :3, 3], hock, float(fox.mesh[:, 1].min()), length) == "digitigrade"
+
+
+def test_a_model_s_neck_and_tail_turn_as_the_creature_s() -> None:
+    """The fox's neck (b_Neck_04 to its head) and tail (b_Tail01..03) are found by their
+    names; driven, each tail and neck bone points where its rest direction, carried by
+    the body, turns by the creature's own nod, follow-through and sway (the head turns
+    whole as the creature's head does), so the model keeps its own neck and tail shape and
+    moves them as the creature moves its own: the tail tip swings by centimetres against
+    the hips (it was rigid)."""
+    from app.kinematics.appendages import heading_frames
+    from app.rigged.drive import motion_turns
+
+    model, legs, _, motion, world, rest = _driven("Fox.glb", "circle:r=3", "hills")
+    assert [model.names[j] for j in legs.neck] == ["b_Neck_04", "b_Head_05"]
+    assert [model.names[j] for j in legs.tail] == ["b_Tail01_012", "b_Tail02_013", "b_Tail03_014"]
+    turns, heading = motion_turns(motion), heading_frames(motion.root)
+
+    def in_world(turn: np.ndarray) -> np.ndarray:
+        return heading @ turn @ np.swapaxes(heading, -1, -2)
+
+    hip = int(model.parents[legs.tail[0]])
+    carried = world[:, hip, :3, :3] @ rest[hip, :3, :3].T
+    k_of = {0: 1, 1: 4}  # the creature's tail segment at each bone's middle (7 segments, by rest length)
+    for i, k in k_of.items():
+        j, child = legs.tail[i], legs.tail[i + 1]
+        have = world[:, child, :3, 3] - world[:, j, :3, 3]
+        want = in_world(turns.tail[:, k]) @ carried @ (rest[child, :3, 3] - rest[j, :3, 3])
+        assert np.abs(have - want).max() < 1e-9
+    neck, head = legs.neck
+    spine = int(model.parents[neck])
+    carried = world[:, spine, :3, :3] @ rest[spine, :3, :3].T
+    assert np.abs(world[:, head, :3, :3] - in_world(turns.head) @ carried @ rest[head, :3, :3]).max() < 1e-9
+    tip = np.einsum("tji,tj->ti", world[:, hip, :3, :3], world[:, legs.tail[-1], :3, 3] - world[:, hip, :3, 3])
+    assert np.ptp(tip, axis=0).max() > 0.02
+
+
+def test_a_rig_map_may_name_the_neck_and_tail() -> None:
+    """``[neck] joints = [...]`` and ``[tail] joints = [...]`` name them (a model whose
+    names do not say); a map that names a joint the model has not, or gives them another
+    shape, is one line."""
+    from app.rigged.legs import legs_from_map
+
+    fox = load_rigged_model(MODELS / "Fox.glb")
+    found = find_legs(fox)
+    legs = {"LF": ["b_LeftUpperArm_09", "b_LeftForeArm_010", "b_LeftHand_011"],
+            "RF": ["b_RightUpperArm_06", "b_RightForeArm_07", "b_RightHand_08"],
+            "LH": ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017", "b_LeftFoot02_018"],
+            "RH": ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021", "b_RightFoot02_022"]}
+    mapped = legs_from_map(fox, {"legs": legs, "neck": {"joints": ["b_Neck_04", "b_Head_05"]},
+                                 "tail": {"joints": ["b_Tail01_012", "b_Tail02_013", "b_Tail03_014"]}}, "fox.toml")
+    assert (mapped.neck, mapped.tail) == (found.neck, found.tail)
+    assert legs_from_map(fox, {"legs": legs}, "fox.toml").tail == ()  # a map without them leaves them carried
+    for table, expected in (({"neck": {"joints": ["b_Neck_04", "b_Snout"]}}, "neck.joints names 'b_Snout'"),
+                            ({"tail": {"joints": ["b_Tail03_014", "b_Tail01_012"]}}, "does not hang below"),
+                            ({"tail": ["b_Tail01_012"]}, "[tail] has one key, joints"),
+                            ({"tail": {"joints": ["b_Tail01_012"]}}, "tail.joints: give 2 or more joint names")):
+        with pytest.raises(RigError) as caught:
+            legs_from_map(fox, {"legs": legs, **table}, "fox.toml")
+        assert expected in str(caught.value) and str(caught.value).startswith("fox.toml: ")

@@ -143,7 +143,8 @@ def add_creature(parser: argparse.ArgumentParser, default: str = "dog", scenes: 
                        help="for a rigged model: which of its joints are its legs, when their names do not say "
                             "([legs] with LF = [\"shoulder\", \"elbow\", \"wrist\"], RF, LH, RH, ... front pair "
                             "first, each list from the top of the leg down to the foot; a biped's [arms] with L "
-                            "and R, each upper arm, forearm and wrist)")
+                            "and R, each upper arm, forearm and wrist; [neck] and [tail], each joints = [...] from "
+                            "the base out)")
     group.add_argument("--gait", metavar="G", help=f"gait preset: {', '.join(GAIT_PRESETS)}")
     group.add_argument("--set", metavar="KEY=VALUE", action="append", default=[], dest="overrides",
                        help="override a creature key, e.g. gait.duty_factor=0.7 (repeatable; 'gaitlab creatures "

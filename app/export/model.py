@@ -20,7 +20,7 @@ from scipy.spatial.transform import Rotation
 
 from ..kinematics.motion import Motion
 from ..output import AtomicPath
-from ..rigged.drive import drive_joints
+from ..rigged.drive import drive_joints, motion_turns
 from ..rigged.gltf import node_matrix, world_matrices
 from ..rigged.loaded import load_model
 
@@ -51,8 +51,8 @@ def write_model_glb(motion: Motion, output: str | os.PathLike[str], fps: float) 
     gltf = gl.GLTF2().load(str(model.path))
     gltf.convert_buffers(gl.BufferFormat.BINARYBLOB)
     blob = bytearray(gltf.binary_blob() or b"")
-    world_m = drive_joints(model, loaded.legs, loaded.scale, motion.joints, motion.root,
-                           loaded.clearance, motion.rig.ankle_lift, motion.arms)  # (T, J, 4, 4) metres
+    world_m = drive_joints(model, loaded.legs, loaded.scale, motion.joints, motion.root, loaded.clearance,
+                           motion.rig.ankle_lift, motion.arms, motion_turns(motion))  # (T, J, 4, 4) metres
     frames = len(world_m)
     # Back to the model's units: its rest scales in the rotation part, positions / scale.
     rest_rot = _rotation_only(model.rest[:, :3, :3])

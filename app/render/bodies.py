@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from ..kinematics.appendages import Appendages, appendage_turns
 from ..kinematics.motion import Motion, Pose
 from ..kinematics.rig import KeyPoses, Overlap, Rig, SecondaryMotion
 from ..kinematics.skeleton import skeleton_clip
@@ -242,7 +243,8 @@ def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> Bod
     """The body of a pose (``live``: the viewer's, which never waits for a full body; a
     creature that drives a user's model: that model's mesh)."""
     if rig.model:
-        body, skin = model_skin(rig.model, pose.joints[None], pose.root[None], rig.ankle_lift, pose.arms[None])
+        turns = appendage_turns(rig, pose.neck[None], pose.head[None], pose.tail[None], pose.root[None])
+        body, skin = model_skin(rig.model, pose.joints[None], pose.root[None], rig.ankle_lift, pose.arms[None], turns)
         return BodyDraw(body, skin[0])
     body = cache.live(rig) if live else cache.get(rig)
     world = joint_matrices(skeleton_clip(pose_motion(pose, rig), body.layout), 0)
@@ -252,8 +254,9 @@ def pose_body(pose: Pose, rig: Rig, cache: BodyCache, live: bool = False) -> Bod
 def motion_body(motion: Motion, cache: BodyCache) -> BodyDraw:
     """The body through every frame of a clip: skinning matrices (T, J, 4, 4)."""
     if motion.rig.model:
+        turns = appendage_turns(motion.rig, motion.neck, motion.head, motion.tail, motion.root)
         return BodyDraw(*model_skin(motion.rig.model, motion.joints, motion.root, motion.rig.ankle_lift,
-                                   motion.arms))
+                                   motion.arms, turns))
     body = cache.get(motion.rig)
     clip = skeleton_clip(motion, body.layout)
     world = np.tile(np.eye(4), clip.world_position.shape[:2] + (1, 1))
@@ -266,12 +269,12 @@ _MODEL_BODIES: dict[int, tuple[object, SkinnedBody]] = {}
 
 
 def model_skin(path: str, leg_joints: NDArray[np.float64], root: NDArray[np.float64],
-               foot_angle: NDArray[np.float64] | None = None,
-               arms: NDArray[np.float64] | None = None) -> tuple[SkinnedBody, NDArray[np.float32]]:
+               foot_angle: NDArray[np.float64] | None = None, arms: NDArray[np.float64] | None = None,
+               turns: Appendages | None = None) -> tuple[SkinnedBody, NDArray[np.float32]]:
     """A user's rigged model (``path``) as a skinned body, and its skinning matrices
     (T, J, 4, 4) for a creature's leg joints (T, L, 5, 3), body transforms (T, 4, 4) and
-    flat-foot angles (L,) rad (its rig's ankle lifts) and arms (T, A, 4, 3):
-    its own mesh, weights and colours, its own skeleton moved by the creature."""
+    flat-foot angles (L,) rad (its rig's ankle lifts), arms (T, A, 4, 3) and neck, head
+    and tail turns: its own mesh, weights and colours, its own skeleton moved by the creature."""
     from ..rigged.loaded import load_model
 
     loaded = load_model(path)
@@ -283,4 +286,4 @@ def model_skin(path: str, leg_joints: NDArray[np.float64], root: NDArray[np.floa
                            faces=model.faces.astype(np.int32), joints=model.joints.astype(np.int32),
                            weights=model.weights.astype(np.float32), bind=loaded.bind)
         known = _MODEL_BODIES[id(loaded)] = (loaded, body)
-    return known[1], loaded.skin(leg_joints, root, foot_angle, arms)
+    return known[1], loaded.skin(leg_joints, root, foot_angle, arms, turns)

@@ -16,9 +16,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..choices import BodyStyle
+from ..kinematics.appendages import Appendages
 from ..kinematics.herd import Herd, LegAdjustment
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import LEG_JOINTS, skeleton_points
+from ..rigged.drive import motion_turns
 from ..rigged.loaded import LoadedModel, load_model
 from .bodies import BodyDraw, motion_body, shared_body_cache
 from .scene import Cap, Ell, SceneInstances, leg_instances, motion_instances
@@ -38,6 +40,7 @@ class HerdInstances:
         self._skins: BodyDraw | None = None
         self._leg_bones: NDArray[np.int64] | None = None  # (L, 5) skeleton joint of each leg joint
         self._model: LoadedModel | None = None  # a rigged model's herd: each animal's skeleton driven
+        self._turns: Appendages | None = None  # (its cycle's neck, head and tail turns)
         self._update(herd)
 
     def matches(self, show_joints: bool, body: BodyStyle, by_side: bool) -> bool:
@@ -55,6 +58,7 @@ class HerdInstances:
                                                legs=False)
             self._skins = motion_body(herd.cycle, shared_body_cache()) if skin else None
             self._model = load_model(herd.cycle.rig.model) if skin and herd.cycle.rig.model else None
+            self._turns = motion_turns(herd.cycle) if self._model is not None else None
             if skin and self._model is None:
                 assert self._skins is not None
                 names = skeleton_points(herd.cycle.frames(0), self._skins.body.layout)[0].names
@@ -99,7 +103,9 @@ class HerdInstances:
         ellipsoids = np.concatenate(parts)
         bodies: tuple[BodyDraw, ...] = ()
         if self._model is not None and self._skins is not None:  # each animal's own skeleton, driven at once
-            driven = _drive_models(self._model, herd.cycle, f0, f1, w, leg_joints, scale, rot, move)
+            nearest = np.where(w < 0.5, f0, f1)
+            turns = None if self._turns is None else self._turns.at(nearest)
+            driven = _drive_models(self._model, herd.cycle, f0, f1, w, leg_joints, scale, rot, move, turns)
             bodies = tuple(BodyDraw(self._skins.body, driven[k]) for k in range(n))
         elif self._skins is not None:  # each animal's body: its blended skin, placed
             skins = self._skins.skin.astype(np.float64)
@@ -123,17 +129,20 @@ def _placement(scale: NDArray[np.float64], rot: NDArray[np.float64], move: NDArr
 
 def _drive_models(model: LoadedModel, cycle: Motion, f0: NDArray[np.int64], f1: NDArray[np.int64],
                   w: NDArray[np.float64], leg_joints: NDArray[np.float64], scale: NDArray[np.float64],
-                  rot: NDArray[np.float64], move: NDArray[np.float64]) -> NDArray[np.float32]:
+                  rot: NDArray[np.float64], move: NDArray[np.float64],
+                  turns: Appendages | None = None) -> NDArray[np.float32]:
     """Skinning matrices (N, J, 4, 4) of a rigged model's herd: every animal's skeleton
     driven in one call (:func:`app.rigged.drive.drive_joints`, vectorised over animals as
     over frames) from its leg joints in the world ``leg_joints`` (N, L, 5, 3; set down and
-    locked), its blended cycle body transform and arms, placed."""
+    locked), its blended cycle body transform and arms, placed, and its neck, head and
+    tail turns (``turns``, each animal's nearest cycle frame's: they are in its heading's
+    frame, so the placement does not change them)."""
     root = _placement(scale, rot, move) @ (cycle.root[f0] + (cycle.root[f1] - cycle.root[f0]) * w[:, None, None])
     arms = None
     if cycle.arms.shape[1]:
         blended = _blend(cycle.arms.reshape(cycle.frame_count, -1, 3).astype(np.float32), f0, f1, w)
         arms = _place(blended, scale, rot, move).reshape(len(w), *cycle.arms.shape[1:])
-    return model.skin(leg_joints, root, cycle.rig.ankle_lift, arms)
+    return model.skin(leg_joints, root, cycle.rig.ankle_lift, arms, turns)
 
 
 def _set_down(posed: NDArray[np.float64], bones: NDArray[np.int64], legs: LegAdjustment) -> NDArray[np.float64]:

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from ..kinematics.appendages import Appendages, appendage_turns, heading_frames
 from ..kinematics.body import cross, unit
 from ..kinematics.herd import rotation_about, rotation_between
 from ..kinematics.motion import Motion
@@ -150,13 +151,19 @@ def drive_model(model: RiggedModel, legs: ModelLegs, scale: float, motion: Motio
     """Every joint's world transform (T, J, 4, 4) for ``motion`` of the model's creature
     (see :func:`drive_joints`)."""
     return drive_joints(model, legs, scale, motion.joints, motion.root, foot_angle=motion.rig.ankle_lift,
-                        arms=motion.arms)
+                        arms=motion.arms, turns=motion_turns(motion))
+
+
+def motion_turns(motion) -> Appendages:
+    """The turns of a clip's (or a pose's: any object with ``rig``, ``neck``, ``head``,
+    ``tail`` and ``root``) neck, head and tail for a model's own to follow."""
+    return appendage_turns(motion.rig, motion.neck, motion.head, motion.tail, motion.root)
 
 
 def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: NDArray[np.float64],
                  root: NDArray[np.float64], clearance: NDArray[np.float64] | None = None,
                  foot_angle: NDArray[np.float64] | None = None,
-                 arms: NDArray[np.float64] | None = None) -> NDArray[np.float64]:
+                 arms: NDArray[np.float64] | None = None, turns: Appendages | None = None) -> NDArray[np.float64]:
     """Every joint's world transform (T, J, 4, 4), rigid, in metres, for the creature's
     leg joints ``leg_joints`` (T, L, 5, 3; legs in the order of ``legs.chains``) and body
     transforms ``root`` (T, 4, 4). ``clearance`` (L,) m: how far above its sole each
@@ -165,7 +172,10 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
     metatarsus angle above the ground when its foot stands flat (its ankle lift).
     ``arms`` (T, 2, 4, 3): the creature's arms (shoulder, elbow, wrist, hand tip; left,
     right); a biped model's arms (``legs.arms``) swing as they do, each solved from the
-    model's own shoulder to where the creature's wrist is from its shoulder.
+    model's own shoulder to where the creature's wrist is from its shoulder. ``turns``:
+    how the creature's neck, head and tail turn from rest (:mod:`app.kinematics.appendages`);
+    the model's neck and tail bones (``legs.neck``, ``legs.tail``) turn as much from their
+    own rest, its head as the creature's head.
 
     The hind girdle (the joint the hindmost legs hang from) moves with the creature's
     hind hips; with two pairs of legs the spine between it and the fore girdle turns, in
@@ -197,6 +207,7 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
     in_chain, tops, below_leg, reach = _leg_layout(model, legs, scale, bool(arm_chains))
     # The body first (every joint not in or below a limb), and where each limb's top is.
     top_at = np.zeros((frames, len(chains) + len(arm_chains), 3))
+    following = _followers(legs, rest, turns, root)
     for j in order:
         p = int(parents[j])
         if j in tops:
@@ -209,6 +220,8 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
             world[:, j] = _aim_spine(world[:, j], world[:, p, :3, 3], rest, spine, fore)
         if fore is not None and j == fore_girdle:
             world[:, j, :3, :3] = fore[:, :3, :3] @ rest[j, :3, :3]
+        if j in following:
+            world[:, j] = _follow(world, rest, local, parents, j, following[j])
     forward = unit(root[:, :3, 2] * np.array([1.0, 0.0, 1.0]) + np.array([0.0, 0.0, 1e-12]))  # (T, 3) level heading
     solved = []
     for leg, chain in enumerate(chains):
@@ -245,6 +258,50 @@ def drive_joints(model: RiggedModel, legs: ModelLegs, scale: float, leg_joints: 
         if below_leg[j] and j not in in_chain:
             world[:, j] = world[:, p] @ local[j]
     return world
+
+
+def _followers(legs: ModelLegs, rest: NDArray[np.float64], turns: Appendages | None,
+               root: NDArray[np.float64]) -> dict[int, tuple]:
+    """For each joint of the model's neck and tail: (the chain, its place in it, its turn
+    (T, 3, 3) in the heading frame, the heading frames (T, 3, 3), whether it is the head
+    (turned whole) rather than a bone's start (aimed))."""
+    if turns is None:
+        return {}
+    heading = heading_frames(root)
+    out: dict[int, tuple] = {}
+    if len(legs.neck) >= 2:
+        for i, j in enumerate(legs.neck):
+            last = i == len(legs.neck) - 1
+            out[j] = (legs.neck, i, turns.head if last else turns.neck, heading, last)
+    if len(legs.tail) >= 2:
+        points = rest[list(legs.tail), :3, 3]
+        along = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(points, axis=0), axis=1))])
+        along /= max(float(along[-1]), 1e-12)
+        segments = turns.tail.shape[1]
+        for i, j in enumerate(legs.tail[:-1]):  # (the tip's joint is carried)
+            k = min(int(0.5 * (along[i] + along[i + 1]) * segments), segments - 1)
+            out[j] = (legs.tail, i, turns.tail[:, k], heading, False)
+    return out
+
+
+def _follow(world: NDArray[np.float64], rest: NDArray[np.float64], local: NDArray[np.float64],
+            parents: NDArray[np.int64], j: int, how: tuple) -> NDArray[np.float64]:
+    """Joint ``j`` of a neck or tail (T, 4, 4), carried so far: its bone aimed where its
+    rest direction, carried by the chain's parent, turns by the creature's turn (or, the
+    head, the whole joint so turned). Positions stay: every bone keeps its length."""
+    chain, i, turn, heading, whole = how
+    top = int(parents[chain[0]])
+    carried = world[:, top, :3, :3] @ rest[top, :3, :3].T if top >= 0 else np.eye(3)  # (T, 3, 3) the parent's turn
+    turn_world = heading @ turn @ np.swapaxes(heading, -1, -2)
+    out = world[:, j].copy()
+    if whole:
+        out[:, :3, :3] = turn_world @ carried @ rest[j, :3, :3]
+        return out
+    child = chain[i + 1]
+    want = turn_world @ carried @ unit(rest[child, :3, 3] - rest[j, :3, 3])  # (T, 3)
+    have = unit((out @ local[child])[:, :3, 3] - out[:, :3, 3])
+    out[:, :3, :3] = rotation_between(have, want) @ out[:, :3, :3]
+    return out
 
 
 def _aim_spine(first: NDArray[np.float64], pivot: NDArray[np.float64], rest: NDArray[np.float64],

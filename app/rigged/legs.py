@@ -27,6 +27,7 @@ LEG_WORDS = ("upleg", "upperleg", "thigh", "femur", "leg", "shin", "calf", "tibi
              "ball", "hip")
 ARM_WORDS = ("upperarm", "uparm", "arm", "humerus", "forearm", "radius", "elbow", "hand", "wrist", "finger",
              "shoulder", "clavicle")
+NECK_WORDS, HEAD_WORDS, TAIL_WORDS = ("neck",), ("head",), ("tail",)
 NEAR_GROUND = 0.25  # a hand within this fraction of the hip height of the ground makes the arm a leg
 CENTIMETRES = 5.0  # a model whose hips stand higher than this (in its units) is taken to be in centimetres
 
@@ -43,12 +44,15 @@ class LegChain:
 @dataclass(frozen=True)
 class ModelLegs:
     """A model's leg pairs, front first (each pair left, right), whether its arms are its
-    front legs, and a biped's arms (left, right: upper arm, forearm and wrist joints; empty
-    when it has none it can name, or they are legs)."""
+    front legs, a biped's arms (left, right: upper arm, forearm and wrist joints; empty
+    when it has none it can name, or they are legs), and its neck and tail chains (they
+    turn as the creature's do)."""
 
     pairs: tuple[tuple[LegChain, LegChain], ...]
     arms_as_legs: bool
     arms: tuple[LegChain, ...] = ()
+    neck: tuple[int, ...] = ()  # joints from the neck's base to the head (the last), or none
+    tail: tuple[int, ...] = ()  # joints from the tail's base to its tip, or none
 
     @property
     def chains(self) -> tuple[LegChain, ...]:
@@ -134,8 +138,35 @@ def limbs(model: RiggedModel, vocabulary: tuple[str, ...], avoid: tuple[str, ...
     return tops
 
 
+def appendage(model: RiggedModel, words: tuple[str, ...], end: tuple[str, ...] = ()) -> tuple[int, ...]:
+    """The chain of joints named for ``words`` (no side: ``b_Tail01``, ``neck_1``), from
+    the highest whose parent is not, down through children named for ``words`` and then
+    at most one named for ``end`` (a neck's head); empty unless it has a bone."""
+    def named(j: int, vocabulary: tuple[str, ...]) -> bool:
+        text, side, _ = _words(model.names[j])
+        return side is None and _has(text, vocabulary)
+
+    children: dict[int, list[int]] = {}
+    for j, p in enumerate(model.parents):
+        children.setdefault(int(p), []).append(j)
+    tops = [j for j in range(len(model.names)) if named(j, words) and not (
+        model.parents[j] >= 0 and named(int(model.parents[j]), words))]
+    if not tops:
+        return ()
+    chain = [min(tops, key=lambda j: _depth(model.parents, j))]
+    while True:
+        more = [c for c in children.get(chain[-1], []) if named(c, words)]
+        if not more:
+            break
+        chain.append(more[0])
+    head = [c for c in children.get(chain[-1], []) if end and named(c, end)]
+    chain += head[:1]
+    return tuple(chain) if len(chain) >= 2 else ()
+
+
 def find_legs(model: RiggedModel) -> ModelLegs:
-    """The model's legs by their joints' names (see the module docstring)."""
+    """The model's legs by their joints' names (see the module docstring), and its neck
+    and tail (:func:`appendage`)."""
     legs = limbs(model, LEG_WORDS, ARM_WORDS)
     arms = limbs(model, ARM_WORDS, ("upleg", "thigh", "foot", "toe", "shin", "calf"))
     if len(legs["L"]) != len(legs["R"]) or not legs["L"]:
@@ -167,7 +198,8 @@ def find_legs(model: RiggedModel) -> ModelLegs:
         biped_arms = tuple(LegChain(s, _upper_arm_down(points, arms[s][0])) for s in ("L", "R"))
         if any(len(c.joints) < 3 for c in biped_arms):
             biped_arms = ()
-    return ModelLegs(pairs=tuple(pairs), arms_as_legs=arms_as_legs, arms=biped_arms)
+    return ModelLegs(pairs=tuple(pairs), arms_as_legs=arms_as_legs, arms=biped_arms,
+                     neck=appendage(model, NECK_WORDS, HEAD_WORDS), tail=appendage(model, TAIL_WORDS))
 
 
 def _upper_arm_down(points: NDArray[np.float64], chain: tuple[int, ...]) -> tuple[int, ...]:
@@ -264,9 +296,10 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
     if not isinstance(table, dict) or not table:
         raise RigError(f"{where}: give a [legs] table, e.g. LH = [\"thigh.L\", \"shin.L\", \"foot.L\"], one list of "
                        "joint names per leg")
-    unknown = sorted(set(mapping) - {"legs", "arms"})
+    unknown = sorted(set(mapping) - {"legs", "arms", "neck", "tail"})
     if unknown:
-        raise RigError(f"{where}: unknown table {unknown[0]!r}; a rig map has [legs] and, for a biped, [arms]")
+        raise RigError(f"{where}: unknown table {unknown[0]!r}; a rig map has [legs], for a biped [arms], and "
+                       "[neck] and [tail]")
     chains = _mapped_chains(model, table, "legs", 3, "from the hip down to the foot", where)
     if len(chains) % 2 or any(a.side != "L" or b.side != "R" for a, b in zip(chains[::2], chains[1::2])):
         raise RigError(f"{where}: [legs] lists legs in pairs, left then right (LF, RF, LH, RH), front pair first")
@@ -280,35 +313,55 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
         arms = tuple(_mapped_chains(model, mapping["arms"], "arms", 3, "upper arm, forearm and wrist", where, exact=True))
         if [a.side for a in arms] != ["L", "R"]:
             raise RigError(f"{where}: [arms] lists the left arm (L) then the right (R)")
-    return ModelLegs(pairs=pairs, arms_as_legs=False, arms=arms)
+    neck, tail = (_mapped_appendage(model, mapping, part, where) for part in ("neck", "tail"))
+    return ModelLegs(pairs=pairs, arms_as_legs=False, arms=arms, neck=neck, tail=tail)
+
+
+def _mapped_appendage(model: RiggedModel, mapping: dict, part: str, where: str) -> tuple[int, ...]:
+    """The neck's or tail's joints a map names (``[neck] joints = [base, ..., head]``,
+    ``[tail] joints = [base, ..., tip]``), each under the one before; none without it."""
+    if part not in mapping:
+        return ()
+    table = mapping[part]
+    what = "from its base to the head" if part == "neck" else "from its base to the tip"
+    if not isinstance(table, dict) or set(table) != {"joints"}:
+        raise RigError(f"{where}: [{part}] has one key, joints = [two or more joint names {what}]")
+    return _named_chain(model, table["joints"], f"{part}.joints", 2, what, where)
 
 
 def _mapped_chains(model: RiggedModel, table: dict, kind: str, least: int, order: str, where: str,
                    exact: bool = False) -> list[LegChain]:
     """The chains a map's table names (key: side first, L or R; value: joint names, each
     under the one before), in the table's order. Every mistake is one line."""
-    index = {name: j for j, name in enumerate(model.names)}
     chains: list[LegChain] = []
     for key, names in table.items():
         side = str(key)[:1].upper()
         if side not in ("L", "R"):
             raise RigError(f"{where}: {kind}.{key}: a key starts with L or R (its side), e.g. LF, RF, LH, RH")
-        count_ok = isinstance(names, list) and (len(names) == least if exact else len(names) >= least)
-        if not count_ok or not all(isinstance(n, str) for n in names):
-            many = f"{least}" if exact else f"{least} or more"
-            raise RigError(f"{where}: {kind}.{key}: give {many} joint names: {order}")
-        missing = [n for n in names if n not in index]
-        if missing:
-            shown = ", ".join(model.names[:30]) + (" ..." if len(model.names) > 30 else "")
-            raise RigError(f"{where}: {kind}.{key} names {missing[0]!r}, which {model.path.name} has not; its joints: "
-                           f"{shown}")
-        joints = tuple(index[n] for n in names)
-        for upper, lower in zip(joints, joints[1:]):
-            j = int(model.parents[lower])
-            while j >= 0 and j != upper:
-                j = int(model.parents[j])
-            if j != upper:
-                raise RigError(f"{where}: {kind}.{key}: {model.names[lower]!r} does not hang below "
-                               f"{model.names[upper]!r}; list each chain's joints from the top down")
-        chains.append(LegChain(side, joints))
+        chains.append(LegChain(side, _named_chain(model, names, f"{kind}.{key}", least, order, where, exact)))
     return chains
+
+
+def _named_chain(model: RiggedModel, names: object, label: str, least: int, order: str, where: str,
+                 exact: bool = False) -> tuple[int, ...]:
+    """The joints ``names`` lists (``label`` says where in the map), each under the one
+    before. Every mistake is one line."""
+    index = {name: j for j, name in enumerate(model.names)}
+    count_ok = isinstance(names, list) and (len(names) == least if exact else len(names) >= least)
+    if not isinstance(names, list) or not count_ok or not all(isinstance(n, str) for n in names):
+        many = f"{least}" if exact else f"{least} or more"
+        raise RigError(f"{where}: {label}: give {many} joint names: {order}")
+    missing = [n for n in names if n not in index]
+    if missing:
+        shown = ", ".join(model.names[:30]) + (" ..." if len(model.names) > 30 else "")
+        raise RigError(f"{where}: {label} names {missing[0]!r}, which {model.path.name} has not; its joints: "
+                       f"{shown}")
+    joints = tuple(index[n] for n in names)
+    for upper, lower in zip(joints, joints[1:]):
+        j = int(model.parents[lower])
+        while j >= 0 and j != upper:
+            j = int(model.parents[j])
+        if j != upper:
+            raise RigError(f"{where}: {label}: {model.names[lower]!r} does not hang below "
+                           f"{model.names[upper]!r}; list each chain's joints from the top down")
+    return joints

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ..kinematics.appendages import Appendages
 from .drive import drive_joints, rest_in_metres
 from .gltf import RigError, RiggedModel, load_rigged_model
 from .legs import ModelLegs, find_legs, legs_from_map, model_scale
@@ -32,11 +33,12 @@ class LoadedModel:
 
     def skin(self, leg_joints: NDArray[np.float64], root: NDArray[np.float64],
              foot_angle: NDArray[np.float64] | None = None,
-             arms: NDArray[np.float64] | None = None) -> NDArray[np.float32]:
+             arms: NDArray[np.float64] | None = None, turns: Appendages | None = None) -> NDArray[np.float32]:
         """Skinning matrices (T, J, 4, 4) for the creature's leg joints (T, L, 5, 3), body
-        transforms (T, 4, 4), flat-foot angles (L,) rad and arms (T, A, 4, 3) (see
-        :func:`drive_joints`)."""
-        world = drive_joints(self.model, self.legs, self.scale, leg_joints, root, self.clearance, foot_angle, arms)
+        transforms (T, 4, 4), flat-foot angles (L,) rad, arms (T, A, 4, 3) and neck, head
+        and tail turns (see :func:`drive_joints`)."""
+        world = drive_joints(self.model, self.legs, self.scale, leg_joints, root, self.clearance, foot_angle, arms,
+                             turns)
         return (world @ self.inverse_bind).astype(np.float32)
 
     @cached_property
