@@ -224,3 +224,25 @@ def test_a_whole_take_that_starts_walks_and_stops_is_read() -> None:
     assert all(0.5 < foot.duty_factor < 0.85 for foot in report.feet), report.feet
     assert cyclic_distance(report.foot("R").phase, 0.5) <= 0.1
     assert report.spans and report.spans[0].start > 0.2 and all(span.gait == "walk" for span in report.spans)
+
+
+def test_a_one_cycle_loop_is_analysed_as_played_round(tmp_path: Path) -> None:
+    """A game's walk loop (one cycle of CMU 12_01, heel strike to heel strike: it ends on
+    the pose it starts with) is read as played round three times, and says so: the same
+    walk as the whole clip's (it gave "no repeating step found"). A single cycle that does
+    not close is one line that says what would make it readable."""
+    from cli_runner import gaitlab
+
+    loop = analyze_tracks(load_tracks(str(DATA / "corpus" / "human_walk_loop_cmu_12_01_f101-251.bvh"))[0])
+    whole = analyze_tracks(load_tracks(str(CMU_WALK_PATH))[0])
+    assert any("one loop" in note for note in loop.notes)
+    assert loop.gait_match == "walk" and loop.cycle_seconds == pytest.approx(whole.cycle_seconds, rel=0.03)
+    for a, b in zip(loop.feet, whole.feet):
+        assert abs(a.duty_factor - b.duty_factor) <= 0.03 and cyclic_distance(a.phase, b.phase) <= 0.03
+    lines = CMU_WALK_PATH.read_text().splitlines()
+    motion = lines.index("MOTION")
+    cut = lines[:motion + 1] + ["Frames: 120", lines[motion + 2]] + lines[motion + 3 + 101:motion + 3 + 221]
+    (tmp_path / "cut.bvh").write_text("\n".join(cut) + "\n")
+    result = gaitlab("analyze", "cut.bvh", cwd=tmp_path)
+    assert result.returncode == 2 and "end on the pose it starts with" in result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1

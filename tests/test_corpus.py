@@ -78,6 +78,7 @@ CLIPS: dict[str, tuple[Skeleton, str, str]] = {
     "corpus/human_walk_cmu_12_01_f1-524": (CMU, "zeni", ""),
     "human_run_cmu_09_01": (CMU, "contacts", ""),
     "corpus/human_run_cmu_09_01_f1-149": (CMU, "contacts", ""),
+    "corpus/human_walk_loop_cmu_12_01_f101-251": (CMU, "zeni", ""),
 }
 
 
@@ -119,13 +120,19 @@ def _contacts(down: np.ndarray, fps: float) -> np.ndarray:
 
 def _points(path: Path, skeleton: Skeleton) -> tuple[np.ndarray, float, list[str]]:
     """Every foot's ankle (or wrist), then every foot's toe tip, then the body: (T, 2F + 1,
-    3) metres, without a rest pose that jumps into the clip; the frame rate; the feet."""
+    3) metres, without a rest pose that jumps into the clip, and a clip that ends on the
+    pose it starts with (a loop) played round three times; the frame rate; the feet."""
     clip = read_bvh(str(path))
     names = list(skeleton.feet)
     joints = [skeleton.feet[n][0] for n in names] + [skeleton.feet[n][1] for n in names] + [skeleton.root]
     points = clip.positions(joints) * skeleton.metres
     jumps = np.flatnonzero(np.abs(np.diff(points, axis=0)).max(axis=(1, 2)) > 0.2)
-    return (points[jumps[0] + 1:] if jumps.size and jumps[0] < 3 else points), 1.0 / clip.frame_time, names
+    points = points[jumps[0] + 1:] if jumps.size and jumps[0] < 3 else points
+    feet = points[:, :-1] - points[:, -1:]
+    if np.linalg.norm(feet[-1] - feet[0], axis=-1).max() < 0.05:  # one loop: played round three times
+        travel = (2 * points[-1, -1] - points[-2, -1] - points[0, -1]) * np.array([1.0, 0.0, 1.0])
+        points = np.concatenate([points + k * travel for k in range(3)])
+    return points, 1.0 / clip.frame_time, names
 
 
 def _phases(starts: dict[str, np.ndarray], reference: str, period: float) -> dict[str, float]:

@@ -5,14 +5,14 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..gaits import GAIT_PRESETS, TETRAPOD_FEET, foot_names, phases_from_offsets, preset_phases
 from .events import AnalysisError, FootEvents, Step, detect_events, stride_period
-from .tracks import FootTracks
+from .tracks import LOOP_PLAYS, FootTracks, played_round
 
 if TYPE_CHECKING:
     from ..kinematics.motion import Motion
@@ -279,7 +279,22 @@ def _landed(fe: FootEvents, frame_count: int) -> list[Step]:
 
 
 def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> GaitReport:
-    """Events and gait numbers for foot trajectories. Raises :class:`AnalysisError`."""
+    """Events and gait numbers for foot trajectories. Raises :class:`AnalysisError`. A
+    clip too short to analyse that is one loop (:func:`played_round`) is analysed as
+    played round three times, and says so."""
+    try:
+        return _analyze(tracks, requested_gait)
+    except AnalysisError as exc:
+        looped = played_round(tracks)
+        if looped is None:
+            raise AnalysisError(f"{exc} (or, for a one-cycle loop, end on the pose it starts with)") from None
+    report = _analyze(looped, requested_gait)
+    note = (f"the clip is one loop (its last pose is its first): analysed as played round {LOOP_PLAYS} times "
+            f"({looped.duration:.2f} s)")
+    return replace(report, notes=report.notes + (note,))
+
+
+def _analyze(tracks: FootTracks, requested_gait: str | None) -> GaitReport:
     period = stride_period(tracks)
     events = detect_events(tracks, period)
     times = tracks.times

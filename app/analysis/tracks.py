@@ -118,3 +118,36 @@ def _cut_short_stances(motion: Motion) -> int:
     starts = lifted.copy()
     starts[1:] &= ~lifted[:-1]
     return int(np.count_nonzero(starts))
+
+
+LOOP_CLOSE = 0.06  # of the hip height: a clip whose last pose is this near its first is a loop
+LOOP_PLAYS = 3  # a loop is analysed as played round this many times
+
+
+def played_round(tracks: FootTracks, plays: int = LOOP_PLAYS) -> FootTracks | None:
+    """A clip of one loop (a game's walk cycle: its last pose, feet against the body, is
+    its first) as played round ``plays`` times, each play carried on by the body's travel
+    over one loop; None when the clip is no loop. A last frame that repeats the first (a
+    closed loop) is played once."""
+    if tracks.frame_count < 8:
+        return None
+    rel = np.concatenate([tracks.heel, tracks.toe], axis=1) - tracks.body[:, None, :]  # (T, 2F, 3)
+    gap = float(np.linalg.norm(rel[-1] - rel[0], axis=-1).max())
+    if gap > LOOP_CLOSE * (tracks.hip_height or 1.0):
+        return None
+    step = float(np.median(np.linalg.norm(np.diff(rel, axis=0), axis=-1).max(axis=1)))
+    frames = tracks.frame_count - 1 if gap < 0.5 * step else tracks.frame_count  # (a closing repeat)
+    travel = tracks.body[frames] - tracks.body[0] if frames < tracks.frame_count else \
+        2.0 * tracks.body[-1] - tracks.body[-2] - tracks.body[0]
+    travel = travel * np.array([1.0, 0.0, 1.0])
+    dt = float(np.median(np.diff(tracks.times)))
+    offsets = np.repeat(np.arange(plays), frames)[:, None] * travel  # (plays * frames, 3)
+
+    def tile(points: NDArray[np.float64]) -> NDArray[np.float64]:
+        tiled = np.concatenate([points[:frames]] * plays)
+        return tiled + offsets.reshape((len(offsets),) + (1,) * (points.ndim - 2) + (3,))
+
+    return FootTracks(times=tracks.times[0] + dt * np.arange(plays * frames), names=tracks.names,
+                      heel=tile(tracks.heel), toe=tile(tracks.toe), body=tile(tracks.body), source=tracks.source,
+                      hip_height=tracks.hip_height, exact=tracks.exact,
+                      hands=None if tracks.hands is None else tile(tracks.hands), unit_scale=tracks.unit_scale)

@@ -39,6 +39,7 @@ EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
     "dog_stand_walk_tencent_walkrun005_f0-420": ("dog_quad_walkrun_005", 0, 420, DOG_FEET),
     "human_walk_cmu_12_01_f1-524": ("human_walk_cmu_12_01", 1, 524, HUMAN_FEET),
     "human_run_cmu_09_01_f1-149": ("human_run_cmu_09_01", 1, 149, HUMAN_FEET),
+    "human_walk_loop_cmu_12_01_f101-251": ("human_walk_cmu_12_01", 101, 251, HUMAN_FEET),  # one cycle, as a loop
     "human_start_walk_stop_cmu_131_01_max": ("131_01", 0, 994, MAX_FEET),
 }
 
