@@ -271,6 +271,9 @@ def skating_ratio(fe: FootEvents, point: np.ndarray, times: np.ndarray, scale: f
     return float(both.mean())
 
 
+PAUSE = 2.0  # a foot's "stride" longer than this many cycles is a pause (standing, shuffling): no stride
+
+
 def _landed(fe: FootEvents, frame_count: int) -> list[Step]:
     """The steps of ``fe`` whose touchdown was seen: the complete ones and a last one that
     lands inside the clip and is still down at its end."""
@@ -288,7 +291,10 @@ def analyze_tracks(tracks: FootTracks, requested_gait: str | None = None) -> Gai
         looped = played_round(tracks)
         if looped is None:
             raise AnalysisError(f"{exc} (or, for a one-cycle loop, end on the pose it starts with)") from None
-    report = _analyze(looped, requested_gait)
+        try:
+            report = _analyze(looped, requested_gait)
+        except AnalysisError:
+            raise exc from None  # (a clip that stands still "closes" too: say what is wrong with it)
     note = (f"the clip is one loop (its last pose is its first): analysed as played round {LOOP_PLAYS} times "
             f"({looped.duration:.2f} s)")
     return replace(report, notes=report.notes + (note,))
@@ -330,7 +336,7 @@ def _analyze(tracks: FootTracks, requested_gait: str | None) -> GaitReport:
         complete = [s for s in fe.steps if s.complete]
         duties = []
         for a, b in zip(landed[fe.name], landed[fe.name][1:]):
-            if a.complete:
+            if a.complete and times[b.strike] - times[a.strike] <= PAUSE * cycle:  # (not a pause: see gait_spans)
                 duties.append((times[a.liftoff] - times[a.strike]) / max(times[b.strike] - times[a.strike], 1e-9))
         if single:
             duties = [(times[a.liftoff] - times[a.strike]) / cycle for a in complete]
@@ -435,7 +441,7 @@ def gait_spans(times: np.ndarray, events: list[FootEvents], strikes: dict[str, n
     windows: list[tuple[float, float, str]] = []
     for _, cycle_on, _ in contacts:
         for t0, t1 in zip(cycle_on, cycle_on[1:]):
-            if t1 - t0 > 2.0 * cycle:
+            if t1 - t0 > PAUSE * cycle:
                 continue
             phases, duties = {}, []
             for name, on, off in contacts:

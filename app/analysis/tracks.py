@@ -126,16 +126,16 @@ LOOP_PLAYS = 3  # a loop is analysed as played round this many times
 
 def played_round(tracks: FootTracks, plays: int = LOOP_PLAYS) -> FootTracks | None:
     """A clip of one loop (a game's walk cycle: its last pose, feet against the body, is
-    its first) as played round ``plays`` times, each play carried on by the body's travel
+    its first, or a frame's change from it) as played round ``plays`` times, each play carried on by the body's travel
     over one loop; None when the clip is no loop. A last frame that repeats the first (a
     closed loop) is played once."""
     if tracks.frame_count < 8:
         return None
     rel = np.concatenate([tracks.heel, tracks.toe], axis=1) - tracks.body[:, None, :]  # (T, 2F, 3)
     gap = float(np.linalg.norm(rel[-1] - rel[0], axis=-1).max())
-    if gap > LOOP_CLOSE * (tracks.hip_height or 1.0):
+    step = float(np.median(np.linalg.norm(np.diff(rel, axis=0), axis=-1).max(axis=1)))  # one frame's change
+    if gap > max(LOOP_CLOSE * (tracks.hip_height or 1.0), 1.5 * step):  # (a loop may stop a frame short)
         return None
-    step = float(np.median(np.linalg.norm(np.diff(rel, axis=0), axis=-1).max(axis=1)))
     frames = tracks.frame_count - 1 if gap < 0.5 * step else tracks.frame_count  # (a closing repeat)
     travel = tracks.body[frames] - tracks.body[0] if frames < tracks.frame_count else \
         2.0 * tracks.body[-1] - tracks.body[-2] - tracks.body[0]
@@ -150,4 +150,5 @@ def played_round(tracks: FootTracks, plays: int = LOOP_PLAYS) -> FootTracks | No
     return FootTracks(times=tracks.times[0] + dt * np.arange(plays * frames), names=tracks.names,
                       heel=tile(tracks.heel), toe=tile(tracks.toe), body=tile(tracks.body), source=tracks.source,
                       hip_height=tracks.hip_height, exact=tracks.exact,
-                      hands=None if tracks.hands is None else tile(tracks.hands), unit_scale=tracks.unit_scale)
+                      hands=None if tracks.hands is None else tile(tracks.hands), unit_scale=tracks.unit_scale,
+                      compromised=tracks.compromised * plays, cut_short=tracks.cut_short * plays)

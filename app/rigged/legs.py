@@ -141,7 +141,8 @@ def limbs(model: RiggedModel, vocabulary: tuple[str, ...], avoid: tuple[str, ...
 def appendage(model: RiggedModel, words: tuple[str, ...], end: tuple[str, ...] = ()) -> tuple[int, ...]:
     """The chain of joints named for ``words`` (no side: ``b_Tail01``, ``neck_1``), from
     the highest whose parent is not, down through children named for ``words`` and then
-    at most one named for ``end`` (a neck's head); empty unless it has a bone."""
+    at most one named for ``end`` (a neck's head; without one, the neck's last joint turns
+    as the head does); empty unless it has a bone."""
     def named(j: int, vocabulary: tuple[str, ...]) -> bool:
         text, side, _ = _words(model.names[j])
         return side is None and _has(text, vocabulary)
