@@ -64,6 +64,7 @@ CLIPS: dict[str, tuple[Skeleton, str, str]] = {
     "corpus/dog_walk_tencent_walkrun001_f200-560": (DOG, "contacts", ""),
     "corpus/dog_walk_tencent_walkrun005_f200-560": (DOG, "contacts", ""),
     "corpus/dog_walk_tencent_walkrun006_f360-520": (DOG, "contacts", ""),
+    "corpus/dog_walk_tencent_walkrun007_f150-330": (DOG, "contacts", ""),
     "dog_walk_tencent_walkrun005_f120-419": (DOG, "contacts", ""),
     "corpus/dog_stand_walk_tencent_walkrun005_f0-420": (DOG, "contacts", ""),
     "corpus/dog_backwards_tencent_back001_f330-730": (DOG, "contacts", ""),

@@ -33,6 +33,7 @@ EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
     "dog_trot_tencent_walkrun006_f480-660": ("dog_quad_walkrun_006", 480, 660, DOG_FEET),
     "dog_trot_tencent_walkrun007_f440-580": ("dog_quad_walkrun_007", 440, 580, DOG_FEET),
     "dog_walk_tencent_walkrun006_f360-520": ("dog_quad_walkrun_006", 360, 520, DOG_FEET),
+    "dog_walk_tencent_walkrun007_f150-330": ("dog_quad_walkrun_007", 150, 330, DOG_FEET),
     "dog_gallop_tencent_walkrun005_f590-710": ("dog_quad_walkrun_005", 590, 710, DOG_FEET),
     "dog_gallop_tencent_walkrun006_f690-810": ("dog_quad_walkrun_006", 690, 810, DOG_FEET),
     "dog_gallop_tencent_walkrun007_f560-680": ("dog_quad_walkrun_007", 560, 680, DOG_FEET),
