@@ -205,6 +205,26 @@ def test_f12_takes_the_3d_view_and_paused_shows(display: str, tmp_path: Path) ->
         quit_viewer(display, proc, window)
 
 
+def load_from_file_field(display: str, dump: Path, window: str, path: Path) -> None:
+    """Type ``path`` into the File panel's field and press Load. The tall panels open at
+    the start are folded first, so the File panel is on screen (each click seen by a dump
+    made after it, however slowly a loaded machine draws)."""
+    for title in ("Creature", "Gait"):
+        click_widget(display, dump, f"panel.{title}")
+    state = read_state(dump, until=lambda s: s["widgets"]["panel.File"][3] < 650)
+    x, y = centre(state["widgets"]["panel.File"])
+    xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+    state = read_state(dump, until=lambda s: "file" in s["widgets"] and "load" in s["widgets"])
+    x, y = centre(state["widgets"]["file"])
+    xdotool(display, "mousemove", "--window", window, x, y, "click", "1", "sleep", "0.3", "keydown", "ctrl",
+            "sleep", "0.3", "key", "a", "sleep", "0.3", "keyup", "ctrl", "sleep", "0.2", "type", "--delay", "30",
+            str(path))
+    read_state(dump, until=lambda s: True)
+    time.sleep(0.5)
+    x, y = centre(read_state(dump)["widgets"]["load"])
+    xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+
+
 def test_the_file_field_loads_where_no_dialog_opens(display: str, tmp_path: Path) -> None:
     """On a bare Xvfb display no native file dialog can open: the path field is the way in."""
     from app.resources import creatures_dir
@@ -212,22 +232,7 @@ def test_the_file_field_loads_where_no_dialog_opens(display: str, tmp_path: Path
     mine = tmp_path / "mycat.toml"
     mine.write_text((creatures_dir() / "cat.toml").read_text().replace('name = "cat"', 'name = "mycat"'))
     with running_viewer(display, tmp_path, "--size", "1024x700") as (proc, dump, window):
-        # Fold the tall panels that are open at the start, so the File panel is on screen
-        # (each click seen by a dump made after it, however slowly a loaded machine draws).
-        for title in ("Creature", "Gait"):
-            click_widget(display, dump, f"panel.{title}")
-        state = read_state(dump, until=lambda s: s["widgets"]["panel.File"][3] < 650)
-        x, y = centre(state["widgets"]["panel.File"])
-        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
-        state = read_state(dump, until=lambda s: "file" in s["widgets"] and "load" in s["widgets"])
-        x, y = centre(state["widgets"]["file"])
-        xdotool(display, "mousemove", "--window", window, x, y, "click", "1", "sleep", "0.3", "keydown", "ctrl",
-                "sleep", "0.3", "key", "a", "sleep", "0.3", "keyup", "ctrl", "sleep", "0.2", "type", "--delay", "30",
-                str(mine))
-        read_state(dump, until=lambda s: True)
-        time.sleep(0.5)
-        x, y = centre(read_state(dump)["widgets"]["load"])
-        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+        load_from_file_field(display, dump, window, mine)
         state = read_state(dump, until=lambda s: s["creature"]["name"] == "mycat")
         assert str(mine) in state["status"]
 
@@ -273,20 +278,7 @@ def test_the_file_field_opens_a_rigged_model(display: str, tmp_path: Path) -> No
     own mesh: the fox's orange), its bone lengths marked as its own."""
     fox = Path(__file__).parent / "data" / "models" / "Fox.glb"
     with running_viewer(display, tmp_path, "--size", "1024x700") as (proc, dump, window):
-        for title in ("Creature", "Gait"):
-            click_widget(display, dump, f"panel.{title}")
-        state = read_state(dump, until=lambda s: s["widgets"]["panel.File"][3] < 650)
-        x, y = centre(state["widgets"]["panel.File"])
-        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
-        state = read_state(dump, until=lambda s: "file" in s["widgets"] and "load" in s["widgets"])
-        x, y = centre(state["widgets"]["file"])
-        xdotool(display, "mousemove", "--window", window, x, y, "click", "1", "sleep", "0.3", "keydown", "ctrl",
-                "sleep", "0.3", "key", "a", "sleep", "0.3", "keyup", "ctrl", "sleep", "0.2", "type", "--delay", "30",
-                str(fox))
-        read_state(dump, until=lambda s: True)
-        time.sleep(0.5)
-        x, y = centre(read_state(dump)["widgets"]["load"])
-        xdotool(display, "mousemove", "--window", window, x, y, "click", "1")
+        load_from_file_field(display, dump, window, fox)
         state = read_state(dump, until=lambda s: s["creature"]["name"] == "Fox")
         assert state["model_bones"] and state["error"] is None and str(fox) in state["status"]
         time.sleep(1.0)
