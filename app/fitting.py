@@ -44,6 +44,7 @@ from .analysis.sources import load_tracks
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
 from .kinematics.clip import clip_motion
+from .kinematics.walker import SWING_KNEE
 from .rigging import build_rig
 from .spec import CreatureSpec, creature_from_dict, load_creature
 
@@ -84,6 +85,7 @@ class FitResult:
         if self.spec.poses.contact_height is not None:
             p = self.spec.poses
             angle = "" if p.foot_angle is None else f"; foot angle {p.foot_angle:.1f} deg"
+            angle += "" if p.swing_knee is None else f", swing knee {p.swing_knee:.1f} deg"
             lines.append(f"poses      heights contact {p.contact_height:+.3f}, down {p.down_height:+.3f}, pass "
                          f"{p.pass_height:+.3f}, up {p.up_height:+.3f} m{angle}")
         lines.append("")
@@ -415,13 +417,15 @@ def fit_clip(path: str, feet: dict[str, tuple[str, str | None]] | None = None, u
         hip_height = build_rig(creature_from_dict(doc, source=str(path))).hip_height
         leg = next(iter(doc["legs"]))
         keys = ["poses.contact_height", "poses.down_height", "poses.pass_height", "poses.up_height",
-                "poses.foot_angle", f"legs.{leg}.natural_bend", "gait.step_height", f"legs.{leg}.roll"]
+                "poses.foot_angle", f"legs.{leg}.natural_bend", "gait.step_height", f"legs.{leg}.roll",
+                "poses.swing_knee"]
         low = -0.2 * hip_height
-        bounds = [(low, 0.02 * hip_height)] * 4 + [(0.0, 30.0), (0.0, 0.2), (0.01, 0.3), (0.2, 1.0)]
+        bounds = [(low, 0.02 * hip_height)] * 4 + [(0.0, 30.0), (0.0, 0.2), (0.01, 0.3), (0.2, 1.0), (35.0, 95.0)]
         start = [doc["poses"][k.split(".")[1]] for k in keys[:4]] + [doc["poses"].get("foot_angle", 16.0),
                                                                       doc["legs"][leg].get("natural_bend", 0.01),
                                                                       doc["gait"]["step_height"],
-                                                                      doc["legs"][leg].get("roll", 1.0)]
+                                                                      doc["legs"][leg].get("roll", 1.0),
+                                                                      doc["poses"].get("swing_knee", SWING_KNEE)]
         start = [float(np.clip(v, lo, hi)) for v, (lo, hi) in zip(start, bounds)]
         doc = _refine(doc, keys, start, bounds, reference, str(path), progress)
         doc = _calibrate(doc, clip, str(path), progress)

@@ -114,7 +114,8 @@ def key_poses(spec: CreatureSpec, hip_height: float) -> KeyPoses:
         heights = np.array([defaults[i] if v is None else float(v) for i, v in enumerate(given)])
     pick = lambda value, default: math.radians(default if value is None else value)
     return KeyPoses(heights=heights, foot_angle=pick(poses.foot_angle, style.foot_angle),
-                    arm_swing=pick(poses.arm_swing, style.arm_swing), torso_lean=pick(poses.torso_lean, style.torso_lean))
+                    arm_swing=pick(poses.arm_swing, style.arm_swing), torso_lean=pick(poses.torso_lean, style.torso_lean),
+                    swing_knee=None if poses.swing_knee is None else math.radians(poses.swing_knee))
 
 
 def arm_shape(spec: CreatureSpec) -> ArmShape | None:

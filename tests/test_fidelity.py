@@ -71,6 +71,31 @@ def test_human_walk_knee_is_near_the_cmu_walk(walk) -> None:
     assert clip.rms["knee"] < 10.0
 
 
+def _knee_peak(overrides: dict) -> float:
+    rig = build_rig(load_creature("human").with_overrides(overrides))
+    motion, _ = clip_motion(rig, 240.0, cycles=4.0)
+    return float(leg_curves(motion_legs(motion), "L", contact_fraction=rig.gait.duty_factor).mean["knee"].max())
+
+
+def test_a_walker_s_swing_knee_sets_how_far_its_knee_folds() -> None:
+    """poses.swing_knee: people's 59 degrees by default; 75 folds the knee to about 75."""
+    assert 55.0 < _knee_peak({}) < 63.0
+    assert 70.0 < _knee_peak({"poses.swing_knee": 75.0}) < 80.0
+
+
+@pytest.mark.parametrize("duty", [0.60, 0.72])
+def test_a_walker_moves_without_jumps_at_toe_off(duty: float) -> None:
+    """A slow walker (duty 0.72, the CMU subject's) at 240 frames a second: its knee turned
+    23 degrees in one frame at toe-off (the swing's knee started part way through) and
+    its hips rose 22 mm in one frame as the other foot left (its reach let go at once)."""
+    rig = build_rig(load_creature("human").with_overrides({"gait.duty_factor": duty}))
+    motion, _ = clip_motion(rig, 240.0, cycles=2.0)
+    knee = np.asarray(motion_legs(motion).angles["L"].knee)  # degrees
+    hip_height = motion.joints[:, :, 0, 1]
+    assert np.abs(np.diff(knee)).max() < 10.0
+    assert np.abs(np.diff(hip_height, axis=0)).max() < 0.008
+
+
 def test_the_cmu_strikes_are_the_heel_strikes() -> None:
     """A clip's cycles start where each foot is farthest ahead of the body (Zeni et al.
     2008), not where its toes brush the ground late in the swing: the knee is near its

@@ -52,12 +52,12 @@ def test_a_fitted_walker_walks_like_the_cmu_walk(fitted_walker: tuple[Path, str,
     assert "fitted to human_walk_cmu_12_01.bvh" in text
 
 
-@pytest.mark.xfail(strict=True, reason="the clip's knee flexes before toe-off (16 to 62 degrees between 60 and 70 % "
-                                       "of the cycle, toe-off at 69 % by Zeni's events) and Gaitlab's walker's only "
-                                       "after it: 11.9 degrees RMS. (It was 9-10 while the analysis put this clip's "
-                                       "toe-off at the heel rise, 56 %, and the walker swung early.)")
 def test_a_fitted_walker_s_knee_is_within_10_degrees_of_the_cmu_walk(fitted_walker: tuple[Path, str, dict]) -> None:
-    assert fitted_walker[2]["knee"] < 10.0, fitted_walker[2]
+    """The subject folds the knee far more than people's average (74 degrees in the swing,
+    62 at toe-off): the fit refines poses.swing_knee with the key poses."""
+    _, out, rms = fitted_walker
+    assert "swing knee" in out
+    assert rms["knee"] < 10.0, rms
 
 
 def test_a_fitted_trotter_trots_like_the_tencent_dog(tmp_path: Path) -> None:

@@ -149,29 +149,30 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
 
     floor = ground + np.maximum(MIN_CROUCH * rest, 1.05 * np.maximum(rig.l_min[0::2], rig.l_min[1::2]))
 
+    free = (1.0 - planted) * 2.0 * rig.l_max  # a foot in the air does not hold the body
+
     def limits(lateral: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The highest and the lowest each girdle may stand (T, G) with its hips along
         ``lateral`` (T, G, 3): never higher than lets a planted foot reach its ball (or a
         rolling foot's ankle), each hip beside the centre, turned and tilted with the
         girdle; nor so low that a planted foot comes nearer than the leg can fold (the
-        uphill foot on a slope), nor crouched below MIN_CROUCH."""
+        uphill foot on a slope), nor crouched below MIN_CROUCH. The highest is per foot
+        (T, L), as if every foot were planted."""
         side = (rig.hip_side * rig.hip_offset)[None, :, None]
         hip_offset = lateral[:, rig.girdle] * side  # (T, L, 3) from the centre
         hip_xz = point[:, rig.girdle] + hip_offset[..., [0, 2]]
         far = np.linalg.norm(reach_point[..., [0, 2]] - hip_xz, axis=-1)
         allowed = reach_point[..., 1] + np.sqrt(np.maximum(farthest ** 2 - far ** 2, 0.0)) - hip_offset[..., 1]
         horizontal = np.linalg.norm(ball[..., [0, 2]] - hip_xz, axis=-1)
-        allowed = allowed + (1.0 - planted) * 2.0 * rig.l_max
         near = ball[..., 1] + np.sqrt(np.maximum((1.02 * rig.l_min) ** 2 - horizontal ** 2, 0.0))
-        near = near - (1.0 - planted) * 2.0 * rig.l_max
         if reach is not None:  # ... nor nearer its foot's ankle than femur and tibia can fold
             fold = 1.02 * np.abs(rig.femur - rig.tibia)
-            near = np.maximum(near, reach_point[..., 1] + np.sqrt(np.maximum(fold ** 2 - far ** 2, 0.0))
-                              - (1.0 - planted) * 2.0 * rig.l_max)
+            near = np.maximum(near, reach_point[..., 1] + np.sqrt(np.maximum(fold ** 2 - far ** 2, 0.0)))
+        near = near - free
         return allowed, np.maximum(floor, np.maximum(near[:, 0::2], near[:, 1::2]))
 
     allowed, lowest = limits(lateral)
-    highest = np.minimum(allowed[:, 0::2], allowed[:, 1::2])
+    highest = np.minimum((allowed + free)[:, 0::2], (allowed + free)[:, 1::2])
     # Where no height lets both sides' planted feet reach (across a steep slope, the
     # downhill foot too far below, the uphill one too near), the girdle rolls on towards
     # the downhill side (the side that lets it stand less high): its hips come down by
@@ -181,18 +182,31 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
         short = lowest - highest
         if not np.any(short > 1e-6):
             break
-        lower_right = np.where(allowed[:, 1::2] < allowed[:, 0::2], 1.0, -1.0)  # + rolls the right hip down
+        held = allowed + free
+        lower_right = np.where(held[:, 1::2] < held[:, 0::2], 1.0, -1.0)  # + rolls the right hip down
         # Rolling lowers one side's hips as much as it raises the other's: it gains only
         # up to half the difference between the sides (none on level ground).
-        gain = np.minimum(np.maximum(short, 0.0), 0.5 * np.abs(allowed[:, 0::2] - allowed[:, 1::2]))
+        gain = np.minimum(np.maximum(short, 0.0), 0.5 * np.abs(held[:, 0::2] - held[:, 1::2]))
         extra = np.where(pair > 1e-6, np.arcsin(np.clip(gain / np.maximum(pair, 1e-9), 0.0, 1.0)), 0.0)
         roll = np.clip(roll + lower_right * extra, -MAX_STEEP_ROLL, MAX_STEEP_ROLL)
         lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
         allowed, lowest = limits(lateral)
-        highest = np.minimum(allowed[:, 0::2], allowed[:, 1::2])
-    height = np.maximum(np.minimum(height, highest), lowest)
+        highest = np.minimum((allowed + free)[:, 0::2], (allowed + free)[:, 1::2])
+    height = _within_reach(height, allowed, lowest, planted)
     centre = np.stack([point[..., 0], height, point[..., 1]], axis=-1)
     return Girdles(centre=centre, heading=heading, lateral=lateral, yaw=yaw, s=s_g)
+
+
+def _within_reach(height: NDArray[np.float64], allowed: NDArray[np.float64], lowest: NDArray[np.float64],
+                  planted: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each girdle's height (T, G) m held where its feet reach: each foot's highest
+    ``allowed`` (T, L) (with the margin of a foot in the air) pulls the girdle down by its
+    weight ``planted`` (T, L), so a foot lifting off lets go of the body as its weight
+    fades rather than all at once (a slow walker's trailing leg, stretched in double
+    support, would otherwise let the body pop up at toe-off); never below ``lowest`` (T, G)."""
+    held = height[..., None] + planted.reshape(*height.shape, 2) * (
+        np.minimum(height[..., None], allowed.reshape(*height.shape, 2)) - height[..., None])
+    return np.maximum(held.min(axis=-1), lowest)
 
 
 @dataclass(frozen=True)

@@ -106,12 +106,14 @@ class KeyPoses:
     """The key poses of a step. heights (4,): the body's height (m) at contact, down,
     pass and up relative to its rest height, or None (the gait's own bob);
     foot_angle (rad, toes up at contact, with the legs' roll); arm_swing (rad either
-    way); torso_lean (rad forward, upright bodies)."""
+    way); torso_lean (rad forward, upright bodies); swing_knee (rad: a walker's knee at
+    its most bent in the swing; None: people's, ``app.kinematics.walker.SWING_KNEE``)."""
 
     heights: NDArray[np.float64] | None = None
     foot_angle: float = 0.35
     arm_swing: float = 0.4
     torso_lean: float = 0.0
+    swing_knee: float | None = None
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from .easing import smoothstep
 from .footfalls import FootPlan
 from .rig import REACH_LIMIT, Rig
-from .walker import walker_knee, walker_knee_band
+from .walker import knee_fold, walker_knee, walker_knee_band
 
 HEEL_PART = 0.2  # of the stance, at roll 1: heel strike to foot flat
 RISE_PART = 0.5  # of the stance before lift-off, at roll 1: where the heel starts to rise
@@ -177,9 +177,10 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     # shank, at right angles to it as a walker's is by mid-swing (not level with the ground).
     held = sets_ankle[..., 0] & ~contact
     ankle_weight = np.where(held, 1.0, w * plantigrade)
-    knee, knee_weight = walker_knee(plan.phase, plan.duty, contact, s, w_lift)
+    fold = knee_fold(rig.poses.swing_knee)
+    knee, knee_weight = walker_knee(plan.phase, plan.duty, contact, s, w_lift, fold)
     knee_weight = knee_weight * sets_ankle[..., 0]
-    floor, ceiling, band_weight = walker_knee_band(s, plan.duty)
+    floor, ceiling, band_weight = walker_knee_band(s, plan.duty, fold)
     band_weight = np.where(contact, 0.0, band_weight * sets_ankle[..., 0])
     dorsi_weight = np.where(held, 1.0 - np.clip(w, 0.0, 1.0), 0.0)
     return FootRoll(ball=out_ball, ankle_angle=ankle, ankle_weight=ankle_weight, toe_drop=drop, toe_weight=w,

@@ -25,6 +25,11 @@ the stance foot's speed):
   (never nearer the ground than ``app.kinematics.leg.BAND_CLEARANCE``) where the knee
   would fold past its peak, so the knee peaks at ~72 % and straightens before the strike.
 
+Both knee curves run on the normative walk's clock in the swing (by the swing's share,
+so a slow walker's shorter swing goes through the whole of it), and a walker's
+``poses.swing_knee`` scales their bend beyond a straight knee (:func:`knee_fold`): some
+people fold the knee much more than the average, before toe-off and in the swing.
+
 Runners (duty factor under one half) swing with the common smooth arc instead; the
 walker's shapes fade out between duty factors 0.55 and 0.45.
 
@@ -65,6 +70,9 @@ RUN_KNEE_FROM_TOE_OFF = np.array([-0.20, -0.16, -0.12, -0.08, -0.04, 0.0, 0.04, 
 RUN_KNEE_NEAR_TOE_OFF = np.array([45.0, 42.0, 38.0, 32.0, 25.0, 20.0, 38.0, 60.0, 80.0])
 RUN_HEEL_FROM = -0.20
 WALK_DUTY = (0.45, 0.55)  # duty factors over which the walker's swing fades in
+SWING_KNEE = float(KNEE_BEFORE_STRIKE.max())  # deg: the curves' knee at its most bent in the swing
+KNEE_STRAIGHT = 5.0  # deg: the curves' nearly straight knee; a walker's ``swing_knee`` scales the bend beyond it
+NORMATIVE_DUTY = 0.60  # the curves' toe-off (Schwartz et al.'s free speed): their clocks scale to a walker's swing
 
 
 @lru_cache(maxsize=4)
@@ -110,15 +118,37 @@ def walker_lift(swing: NDArray[np.float64], duty: NDArray[np.float64], lift: NDA
     return _curve("lift")(np.clip(swing, 0.0, 1.0)) * w + lift * (1.0 - w)
 
 
+def knee_fold(swing_knee: float | None) -> float:
+    """How much more (> 1) or less a walker's knee bends than people's on average, from its
+    most bent knee in the swing (rad; None: people's, :data:`SWING_KNEE`)."""
+    if swing_knee is None:
+        return 1.0
+    straight = np.radians(KNEE_STRAIGHT)
+    return float((swing_knee - straight) / (np.radians(SWING_KNEE) - straight))
+
+
+def _folded(knee: NDArray[np.float64], fold: float) -> NDArray[np.float64]:
+    """People's knee curve (rad) with its bend beyond :data:`KNEE_STRAIGHT` scaled by ``fold``."""
+    if fold == 1.0:
+        return knee
+    straight = np.radians(KNEE_STRAIGHT)
+    return np.where(knee > straight, straight + (knee - straight) * fold, knee)
+
+
 def walker_knee(phase: NDArray[np.float64], duty: NDArray[np.float64], contact: NDArray[np.bool_],
-                swing: NDArray[np.float64], lifting: NDArray[np.float64]) -> tuple[NDArray[np.float64],
-                                                                                  NDArray[np.float64]]:
+                swing: NDArray[np.float64], lifting: NDArray[np.float64], fold: float = 1.0
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The knee a walker's foot turns about its ball to give (rad) and its weight, (T, L)
     each: from :data:`HEEL_FROM` before toe-off through the stance, then while the
     lift-off pose lasts in the swing (``lifting`` (T, L) in [0, 1]); a runner's from
-    :data:`RUN_HEEL_FROM`. phase, duty, contact, swing: the plan's (T, L)."""
+    :data:`RUN_HEEL_FROM`. phase, duty, contact, swing: the plan's (T, L); ``fold``:
+    :func:`knee_fold` of the walker's swing knee."""
     since_toe_off = np.where(contact, phase - duty, swing * (1.0 - duty))
-    walk = _curve("knee")(np.clip(since_toe_off, KNEE_FROM_TOE_OFF[0], KNEE_FROM_TOE_OFF[-1]))
+    # In the swing the walk's clock runs by the swing's share: a slow walker's shorter
+    # swing (a higher duty factor) goes through the same knee (it folds and straightens
+    # within it) rather than starting it part way.
+    walk_clock = np.where(contact, since_toe_off, swing * (1.0 - NORMATIVE_DUTY))
+    walk = _folded(_curve("knee")(np.clip(walk_clock, KNEE_FROM_TOE_OFF[0], KNEE_FROM_TOE_OFF[-1])), fold)
     run = _curve("run knee")(np.clip(since_toe_off, RUN_KNEE_FROM_TOE_OFF[0], RUN_KNEE_FROM_TOE_OFF[-1]))
     w = walking_weight(duty)
     target = walk * w + run * (1.0 - w)
@@ -128,17 +158,18 @@ def walker_knee(phase: NDArray[np.float64], duty: NDArray[np.float64], contact: 
     return target, weight
 
 
-def walker_knee_band(swing: NDArray[np.float64], duty: NDArray[np.float64]
+def walker_knee_band(swing: NDArray[np.float64], duty: NDArray[np.float64], fold: float = 1.0
                      ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The least and the most knee flexion (rad) a walker's swinging foot keeps, and their
     weight, (T, L) each, from ``swing`` progress and ``duty`` (the plan's): the swing of
     :data:`KNEE_BEFORE_STRIKE` less and more :data:`KNEE_BAND`, from early in the swing
     (the first entry of :data:`KNEE_TO_STRIKE`; the foot neither skims the ground on a
     straight leg nor folds up past the peak), letting go just before the strike (:data:`FLOOR_FADE`) so the foot lands on
-    its foothold; the ceiling lets go earlier (:data:`CEILING_FADE`), once past the peak."""
+    its foothold; the ceiling lets go earlier (:data:`CEILING_FADE`), once past the peak.
+    ``fold``: as in :func:`walker_knee`."""
     s = np.clip(swing, 0.0, 1.0)
-    to_strike = -(1.0 - s) * (1.0 - np.clip(duty, 0.0, 1.0))
-    knee = _curve("terminal knee")(np.clip(to_strike, KNEE_TO_STRIKE[0], KNEE_TO_STRIKE[-1]))
+    to_strike = -(1.0 - s) * (1.0 - NORMATIVE_DUTY)  # by the swing's share, as in walker_knee
+    knee = _folded(_curve("terminal knee")(np.clip(to_strike, KNEE_TO_STRIKE[0], KNEE_TO_STRIKE[-1])), fold)
     start, end = FLOOR_FADE
     begin = smoothstep((to_strike - KNEE_TO_STRIKE[0]) / 0.04)
     weight = walking_weight(duty) * begin * (1.0 - smoothstep((to_strike + start) / (start - end)))

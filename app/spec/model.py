@@ -154,6 +154,7 @@ class PosesSpec:
     foot_angle: float | None = None
     arm_swing: float | None = None
     torso_lean: float | None = None
+    swing_knee: float | None = None
 
     @property
     def shaped(self) -> bool:

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import GaitlabError
 from ..gaits import GAIT_PRESETS
+from ..kinematics.walker import SWING_KNEE
 from ..rigging import apply_style, build_rig
 from ..spec import LEG_TYPE_SHAPES, CreatureSpec, GaitSpec, LegType, leg_type, override_keys, spec_value, without_adjustment
 from ..styles import DEFAULT_TIMING_FPS, style_heights
@@ -86,6 +87,8 @@ class EditingMixin(StateBase):
         if name in names:
             heights = poses.heights if poses.heights is not None else style_heights("normal", rig.hip_height)
             return float(heights[names.index(name)])
+        if name == "swing_knee":
+            return SWING_KNEE if poses.swing_knee is None else float(np.degrees(poses.swing_knee))
         return float(np.degrees({"foot_angle": poses.foot_angle, "arm_swing": poses.arm_swing,
                                  "torso_lean": poses.torso_lean}[name]))
 

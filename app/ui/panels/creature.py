@@ -178,6 +178,7 @@ def poses_panel(state: ViewerState, pc: PanelContext) -> None:
         slider(state, pc, "poses.foot_angle", "foot angle", -30.0, 60.0, "%.1f deg")
         slider(state, pc, "poses.arm_swing", "arm swing", 0.0, 80.0, "%.1f deg")
         slider(state, pc, "poses.torso_lean", "torso lean", -30.0, 45.0, "%.1f deg")
+        slider(state, pc, "poses.swing_knee", "swing knee", 20.0, 110.0, "%.1f deg")
         slider(state, pc, "gait.stride", "stride", 0.0, 1.5, f"%.3f {LEG_LENGTHS}")
         slider(state, pc, "gait.frames_per_cycle", "frames / cycle", 6.0, 96.0, "%.1f frames")
         imgui.end_table()
