@@ -317,3 +317,19 @@ def test_an_in_place_export_of_one_cycle_is_a_loop(tmp_path: Path) -> None:
     result = gaitlab("analyze", "h.bvh", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     assert "one loop" in result.stdout and "walk" in result.stdout
+
+
+@pytest.mark.parametrize(("clip", "running"), [("human_walk_cmu_12_01", False), ("human_run_cmu_09_01", True),
+                                               ("corpus/human_jog_hdm05_dg_06-03_03", True),
+                                               ("corpus/human_jog_circle_hdm05_mm_011", True)])
+def test_people_who_run_are_told_from_people_who_walk(clip: str, running: bool) -> None:
+    """A runner's body is lowest mid-stance, a walker's highest: a slow jog (HDM05, about
+    2 m/s) read as a walk, duty 0.52, when a runner's feet were judged as a walker's."""
+    from app.analysis.events import _signals, runs_like_a_runner, stride_period
+
+    tracks = load_tracks(str(DATA / f"{clip}.bvh"))[0]
+    frames = int(round(stride_period(tracks) * tracks.fps))
+    assert runs_like_a_runner(tracks, _signals(tracks, frames), frames) is running
+    report = analyze_tracks(tracks)
+    assert report.gait_match == ("run" if running else "walk")
+    assert all((f.duty_factor < 0.45) is running for f in report.feet), [f.duty_factor for f in report.feet]

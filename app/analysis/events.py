@@ -33,7 +33,7 @@ landing and lift follow the rules above inside it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
@@ -61,6 +61,11 @@ PAW_SLOW = 0.35  # of the body's current speed: a low paw slower than this over 
 # on CMU 12_01 are within two frames of Zeni et al. 2008's (heel most forward, toe most
 # backward of the pelvis), the standard kinematic definition.
 FOOT_SLOW = 1.0
+# ... but never faster than this (hip heights a second; a person's 1.0 m/s): rolling over
+# the sole, the slower of the two points moves no faster whatever the speed, while a
+# runner's ankle coming down at 2 m/s, its toes still in the air, has not yet landed.
+FOOT_SLOW_MAX = 1.5
+RUNNER_DIP = 0.01  # of the hip height: a body this much below its stride's mean mid-contact runs (people jogging: 2-6 cm)
 BELT_HEIGHTS = 30  # percentile: a foot walking in place is on the belt in its lowest frames
 IN_PLACE = 0.1  # a body that travels less than this share of its feet's path walks in place
 PAW_RELEASE = 1.2  # hysteresis: it stays down until it is this many times higher or faster
@@ -340,15 +345,17 @@ def _clean_contacts(down: NDArray[np.bool_], frames: int) -> NDArray[np.bool_]:
 
 
 def paw_contacts(height: NDArray[np.float64], speed: NDArray[np.float64], body_speed: NDArray[np.float64],
-                 low: float, frames: int, slow_share: float = PAW_SLOW) -> NDArray[np.bool_]:
+                 low: float, frames: int, slow_share: float = PAW_SLOW, slowest: float = np.inf
+                 ) -> NDArray[np.bool_]:
     """Which frames a recorded paw is on the ground, (T,) bool: down once it is lower
     than ``low`` (m) above its own ground (``height``, (T,) m) and slower over the ground
-    than ``slow_share`` of the body's current speed (``speed``, ``body_speed``, (T,) m/s), and
+    than ``slow_share`` of the body's current speed (``speed``, ``body_speed``, (T,) m/s) and
+    than ``slowest`` (m/s), and
     up once it is PAW_RELEASE times higher or faster than that; each contact then runs
     from the first to the last frame it is truly low and slow (the hysteresis only keeps
     it whole between: it would otherwise end every contact late); then lifts and contacts
     too short for a stride of ``frames`` frames are taken out."""
-    slow = slow_share * np.maximum(body_speed, 0.05)
+    slow = np.minimum(slow_share * np.maximum(body_speed, 0.05), slowest)
     enter = (height < low) & (speed < slow)
     leave = (height > PAW_RELEASE * low) | (speed > PAW_RELEASE * slow)
     held = hysteresis(enter, leave)
@@ -379,6 +386,7 @@ class _Signals:
     rel: NDArray[np.float64]
     static_speed: float
     body_speed: NDArray[np.float64]  # (T,) the body's horizontal speed, m/s, averaged over half a second
+    runner: dict[int, bool] = field(default_factory=dict)  # runs_like_a_runner's answer by stride frames
 
 
 def _signals(tracks: FootTracks, frames: int) -> _Signals:
@@ -475,7 +483,43 @@ def recorded_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) ->
     """A recorded foot's ground contacts, (N, 2) [first, last] frames (:func:`paw_contacts`):
     the foot is as low and as slow as the lower and the slower of its two tracked points,
     each above its own ground (either may be the one on the ground: a heel that rises
-    while the toes push, a paw tip that slides)."""
+    while the toes push, a paw tip that slides). A person walking rolls over the sole
+    (:data:`FOOT_SLOW`); a person running does not (:func:`runs_like_a_runner`) and is
+    held to the paws' :data:`PAW_SLOW`."""
+    height, speed, body_speed, low = _recorded_inputs(tracks, sig, f)
+    if len(tracks.names) == 2 and not runs_like_a_runner(tracks, sig, frames):
+        return runs(paw_contacts(height, speed, body_speed, low, frames, FOOT_SLOW,
+                                 FOOT_SLOW_MAX * (tracks.hip_height or 0.9)))
+    return runs(paw_contacts(height, speed, body_speed, low, frames, PAW_SLOW))
+
+
+def runs_like_a_runner(tracks: FootTracks, sig: _Signals, frames: int) -> bool:
+    """Whether a two-footed clip runs: its body is lowest in the middle of a foot's contact
+    (a runner lands on a spring), not highest there (a walker vaults over its stance leg):
+    by more than :data:`RUNNER_DIP` (a walker whose pelvis barely bobs is no runner).
+    The contacts are a walker's (:data:`FOOT_SLOW`): long, for a runner, but centred."""
+    if len(tracks.names) != 2 or tracks.frame_count < 1.2 * frames:
+        return False
+    if frames in sig.runner:
+        return sig.runner[frames]
+    level = tracks.body[:, 1] - running_mean(tracks.body[:, 1], _odd(frames))  # (T,) m about its stride's mean
+    middles: list[int] = []
+    for f in range(2):
+        height, speed, body_speed, low = _recorded_inputs(tracks, sig, f)
+        spans = runs(paw_contacts(height, speed, body_speed, low, frames, FOOT_SLOW,
+                                  FOOT_SLOW_MAX * (tracks.hip_height or 0.9)))
+        inside = spans[(spans[:, 0] > 0) & (spans[:, 1] < tracks.frame_count - 1)]  # whole contacts only
+        middles.extend(int(m) for m in (inside[:, 0] + inside[:, 1]) // 2)
+    dip = -float(np.median(level[np.asarray(middles, dtype=np.intp)])) if len(middles) >= 2 else 0.0
+    sig.runner[frames] = dip > RUNNER_DIP * (tracks.hip_height or 0.9)
+    return sig.runner[frames]
+
+
+def _recorded_inputs(tracks: FootTracks, sig: _Signals, f: int
+                     ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float]:
+    """Foot ``f``'s height above its own ground and speed over it (T,) m, m/s (the lower
+    and the slower of its two points), the body's speed (T,) m/s (the belt's, walking in
+    place) and how low (m) a foot on the ground is."""
     height = np.minimum(sig.above["heel"][:, f], sig.above["toe"][:, f])
     low = min(PAW_LOW * (tracks.hip_height or 0.5), PAW_LOW_MAX)
     k = max(1, int(round(tracks.fps / 60)))  # speeds over ~1/60 s: a gallop's stance may last six frames
@@ -502,8 +546,7 @@ def recorded_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) ->
     for before, after in sides:
         one_sided = np.minimum(np.hypot(*(before - belt).T), np.hypot(*(after - belt).T))
         speed = np.minimum(speed, running_mean(one_sided, k))
-    share = FOOT_SLOW if len(tracks.names) == 2 else PAW_SLOW
-    return runs(paw_contacts(height, speed, body_speed, low, frames, share))
+    return height, speed, body_speed, low
 
 
 def _foot_events(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> FootEvents:

@@ -4,8 +4,10 @@
 
 SOURCE_DIR holds the original takes: Tencent-RoboticsX/lifelike-agility-and-play,
 data/raw_mocap_data/*.bvh at commit cc9eaa9 (dog), the CMU clips of
-shared/reference/motion (human), and yuki-koyama/bvh11's resources/131_01.bvh (CMU's
-3ds Max-friendly BVH conversion). Each excerpt keeps the frames [first, last) of its
+shared/reference/motion (human), yuki-koyama/bvh11's resources/131_01.bvh (CMU's
+3ds Max-friendly BVH conversion), and HDM05 takes (Acclaim ASF/AMC, converted to BVH by
+``acclaim_to_bvh.py`` here, centimetres: ``python acclaim_to_bvh.py HDM_dg.asf
+HDM_dg_06-03_03_120.amc HDM_dg_06-03_03_120.bvh 5.6444``). Each excerpt keeps the frames [first, last) of its
 take at the take's own rate, and of the take's hierarchy only the joints that lead to
 the feet (root, spine, legs, paws and what hangs below the paws: ears, tail, armour and
 fingers are dropped; nothing a kept joint's position depends on is), numbers rounded to
@@ -24,6 +26,7 @@ from app.analysis.bvh import BvhClip, read_bvh
 DOG_FEET = ("b__LeftFinger", "b_RightFinger", "b_LeftToe", "b_RightToe")
 HUMAN_FEET = ("LeftToeBase", "RightToeBase", "LeftHand", "RightHand")
 MAX_FEET = ("LeftToe", "RightToe", "LeftWrist", "RightWrist")  # the 3ds Max-friendly conversion's names
+HDM_FEET = ("ltoes", "rtoes", "lhand", "rhand")  # HDM05's (Acclaim) names
 
 # name: (source take, first frame, last frame, the joints to keep with what leads to them)
 EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
@@ -42,6 +45,13 @@ EXCERPTS: dict[str, tuple[str, int, int, tuple[str, ...]]] = {
     "human_run_cmu_09_01_f1-149": ("human_run_cmu_09_01", 1, 149, HUMAN_FEET),
     "human_walk_loop_cmu_12_01_f101-251": ("human_walk_cmu_12_01", 101, 251, HUMAN_FEET),  # one cycle, as a loop
     "human_start_walk_stop_cmu_131_01_max": ("131_01", 0, 994, MAX_FEET),
+    "human_jog_hdm05_dg_06-03_03": ("HDM_dg_06-03_03_120", 0, 202, HDM_FEET),
+    "human_jog_circle_hdm05_bd_001": ("HDM_bd_jogLeftCircle4StepsRstart_001_120", 0, 244, HDM_FEET),
+    "human_jog_circle_hdm05_bk_005": ("HDM_bk_jogLeftCircle4StepsRstart_005_120", 0, 274, HDM_FEET),
+    "human_jog_circle_hdm05_dg_009": ("HDM_dg_jogLeftCircle4StepsRstart_009_120", 0, 200, HDM_FEET),
+    "human_jog_circle_hdm05_mm_011": ("HDM_mm_jogLeftCircle4StepsRstart_011_120", 0, 224, HDM_FEET),
+    "human_jog_circle_hdm05_tr_015": ("HDM_tr_jogLeftCircle4StepsRstart_015_120", 0, 262, HDM_FEET),
+    "human_jog_circle_hdm05_tr_017": ("HDM_tr_jogLeftCircle4StepsRstart_017_120", 0, 253, HDM_FEET),
 }
 
 
