@@ -262,3 +262,32 @@ def test_the_independent_detector_reads_gaitlabs_own_trot(tmp_path: Path) -> Non
     assert cycle == pytest.approx(1.0 / rig.gait.frequency, rel=0.05)
     assert all(abs(d - rig.gait.duty_factor) <= 0.05 for d in duty.values()), duty
     assert _cyclic(phase["RF"], 0.0) <= 0.05 and _cyclic(phase["LF"], 0.5) <= 0.05 and _cyclic(phase["RH"], 0.5) <= 0.05
+
+
+def test_a_walk_without_toes_on_a_rising_floor_keeps_its_cycle_and_phases(tmp_path: Path) -> None:
+    """The issue's first clip, made from CMU 12_01: its toe joints dropped and the floor
+    rising 7 cm over the clip (it read as a hop of 0.44 s, the right foot at phase
+    0.02). Against Zeni's events on the clip as recorded: the cycle within 5 % and the
+    phases within 0.05, a walk; with only the ankle to go by, a stance ends at the heel
+    rise, so the duty factor reads between one half and the toe's."""
+    import sys
+
+    sys.path.insert(0, str(CORPUS))
+    from make_excerpts import excerpt
+
+    source = CORPUS / "human_walk_cmu_12_01_f1-524.bvh"
+    text = excerpt(source, 0, 523, ("LeftFoot", "RightFoot", "LeftHand", "RightHand"),
+                   drop=("LeftToeBase", "RightToeBase")).splitlines()
+    motion = text.index("MOTION") + 3
+    rows = np.array([line.split() for line in text[motion:]], dtype=float)
+    rows[:, 1] += np.linspace(0.0, 0.07 / CMU.metres, len(rows))  # the root's Yposition: the floor rises 7 cm
+    clip = tmp_path / "toeless_rising.bvh"
+    clip.write_text("\n".join(text[:motion] + [" ".join(f"{v:.2f}" for v in row) for row in rows]) + "\n")
+    assert "ToeBase" not in clip.read_text()
+    cycle, duty, phase = zeni(source, CMU)
+    report = analyze_tracks(load_tracks(str(clip))[0])
+    assert report.gait_match == "walk"
+    assert report.cycle_seconds == pytest.approx(cycle, rel=0.05)
+    for foot in report.feet:
+        assert _cyclic(foot.phase, phase[foot.name]) <= 0.05, (foot.name, foot.phase, phase[foot.name])
+        assert 0.5 < foot.duty_factor < duty[foot.name], (foot.name, foot.duty_factor, duty[foot.name])

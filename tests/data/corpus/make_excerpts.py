@@ -76,9 +76,12 @@ def _ancestors(clip: BvhClip, i: int) -> list[int]:
     return out
 
 
-def excerpt(source: Path, first: int, last: int, wanted: tuple[str, ...]) -> str:
+def excerpt(source: Path, first: int, last: int, wanted: tuple[str, ...], drop: tuple[str, ...] = ()) -> str:
+    """The BVH text of frames [first, last) of ``source`` with only the joints that lead
+    to ``wanted`` and hang below them, less the joints ``drop`` and what hangs below those."""
     clip = read_bvh(source)
-    keep = _kept(clip, wanted)
+    dropped = {clip.index(name) for name in drop}
+    keep = [i for i in _kept(clip, wanted) if not dropped & ({i} | set(_ancestors(clip, i)))]
     children: dict[int, list[int]] = {i: [] for i in keep}
     for i in keep:
         if clip.joints[i].parent >= 0:
