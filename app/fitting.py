@@ -58,6 +58,7 @@ FIT_CYCLES = 4.0  # cycles of it measured per evaluation
 REFINE_EVALUATIONS = 300  # Nelder-Mead's budget of motions solved
 CALIBRATIONS = 5  # rounds (at most) of bringing the measured duty, cycle and speed onto the clip's
 CALIBRATED = (0.002, 0.003, 0.005)  # close enough: duty, and cycle and speed as fractions
+TIMING_KEPT = 0.03  # a refined fit whose duty (or cycle, as a fraction) misses by more falls back to unrefined poses
 JOINTS = ("hip", "knee")  # the curves the refinement matches
 
 Progress = Callable[[str], None]
@@ -73,7 +74,7 @@ class FitResult:
     fitted: GaitReport
     rms: dict[str, dict[str, float]]
     measured: dict[str, Any] = field(default_factory=dict)  # what was read off the skeleton
-    note: str = ""  # why the joint angles were not compared, when they were not
+    note: str = ""  # why the joint angles were not compared, or were not refined
 
     def summary(self) -> str:
         """What was fitted and how close it came, for the terminal."""
@@ -101,6 +102,8 @@ class FitResult:
                          + "  (joint angles against the clip's, over a cycle)")
         if not self.rms:
             lines.append(f"joint angles not compared: {self.note}")
+        elif self.note:
+            lines.append(f"note: {self.note}")
         return "\n".join(lines)
 
 
@@ -317,6 +320,16 @@ def _set(doc: dict[str, Any], key: str, value: Any) -> None:
     table[last] = value
 
 
+def _timing_miss(doc: dict[str, Any], clip: GaitReport) -> float:
+    """How far Gaitlab's own analysis of ``doc`` misses the clip's timing: the larger of
+    the duty factor's miss and the cycle's relative miss (inf when unreadable)."""
+    try:
+        own = _own_report(creature_from_dict(doc, source=clip.source))
+    except GaitlabError:
+        return math.inf
+    return max(abs(mean_duty(own) - mean_duty(clip)), abs(own.cycle_seconds / clip.cycle_seconds - 1.0))
+
+
 def _calibrate(doc: dict[str, Any], clip: GaitReport, name: str, progress: Progress | None) -> dict[str, Any]:
     """Bring Gaitlab's own measured duty, cycle and speed onto the clip's: each round
     simulates the creature, analyses it and corrects the asked-for values by the misses."""
@@ -427,8 +440,14 @@ def fit_clip(path: str, feet: dict[str, tuple[str, str | None]] | None = None, u
                                                                       doc["legs"][leg].get("roll", 1.0),
                                                                       doc["poses"].get("swing_knee", SWING_KNEE)]
         start = [float(np.clip(v, lo, hi)) for v, (lo, hi) in zip(start, bounds)]
-        doc = _refine(doc, keys, start, bounds, reference, str(path), progress)
-        doc = _calibrate(doc, clip, str(path), progress)
+        unrefined = _copy(doc)
+        doc = _calibrate(_refine(doc, keys, start, bounds, reference, str(path), progress), clip, str(path), progress)
+        if _timing_miss(doc, clip) > TIMING_KEPT and _timing_miss(unrefined, clip) <= TIMING_KEPT:
+            # Poses that bend the angles closer but change the gait's timing past what
+            # calibration brings back (a runner's feet skimming the ground read as down):
+            # the gait comes first.
+            doc = unrefined
+            note = "the refined poses changed the gait's timing beyond calibration: the poses are the unrefined ones"
     spec = creature_from_dict(doc, source=str(path))
     fitted = _own_report(spec)
     rms = _rms(spec, reference) if reference else {}

@@ -144,3 +144,18 @@ def test_a_clip_that_walks_in_place_or_has_no_frames_is_one_line(tmp_path: Path)
         assert not (tmp_path / "x.toml").exists()
         analysed = gaitlab("analyze", clip, cwd=tmp_path)
         assert analysed.returncode in (0, 2) and "Traceback" not in analysed.stderr, (name, analysed.stderr)
+
+
+def test_a_fitted_runner_keeps_the_clip_s_timing(tmp_path: Path) -> None:
+    """fit an HDM05 jog (duty 0.35): refining its poses made its feet skim the ground
+    (Gaitlab read its duty 0.46); the gait comes first, so the unrefined poses are kept
+    and the output says so."""
+    jog = Path(__file__).parent / "data" / "corpus" / "human_jog_hdm05_dg_06-03_03.bvh"
+    result = gaitlab("fit", jog, "-o", "jogger.toml", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    clip, jogger = _analysis(jog, tmp_path), _analysis("jogger.toml", tmp_path)
+    assert jogger["gait_match"] == clip["gait_match"] == "run"
+    assert jogger["cycle_seconds"] == pytest.approx(clip["cycle_seconds"], rel=0.03)
+    mean = lambda r: sum(_duties(r).values()) / 2
+    assert abs(mean(jogger) - mean(clip)) <= 0.03, (_duties(jogger), _duties(clip))
+    assert "note: the refined poses changed the gait's timing" in result.stdout
