@@ -31,7 +31,7 @@ def main() -> None:
         sources = sorted(data.glob("*.bvh")) + sorted((data / "corpus").glob("*.bvh"))
         # A folder of takes: the longest clips (a user's takes run seconds to minutes; the
         # corpus's shortest excerpts, 1.6 s jogs, would time little but the start-up).
-        frames = {s: int(next(l for l in s.read_text().splitlines() if l.startswith("Frames:")).split()[1])
+        frames = {s: int(next(line for line in s.read_text().splitlines() if line.startswith("Frames:")).split()[1])
                   for s in sources}
         sources = sorted(sources, key=lambda s: -frames[s])
         for k in range(20):
