@@ -44,7 +44,7 @@ from .analysis.sources import load_tracks
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
 from .kinematics.clip import clip_motion
-from .kinematics.walker import SWING_KNEE
+from .kinematics.walker import SWING_KNEE, SWING_KNEE_RANGE, WALK_DUTY
 from .rigging import build_rig
 from .spec import CreatureSpec, creature_from_dict, load_creature
 
@@ -430,15 +430,17 @@ def fit_clip(path: str, feet: dict[str, tuple[str, str | None]] | None = None, u
         hip_height = build_rig(creature_from_dict(doc, source=str(path))).hip_height
         leg = next(iter(doc["legs"]))
         keys = ["poses.contact_height", "poses.down_height", "poses.pass_height", "poses.up_height",
-                "poses.foot_angle", f"legs.{leg}.natural_bend", "gait.step_height", f"legs.{leg}.roll",
-                "poses.swing_knee"]
+                "poses.foot_angle", f"legs.{leg}.natural_bend", "gait.step_height", f"legs.{leg}.roll"]
         low = -0.2 * hip_height
-        bounds = [(low, 0.02 * hip_height)] * 4 + [(0.0, 30.0), (0.0, 0.2), (0.01, 0.3), (0.2, 1.0), (35.0, 95.0)]
+        bounds = [(low, 0.02 * hip_height)] * 4 + [(0.0, 30.0), (0.0, 0.2), (0.01, 0.3), (0.2, 1.0)]
         start = [doc["poses"][k.split(".")[1]] for k in keys[:4]] + [doc["poses"].get("foot_angle", 16.0),
                                                                       doc["legs"][leg].get("natural_bend", 0.01),
                                                                       doc["gait"]["step_height"],
-                                                                      doc["legs"][leg].get("roll", 1.0),
-                                                                      doc["poses"].get("swing_knee", SWING_KNEE)]
+                                                                      doc["legs"][leg].get("roll", 1.0)]
+        if clip_duty >= WALK_DUTY[0]:  # a walker's knee (a runner's swing does not use it)
+            keys.append("poses.swing_knee")
+            bounds.append(SWING_KNEE_RANGE)
+            start.append(doc["poses"].get("swing_knee", SWING_KNEE))
         start = [float(np.clip(v, lo, hi)) for v, (lo, hi) in zip(start, bounds)]
         unrefined = _copy(doc)
         doc = _calibrate(_refine(doc, keys, start, bounds, reference, str(path), progress), clip, str(path), progress)

@@ -61,7 +61,7 @@ PAW_SLOW = 0.35  # of the body's current speed: a low paw slower than this over 
 # on CMU 12_01 are within two frames of Zeni et al. 2008's (heel most forward, toe most
 # backward of the pelvis), the standard kinematic definition.
 FOOT_SLOW = 1.0
-# ... but never faster than this (hip heights a second; a person's 1.0 m/s): rolling over
+# ... but never faster than this (hip heights a second; a person's 1.3 m/s): rolling over
 # the sole, the slower of the two points moves no faster whatever the speed, while a
 # runner's ankle coming down at 2 m/s, its toes still in the air, has not yet landed.
 FOOT_SLOW_MAX = 1.5
@@ -494,23 +494,27 @@ def recorded_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) ->
 
 
 def runs_like_a_runner(tracks: FootTracks, sig: _Signals, frames: int) -> bool:
-    """Whether a two-footed clip runs: its body is lowest in the middle of a foot's contact
-    (a runner lands on a spring), not highest there (a walker vaults over its stance leg):
-    by more than :data:`RUNNER_DIP` (a walker whose pelvis barely bobs is no runner).
-    The contacts are a walker's (:data:`FOOT_SLOW`): long, for a runner, but centred."""
+    """Whether a two-footed clip runs: its body is low through the middle third of a foot's
+    contact (a runner lands on a spring), by more than :data:`RUNNER_DIP` below its mean
+    over the stride; a walker vaults over its stance leg and is at or above its mean there
+    (a person's pelvis rises twice a stride, over each stance leg). The contacts are a
+    walker's (:data:`FOOT_SLOW`): long, for a runner, but centred. A clip of fewer than two
+    whole contacts, or 1.2 strides, is no runner."""
     if len(tracks.names) != 2 or tracks.frame_count < 1.2 * frames:
         return False
     if frames in sig.runner:
         return sig.runner[frames]
     level = tracks.body[:, 1] - running_mean(tracks.body[:, 1], _odd(frames))  # (T,) m about its stride's mean
-    middles: list[int] = []
+    middles: list[float] = []  # the body's mean level through each contact's middle third
     for f in range(2):
         height, speed, body_speed, low = _recorded_inputs(tracks, sig, f)
         spans = runs(paw_contacts(height, speed, body_speed, low, frames, FOOT_SLOW,
                                   FOOT_SLOW_MAX * (tracks.hip_height or 0.9)))
         inside = spans[(spans[:, 0] > 0) & (spans[:, 1] < tracks.frame_count - 1)]  # whole contacts only
-        middles.extend(int(m) for m in (inside[:, 0] + inside[:, 1]) // 2)
-    dip = -float(np.median(level[np.asarray(middles, dtype=np.intp)])) if len(middles) >= 2 else 0.0
+        for first, last in inside:
+            third = (last - first) / 3.0
+            middles.append(float(np.mean(level[int(round(first + third)):int(round(last - third)) + 1])))
+    dip = -float(np.median(middles)) if len(middles) >= 2 else 0.0
     sig.runner[frames] = dip > RUNNER_DIP * (tracks.hip_height or 0.9)
     return sig.runner[frames]
 

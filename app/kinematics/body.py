@@ -200,10 +200,10 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
 def _within_reach(height: NDArray[np.float64], allowed: NDArray[np.float64], lowest: NDArray[np.float64],
                   planted: NDArray[np.float64]) -> NDArray[np.float64]:
     """Each girdle's height (T, G) m held where its feet reach: each foot's highest
-    ``allowed`` (T, L) (with the margin of a foot in the air) pulls the girdle down by its
-    weight ``planted`` (T, L), so a foot lifting off lets go of the body as its weight
-    fades rather than all at once (a slow walker's trailing leg, stretched in double
-    support, would otherwise let the body pop up at toe-off); never below ``lowest`` (T, G)."""
+    ``allowed`` (T, L) (as if it were planted) pulls the girdle down by its weight
+    ``planted`` (T, L), so a foot lifting off lets go of the body as its weight fades
+    rather than all at once (a slow walker's trailing leg, stretched in double support,
+    let the body jump at toe-off); never below ``lowest`` (T, G)."""
     held = height[..., None] + planted.reshape(*height.shape, 2) * (
         np.minimum(height[..., None], allowed.reshape(*height.shape, 2)) - height[..., None])
     return np.maximum(held.min(axis=-1), lowest)

@@ -72,6 +72,9 @@ RUN_HEEL_FROM = -0.20
 WALK_DUTY = (0.45, 0.55)  # duty factors over which the walker's swing fades in
 SWING_KNEE = float(KNEE_BEFORE_STRIKE.max())  # deg: the curves' knee at its most bent in the swing
 KNEE_STRAIGHT = 5.0  # deg: the curves' nearly straight knee; a walker's ``swing_knee`` scales the bend beyond it
+# deg: the swing knees a walker may be given. Below ~57 the swing's own foot path bends
+# the knee that far anyway (only the push-off would fold less); above 90 the fold whips.
+SWING_KNEE_RANGE = (55.0, 90.0)
 NORMATIVE_DUTY = 0.60  # the curves' toe-off (Schwartz et al.'s free speed): their clocks scale to a walker's swing
 
 

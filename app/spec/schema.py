@@ -130,8 +130,8 @@ POSES_RULES: dict[str, Rule] = {
     "foot_angle": _num(-30, 60, unit="deg", doc="the foot's angle at contact, toes up (with legs.NAME.roll)"),
     "arm_swing": _num(0, 80, unit="deg", doc="how far the arms swing forward and back"),
     "torso_lean": _num(-30, 45, unit="deg", doc="the trunk's lean forward (+) or back (-) (upright bodies)"),
-    "swing_knee": _num(20, 110, unit="deg", doc="a walker's knee at its most bent in the swing (feet that roll heel "
-                       "to toe); its whole swing and push-off scale with it (people: about 60)"),
+    "swing_knee": _num(55, 90, unit="deg", doc="a walker's knee at its most bent in the swing (feet that roll heel "
+                       "to toe, walking); the push-off's knee scales with it (people: about 60)"),
 }
 
 OVERLAP_RULES: dict[str, Rule] = {

@@ -6,6 +6,7 @@ from imgui_bundle import imgui
 
 from ...choices import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
 from ...gaits import GAIT_PRESETS, gaits_for
+from ...kinematics.walker import SWING_KNEE_RANGE, WALK_DUTY, heel_to_toe
 from ...render.scene import KEY_POSE_COLORS
 from ...styles import DEFAULT_TIMING_FPS, STYLES, WALK_STYLES
 from ..state import ViewerState
@@ -178,7 +179,10 @@ def poses_panel(state: ViewerState, pc: PanelContext) -> None:
         slider(state, pc, "poses.foot_angle", "foot angle", -30.0, 60.0, "%.1f deg")
         slider(state, pc, "poses.arm_swing", "arm swing", 0.0, 80.0, "%.1f deg")
         slider(state, pc, "poses.torso_lean", "torso lean", -30.0, 45.0, "%.1f deg")
-        slider(state, pc, "poses.swing_knee", "swing knee", 20.0, 110.0, "%.1f deg")
+        rig = state.live.rig  # a walker's knee: feet that roll heel to toe, walking
+        imgui.begin_disabled(not heel_to_toe(rig).any() or rig.gait.duty_factor < WALK_DUTY[0])
+        slider(state, pc, "poses.swing_knee", "swing knee", *SWING_KNEE_RANGE, "%.1f deg")
+        imgui.end_disabled()
         slider(state, pc, "gait.stride", "stride", 0.0, 1.5, f"%.3f {LEG_LENGTHS}")
         slider(state, pc, "gait.frames_per_cycle", "frames / cycle", 6.0, 96.0, "%.1f frames")
         imgui.end_table()

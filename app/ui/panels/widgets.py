@@ -183,6 +183,7 @@ def _reset(state: ViewerState, key: str, pc: PanelContext) -> None:
     imgui.end_disabled()
     if modified:
         imgui.set_item_tooltip(f"reset to {state.base_value(key)!r}" if state.base_value(key) is not None
+                               else "reset to people's value" if key == "poses.swing_knee"
                                else "reset to the gait preset's value")
 
 
