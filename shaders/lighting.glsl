@@ -23,7 +23,7 @@ vec3 shade(vec3 albedo, vec3 n, vec3 p, float lit) {
     float h = max(dot(n, normalize(to_light + to_eye)), 0.0);
     float h2 = h * h, h4 = h2 * h2, h8 = h4 * h4, h16 = h8 * h8;
     float spec = h16 * h16 * 0.12 * lit;  // h^32
-    float facing = 1.0 - max(dot(n, to_eye), 0.0);
+    float facing = 1.0 - abs(dot(n, to_eye));  // (a normal turned away, in a fold of skin, is no silhouette)
     float rim = facing * facing * facing * 0.18;
     return albedo * (ambient_light(n) + SUN_COLOR * wrapped * lit) + vec3(spec) + rim * u_sky_color;
 }

@@ -146,3 +146,35 @@ def test_a_body_depends_on_its_shape_not_on_the_gait_it_walks() -> None:
     a, b = _build(walk, "coarse"), _build(trot, "coarse")
     assert a.positions.shape == b.positions.shape
     assert np.array_equal(a.positions, b.positions) and np.array_equal(a.bind, b.bind)
+
+
+def test_an_arm_joins_the_trunk_without_a_web() -> None:
+    """Parts of one group blend by the blend width; an arm (its own group) meets the trunk
+    by a narrower one: two capsules 1.5 cm apart merge into one surface between them in one
+    group, and leave the gap open in two (a hanging arm used to be webbed to the trunk,
+    and the web folded, lit as a silhouette, as the arm swung)."""
+    from app.skin.sdf import union_on_grid
+
+    trunk = np.array([[0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.1]])
+    arm = np.array([[0.135, 0.0, 0.0, 0.135, 1.0, 0.0, 0.02, 0.02]])  # 1.5 cm from the trunk's surface
+    capsules = np.concatenate([trunk, arm])
+    axes = (np.array([0.1075]), np.array([0.5]), np.array([0.0]))  # the gap's middle
+    no_ellipsoids = np.zeros((0, 15))
+    one = union_on_grid(axes, capsules, no_ellipsoids, 0.03)
+    two = union_on_grid(axes, capsules, no_ellipsoids, 0.03, groups=np.array([0, 1]), group_blend=0.009)
+    assert one[0, 0, 0] < 0.0 < two[0, 0, 0]
+
+
+def test_a_person_s_arms_are_their_own_groups_and_a_dog_has_none() -> None:
+    from app.skin.body import _arm_groups
+
+    for name, expected in (("human", {0, 1, 2}), ("dog", None)):
+        motion, _ = clip_motion(build_rig(load_creature(name)), 30.0, cycles=0.5)
+        clip = skeleton_clip(motion)
+        capsules, ellipsoids = _parts(motion)
+        from app.skin.body import bind_joints
+
+        part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
+                                     bind_joints(ellipsoids[:, 0:3], None, clip)])
+        groups = _arm_groups(part_joint, clip)
+        assert (None if groups is None else set(groups.tolist())) == expected

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..kinematics.motion import Motion
-from ..kinematics.skeleton import SkeletonClip, SkeletonLayout
+from ..kinematics.skeleton import ARM_JOINTS, SkeletonClip, SkeletonLayout
 from .sdf import part_distances, union_on_grid
 
 Detail = Literal["full", "coarse"]
@@ -34,6 +34,7 @@ SHADOW_FACES = 2500  # the full body's stand-in for the (soft, low-resolution) s
 FAR_FACES = 400  # ... and for an animal far from the camera (a herd's)
 SPECK_FACES = 160  # ... and for its shadow when it is a few shadow-map texels long (a big herd's)
 INFLUENCES = 4  # joints per vertex
+ARM_BLEND = 0.3  # of the blend width: how softly an arm joins the trunk (no web where it hangs close)
 
 
 @dataclass(frozen=True)
@@ -114,9 +115,10 @@ def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     return capsules, ellipsoids
 
 
-def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail
-             ) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
-    """The union's zero surface: vertices (V, 3), faces (F, 3) and the blend width (m)."""
+def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail,
+             groups: NDArray[np.int64] | None = None) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
+    """The union's zero surface: vertices (V, 3), faces (F, 3) and the blend width (m).
+    ``groups`` (P,): see :func:`app.skin.sdf.union_on_grid` (each arm its own)."""
     from skimage.measure import marching_cubes
 
     lo = np.minimum(capsules[:, 0:3].min(axis=0) if len(capsules) else np.inf,
@@ -138,7 +140,8 @@ def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], det
     ellipsoids[:, 12:15] = np.maximum(ellipsoids[:, 12:15], 1.1 * cell)
     lo, hi = lo - 3.0 * cell - blend, hi + 3.0 * cell + blend  # a closed surface: the grid's edge is outside
     axes = tuple(np.arange(lo[k], hi[k] + cell, cell) for k in range(3))
-    volume = union_on_grid(axes, capsules, ellipsoids, blend)  # type: ignore[arg-type]
+    volume = union_on_grid(axes, capsules, ellipsoids, blend, groups,  # type: ignore[arg-type]
+                           None if groups is None else ARM_BLEND * blend)
     verts, faces, _normals, _values = marching_cubes(volume, level=0.0, spacing=(cell, cell, cell),
                                                      gradient_direction="ascent")
     return verts + lo, faces.astype(np.int64), blend
@@ -166,6 +169,16 @@ def _simplify(verts: NDArray[np.float64], faces: NDArray[np.int64], target: int
             if mesh.is_watertight and mesh.is_winding_consistent:
                 return np.asarray(mesh.vertices), np.asarray(mesh.faces, dtype=np.int64)
     return verts, faces
+
+
+def _arm_groups(part_joint: NDArray[np.int64], clip: SkeletonClip) -> NDArray[np.int64] | None:
+    """Each part's group (P,): 0 the trunk, legs and head; 1 and 2 the left and right arm
+    (shoulder to hand); None for a creature without arms."""
+    names = clip.skeleton.names
+    side = np.array([1 if n.startswith("L_") and n[2:] in ARM_JOINTS else 2 if n.startswith("R_") and n[2:] in ARM_JOINTS
+                     else 0 for n in names])
+    groups = side[part_joint]
+    return groups if groups.any() else None
 
 
 def _weights(verts: NDArray[np.float64], capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64],
@@ -200,9 +213,9 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
 
     start = time.perf_counter()
     capsules, ellipsoids = _parts(motion)
-    verts, faces, blend = _surface(capsules, ellipsoids, detail)
     part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
                                  bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
+    verts, faces, blend = _surface(capsules, ellipsoids, detail, _arm_groups(part_joint, clip))
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
                 shadow: SkinnedBody | None = None, far: SkinnedBody | None = None) -> SkinnedBody:

@@ -52,12 +52,26 @@ def smooth_union(distances: NDArray[np.float64], blend: float) -> NDArray[np.flo
 
 
 def union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
-                  capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float) -> NDArray[np.float32]:
+                  capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float,
+                  groups: NDArray[np.int64] | None = None, group_blend: float | None = None) -> NDArray[np.float32]:
     """The smooth union sampled on the grid ``axes`` (x (X,), y (Y,), z (Z,) coordinates):
     (X, Y, Z) float32. Each part is evaluated only in its bounding box widened by four
     blend widths (beyond, its share of the soft minimum is under 2 % of ``blend``), and the
     soft minimum is accumulated part by part (a running minimum and rescaled sum), so
-    memory stays one grid whatever the number of parts."""
+    memory stays one grid a group whatever the number of parts.
+
+    ``groups`` (P,): parts of one group (a person's arm) blend with each other by
+    ``blend`` and with other groups' by the narrower ``group_blend``: an arm hanging by
+    the trunk in the bind pose joins it at the shoulder, not by a web along its length."""
+    if groups is None or group_blend is None or len(np.unique(groups)) < 2:
+        return _union_on_grid(axes, capsules, ellipsoids, blend)
+    unions = [_union_on_grid(axes, capsules[groups[:len(capsules)] == g], ellipsoids[groups[len(capsules):] == g],
+                             blend) for g in np.unique(groups)]
+    return smooth_union(np.stack(unions), group_blend).astype(np.float32)
+
+
+def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+                   capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float) -> NDArray[np.float32]:
     xs, ys, zs = axes
     shape = (len(xs), len(ys), len(zs))
     nearest = np.full(shape, np.inf, dtype=np.float32)
