@@ -270,7 +270,7 @@ def test_a_walk_without_toes_on_a_rising_floor_keeps_its_cycle_and_phases(tmp_pa
     rising 7 cm over the clip (it read as a hop of 0.44 s, the right foot at phase
     0.02). Against Zeni's events on the clip as recorded: the cycle within 5 % and the
     phases within 0.05, a walk; with only the ankle to go by, a stance ends at the heel
-    rise, so the duty factor reads between one half and the toe's."""
+    rise, so the duty factor reads between one half and the toe's, and a note says so."""
     import sys
 
     sys.path.insert(0, str(CORPUS))
@@ -287,6 +287,7 @@ def test_a_walk_without_toes_on_a_rising_floor_keeps_its_cycle_and_phases(tmp_pa
     assert "ToeBase" not in clip.read_text()
     cycle, duty, phase = zeni(source, CMU)
     report = analyze_tracks(load_tracks(str(clip))[0])
+    assert any(note.startswith("no toe joints") for note in report.notes), report.notes  # says why duty reads low
     assert report.gait_match == "walk"
     assert report.cycle_seconds == pytest.approx(cycle, rel=0.05)
     for foot in report.feet:
