@@ -386,7 +386,12 @@ class _Signals:
     rel: NDArray[np.float64]
     static_speed: float
     body_speed: NDArray[np.float64]  # (T,) the body's horizontal speed, m/s, averaged over half a second
-    runner: dict[int, bool] = field(default_factory=dict)  # runs_like_a_runner's answer by stride frames
+    # Memos of what the contacts of recorded feet are found from: each foot's inputs
+    # (:func:`_recorded_inputs`), a walker's contacts by (stride frames, foot) and
+    # :func:`runs_like_a_runner`'s answer by stride frames.
+    inputs: dict[int, tuple] = field(default_factory=dict)
+    walking: dict[tuple[int, int], NDArray[np.intp]] = field(default_factory=dict)
+    runner: dict[int, bool] = field(default_factory=dict)
 
 
 def _signals(tracks: FootTracks, frames: int) -> _Signals:
@@ -486,11 +491,21 @@ def recorded_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) ->
     while the toes push, a paw tip that slides). A person walking rolls over the sole
     (:data:`FOOT_SLOW`); a person running does not (:func:`runs_like_a_runner`) and is
     held to the paws' :data:`PAW_SLOW`."""
-    height, speed, body_speed, low = _recorded_inputs(tracks, sig, f)
     if len(tracks.names) == 2 and not runs_like_a_runner(tracks, sig, frames):
-        return runs(paw_contacts(height, speed, body_speed, low, frames, FOOT_SLOW,
-                                 FOOT_SLOW_MAX * (tracks.hip_height or 0.9)))
+        return _walker_contacts(tracks, sig, f, frames)
+    height, speed, body_speed, low = _recorded_inputs(tracks, sig, f)
     return runs(paw_contacts(height, speed, body_speed, low, frames, PAW_SLOW))
+
+
+def _walker_contacts(tracks: FootTracks, sig: _Signals, f: int, frames: int) -> NDArray[np.intp]:
+    """Person ``f``'s contacts as a walker's (:data:`FOOT_SLOW`, at most
+    :data:`FOOT_SLOW_MAX`), (N, 2) [first, last] frames; kept on ``sig``."""
+    key = (frames, f)
+    if key not in sig.walking:
+        height, speed, body_speed, low = _recorded_inputs(tracks, sig, f)
+        sig.walking[key] = runs(paw_contacts(height, speed, body_speed, low, frames, FOOT_SLOW,
+                                             FOOT_SLOW_MAX * (tracks.hip_height or 0.9)))
+    return sig.walking[key]
 
 
 def runs_like_a_runner(tracks: FootTracks, sig: _Signals, frames: int) -> bool:
@@ -507,9 +522,7 @@ def runs_like_a_runner(tracks: FootTracks, sig: _Signals, frames: int) -> bool:
     level = tracks.body[:, 1] - running_mean(tracks.body[:, 1], _odd(frames))  # (T,) m about its stride's mean
     middles: list[float] = []  # the body's mean level through each contact's middle third
     for f in range(2):
-        height, speed, body_speed, low = _recorded_inputs(tracks, sig, f)
-        spans = runs(paw_contacts(height, speed, body_speed, low, frames, FOOT_SLOW,
-                                  FOOT_SLOW_MAX * (tracks.hip_height or 0.9)))
+        spans = _walker_contacts(tracks, sig, f, frames)
         inside = spans[(spans[:, 0] > 0) & (spans[:, 1] < tracks.frame_count - 1)]  # whole contacts only
         for first, last in inside:
             third = (last - first) / 3.0
@@ -523,7 +536,14 @@ def _recorded_inputs(tracks: FootTracks, sig: _Signals, f: int
                      ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float]:
     """Foot ``f``'s height above its own ground and speed over it (T,) m, m/s (the lower
     and the slower of its two points), the body's speed (T,) m/s (the belt's, walking in
-    place) and how low (m) a foot on the ground is."""
+    place) and how low (m) a foot on the ground is; kept on ``sig``."""
+    if f not in sig.inputs:
+        sig.inputs[f] = _measure_inputs(tracks, sig, f)
+    return sig.inputs[f]
+
+
+def _measure_inputs(tracks: FootTracks, sig: _Signals, f: int
+                    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], float]:
     height = np.minimum(sig.above["heel"][:, f], sig.above["toe"][:, f])
     low = min(PAW_LOW * (tracks.hip_height or 0.5), PAW_LOW_MAX)
     k = max(1, int(round(tracks.fps / 60)))  # speeds over ~1/60 s: a gallop's stance may last six frames
