@@ -15,12 +15,12 @@ uniform float u_grid_spacing;  // metres between minor grid lines
 
 out vec2 v_grid;   // grid coordinate (grid.glsl's grid_coord), linear in the world
 out vec3 v_shadow;  // light-space position (used by the shadow pass only)
-out float v_focus_distance;  // metres from u_focus; exact along the floor disc's radii
+out vec2 v_focus_offset;  // world xz - u_focus (metres): linear, so exact per fragment
 
 void main() {
     vec3 world = vec3(u_center.x + in_xz.x * u_half_size.x, u_lift, u_center.y + in_xz.y * u_half_size.y);
     v_grid = (world.xz + u_grid_offset) / u_grid_spacing;
     v_shadow = shadow_coord(world, vec3(0.0, 1.0, 0.0));
-    v_focus_distance = length(world.xz - u_focus);
+    v_focus_offset = world.xz - u_focus;
     gl_Position = u_view_proj * vec4(world, 1.0);
 }

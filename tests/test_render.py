@@ -89,6 +89,48 @@ def test_same_frame_twice_gives_identical_pixels(renderer) -> None:
     assert np.array_equal(a, b)
 
 
+def test_a_shadow_cast_ahead_draws_the_same_frame(gl_ctx) -> None:
+    """A viewer casts the next frame's shapes and shadow while the GL still draws this one:
+    the frame drawn from that cast is the frame drawn in one go; the two shadow maps take
+    turns; a cast overtaken by a later one (whose shapes are now the ones uploaded) is
+    cast again rather than drawn with another frame's shapes."""
+    import moderngl
+
+    from app.render.options import GroundView
+    from app.render.renderer import SceneRenderer
+    from app.render.scene import motion_instances
+    from app.render.target import OffscreenTarget
+
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    frames = motion_instances(motion)
+    first, later = frames.frame(0), frames.frame(9)
+    camera = frame_points(motion_bounds(motion), "three-quarter", aspect=SIZE[0] / SIZE[1])
+    renderer, target = SceneRenderer(gl_ctx), OffscreenTarget(gl_ctx, SIZE)
+    options = RenderOptions()
+    viewport = (0, 0, *SIZE)
+    try:
+        def draw(scene, cast=None) -> np.ndarray:
+            renderer.draw_instances(scene, GroundView(), camera, target.fbo, options, cast=cast)
+            return target.read().astype(int)
+
+        renderer.draw_instances(first, GroundView(), camera, target.fbo, RenderOptions(shadow=False))
+        unshadowed = target.read().astype(int)
+        whole = draw(first)
+        assert (np.abs(whole - unshadowed).max(axis=-1) > 20).sum() > 100  # (its shadow is in the picture)
+        ahead = renderer.cast(first, GroundView().terrain, camera, viewport, options)
+        gl_ctx.disable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)  # a UI drawn in between, say
+        gl_ctx.enable(moderngl.BLEND)
+        assert np.array_equal(draw(first, ahead), whole)
+        one = renderer.cast(first, GroundView().terrain, camera, viewport, options)
+        two = renderer.cast(later, GroundView().terrain, camera, viewport, options)
+        assert {one.shadow_map, two.shadow_map} == {0, 1}
+        assert np.array_equal(draw(first, one), whole)  # overtaken: cast again
+        assert not np.array_equal(draw(later, two), whole)
+    finally:
+        target.release()
+        renderer.release()
+
+
 def test_frames_differ_as_the_creature_walks(renderer) -> None:
     a = render(renderer, "dog", frame=0)
     b = render(renderer, "dog", frame=8)

@@ -21,7 +21,6 @@ from .scene import ELLIPSOID_FLOATS, SceneInstances, srgb_to_linear
 from .shaders import ShaderLibrary
 from .uniforms import Uniforms
 
-FLOOR_SEGMENTS = 64
 TERRAIN_CELLS = 72  # the terrain patch around the creature is this many cells across
 PATH_DEPTH_OFFSET = (-2.0, -8.0)  # the path ribbon pulled towards the eye (polygon offset factor, units)
 ELLIPSOID_LAYOUT = ("3f", ("in_pos",), "3f 3f 3f 3f 3f 3f/i",
@@ -56,10 +55,12 @@ class GroundPass:
         self.ctx = ctx
         self.uniforms = uniforms
         self.floor_prog = shaders.program("ground.vert", "ground.frag")
-        # The floor is a disc (a fan) out to where the fog has reached the horizon colour.
-        angles = np.linspace(0.0, 2.0 * np.pi, FLOOR_SEGMENTS + 1)
-        disc = np.concatenate([[[0.0, 0.0]], np.stack([np.cos(angles), np.sin(angles)], axis=1)]).astype("f4")
-        self.floor_vbo = ctx.buffer(disc.tobytes())
+        # The floor is a square (two triangles) out to where the fog has reached the horizon
+        # colour; the fog is round (ground.frag). A software rasteriser shades the blocks
+        # along every edge once for each triangle on it, so a fan of thin wedges meeting
+        # under the creature, in the middle of the view, costs more.
+        square = np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]], dtype="f4")
+        self.floor_vbo = ctx.buffer(square.tobytes())
         self.floor_vao = ctx.vertex_array(self.floor_prog, [(self.floor_vbo, "2f", "in_xz")])
         self.shadow_prog = shaders.program("ground.vert", "ground_shadow.frag")
         # The shadow's outline on the floor (world xz corners; ground.vert's rectangle set to

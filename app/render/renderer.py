@@ -4,15 +4,19 @@ the ground, into any framebuffer.
 Lifecycle (the same for a window and for EGL): create with a context, call
 :meth:`SceneRenderer.draw_instances` per frame with a target framebuffer,
 :meth:`SceneRenderer.release` at the end. It owns its GL objects and knows nothing about
-windows or files. A frame is three passes: the shadow map (:meth:`_shadow_pass`), the
-creatures (:class:`CreaturePass`) and the ground (:class:`~app.render.ground.GroundPass`,
+windows or files. A frame is three passes: the shadow map (:meth:`SceneRenderer.cast`),
+the creatures (:class:`CreaturePass`) and the ground (:class:`~app.render.ground.GroundPass`,
 with the sky).
+
+The first can be issued ahead: a viewer casts the next frame's shadow while the GL still
+rasterises this one (two shadow maps take turns), so the next frame's creatures, which
+read the shadow map, do not wait for it.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import moderngl
 import numpy as np
@@ -20,6 +24,7 @@ from pyglm import glm
 
 from ..kinematics.motion import Pose
 from ..kinematics.rig import Rig
+from ..kinematics.terrain import Terrain
 from .bodies import body_levels, pose_body, shared_body_cache
 from .camera import Camera
 from .ground import ELLIPSOID_LAYOUT, GroundPass
@@ -198,6 +203,23 @@ class BodyPass:
             self._bones.release()
 
 
+@dataclass(frozen=True)
+class ShadowCast:
+    """One frame's shapes uploaded and its shadow map drawn (:meth:`SceneRenderer.cast`):
+    the light's view-projection, the world size (m) of a shadow-map texel, which of the
+    renderer's shadow maps holds it, and the creatures' bounds (``centre`` (3,), m, and
+    ``radius``, m) and the ground's height under them (m)."""
+
+    scene: SceneInstances
+    light_vp: glm.mat4
+    texel: float
+    shadow_map: int
+    centre: np.ndarray
+    radius: float
+    ground_level: float
+    shadow: bool  # whether the creatures cast a shadow (options.shadow)
+
+
 class SceneRenderer:
     """Draws creatures over the ground. One per GL context; reuse it for every frame."""
 
@@ -214,12 +236,17 @@ class SceneRenderer:
         self.bodies = BodyPass(ctx, self.shaders)
         self.body_cache = shared_body_cache()
         self.ground = GroundPass(ctx, self.shaders, self.uniforms)
-        self.shadow_map = ctx.depth_texture((SHADOW_MAP_SIZE, SHADOW_MAP_SIZE))
-        self.shadow_map.compare_func = "<="
-        self.shadow_map.filter = (moderngl.LINEAR, moderngl.LINEAR)
-        self.shadow_map.repeat_x = False
-        self.shadow_map.repeat_y = False
-        self.shadow_fbo = ctx.framebuffer(depth_attachment=self.shadow_map)
+        self.shadow_maps = tuple(self._shadow_map() for _ in range(2))  # (texture, framebuffer): they take turns
+        self._next_map = 0
+        self._latest: ShadowCast | None = None  # the last cast: its shapes are the ones uploaded
+
+    def _shadow_map(self) -> tuple[moderngl.Texture, moderngl.Framebuffer]:
+        texture = self.ctx.depth_texture((SHADOW_MAP_SIZE, SHADOW_MAP_SIZE))
+        texture.compare_func = "<="
+        texture.filter = (moderngl.LINEAR, moderngl.LINEAR)
+        texture.repeat_x = False
+        texture.repeat_y = False
+        return texture, self.ctx.framebuffer(depth_attachment=texture)
 
     def render(self, pose: Pose, rig: Rig, camera: Camera, target: moderngl.Framebuffer,
                options: RenderOptions | None = None, viewport: tuple[int, int, int, int] | None = None) -> None:
@@ -231,10 +258,29 @@ class SceneRenderer:
             scene = replace(scene, bodies=(pose_body(pose, rig, self.body_cache),))
         self.draw_instances(scene, GroundView(offset=pose.ground_offset), camera, target, options, viewport)
 
+    def cast(self, scene: SceneInstances, terrain: Terrain, camera: Camera, viewport: tuple[int, int, int, int],
+             options: RenderOptions) -> ShadowCast:
+        """Upload ``scene``'s shapes (nearest first, at the levels of detail ``camera``
+        calls for in a view of ``viewport``'s size) and draw their shadow map, into the
+        shadow map the last cast did not use (a frame drawn from it may still be in the
+        GL's hands). Give the result to the next :meth:`draw_instances`; a cast that is not
+        the latest is cast again there."""
+        pixel = None if camera.ortho else math.radians(camera.fov) / max(viewport[3], 1)
+        self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32), pixel)
+        centre, radius = creature_bounds(scene, terrain)
+        ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
+        light_vp, shadow_texel = light_view_proj(scene, None if terrain.flat else ground_level)
+        self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64), shadow_texel, pixel)
+        index, self._next_map = self._next_map, 1 - self._next_map
+        self._shadow_pass(self.shadow_maps[index][1], light_vp, options)
+        self._latest = ShadowCast(scene, light_vp, shadow_texel, index, centre, radius, ground_level, options.shadow)
+        return self._latest
+
     def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
                        target: moderngl.Framebuffer, options: RenderOptions,
                        viewport: tuple[int, int, int, int] | None = None, multisampled: bool | None = None,
-                       overlays: Overlays | None = None, clear_target: bool = False) -> None:
+                       overlays: Overlays | None = None, clear_target: bool = False,
+                       cast: ShadowCast | None = None) -> None:
         """Draw creature instances over ``ground`` (a GroundView, or the in-place ground
         offset in metres) seen by ``camera`` into ``target`` (cleared first), with
         ``overlays`` (footprints, targets, support polygon) on the ground.
@@ -242,6 +288,8 @@ class SceneRenderer:
         its colour attachments; give it for a window's framebuffer). ``clear_target``:
         clear all of ``target``, not just ``viewport`` (cheaper on a software rasteriser
         than a clear cut to a rectangle, for callers that draw over the rest anyway).
+        ``cast``: this scene's shapes and shadow, issued ahead by :meth:`cast` (else
+        they are cast here).
 
         Without multisampling the creatures go first, nearest shapes first, so the depth
         test rejects the ground hidden behind them before shading it (a software
@@ -254,15 +302,11 @@ class SceneRenderer:
             ground = GroundView(offset=float(ground))
         terrain = ground.terrain
         viewport = viewport or (0, 0, *target.size)
-        pixel = None if camera.ortho else math.radians(camera.fov) / max(viewport[3], 1)
-        self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32), pixel)
+        if cast is None or cast is not self._latest or cast.scene is not scene or cast.shadow != options.shadow:
+            cast = self.cast(scene, terrain, camera, viewport, options)
         aspect = viewport[2] / max(viewport[3], 1)
-        centre, radius = creature_bounds(scene, terrain)
-        ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
-        light_vp, shadow_texel = light_view_proj(scene, None if terrain.flat else ground_level)
-        self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64), shadow_texel, pixel)
-        self._shadow_pass(light_vp, options)
-        self._begin_main_pass(target, viewport, camera, aspect, light_vp, shadow_texel, options, clear_target)
+        centre, radius = cast.centre, cast.radius
+        self._begin_main_pass(target, viewport, camera, aspect, cast, options, clear_target)
         if multisampled is None:
             multisampled = any(getattr(a, "samples", 0) > 0 for a in target.color_attachments)
         if not multisampled:
@@ -273,43 +317,46 @@ class SceneRenderer:
         reach = radius * self.FOG_END * 1.05
         self.ground.set_fog_and_grid(centre, radius, (self.FOG_START, self.FOG_END), ground, options)
         if terrain.flat:
-            self.ground.draw_floor(scene, centre, reach, shadow_texel, radius, options)
+            self.ground.draw_floor(scene, centre, reach, cast.texel, radius, options)
         else:
             self.ground.draw_terrain(terrain, centre, reach, options)
         if options.path and ground.path is not None:
             self.ground.draw_path(ground, reach, radius, options)
         if overlays is not None:
             self.ground.draw_overlays(overlays, terrain, options)
-        self.ground.draw_sky(camera, aspect, centre, reach, ground_level, options)
+        self.ground.draw_sky(camera, aspect, centre, reach, cast.ground_level, options)
         self.ctx.enable_direct(GL_MULTISAMPLE)
         if multisampled:
             self.bodies.draw()
             self.creatures.draw()
 
-    def _shadow_pass(self, light_vp: glm.mat4, options: RenderOptions) -> None:
-        """Depth from the key light into the shadow map (cleared: no shadow when off)."""
+    def _shadow_pass(self, fbo: moderngl.Framebuffer, light_vp: glm.mat4, options: RenderOptions) -> None:
+        """Depth from the key light into a shadow map's ``fbo`` (cleared: no shadow when off)."""
         ctx = self.ctx
         ctx.enable(moderngl.DEPTH_TEST | moderngl.CULL_FACE)
         ctx.disable(moderngl.BLEND)
         ctx.depth_func = "<"
-        self.shadow_fbo.use()
-        self.shadow_fbo.clear(depth=1.0)
+        fbo.use()
+        fbo.clear(depth=1.0)
         if options.shadow:
             self.creatures.draw_depth(light_vp)
             self.bodies.draw_depth(light_vp)
 
     def _begin_main_pass(self, target: moderngl.Framebuffer, viewport: tuple[int, int, int, int], camera: Camera,
-                         aspect: float, light_vp: glm.mat4, shadow_texel: float, options: RenderOptions,
-                         clear_target: bool = False) -> None:
+                         aspect: float, cast: ShadowCast, options: RenderOptions, clear_target: bool = False) -> None:
         """Clear ``target`` (its ``viewport``, or all of it) to the horizon colour and give
         every lit program the camera, the light and the shadow map."""
         target.use()
         target.viewport = viewport
+        self.ctx.enable(moderngl.DEPTH_TEST)  # (whatever was drawn since the cast, a UI say, may have turned it off)
+        self.ctx.disable(moderngl.BLEND)
+        self.ctx.depth_func = "<"
         sky, horizon = srgb_to_linear(options.sky_color), srgb_to_linear(options.horizon_color)
         r, g, b = (float(c) for c in np.sqrt(horizon))
         target.clear(r, g, b, 1.0, depth=1.0, viewport=None if clear_target else viewport)  # beyond the floor: horizon
         view_proj = camera.view_proj(aspect)
-        self.shadow_map.use(location=0)
+        self.shadow_maps[cast.shadow_map][0].use(location=0)
+        light_vp, shadow_texel = cast.light_vp, cast.texel
         set_ = self.uniforms.set
         for prog in (*self.creatures.lit_programs, self.bodies.lit, *self.ground.lit_programs):
             set_(prog, "u_view_proj", view_proj)
@@ -327,6 +374,7 @@ class SceneRenderer:
         self.creatures.release()
         self.bodies.release()
         self.ground.release()
-        self.shadow_fbo.release()
-        self.shadow_map.release()
+        for texture, fbo in self.shadow_maps:
+            fbo.release()
+            texture.release()
         self.shaders.release()

@@ -28,7 +28,7 @@ from ..render.camera import eye_ray, ground_point, point3
 from ..render.herd import HerdInstances
 from ..render.options import GroundView
 from ..render.overlays import Overlays
-from ..render.renderer import SceneRenderer
+from ..render.renderer import SceneRenderer, ShadowCast
 from ..render.scene import KEY_POSE_COLORS, SceneInstances, frame_instances, ghost_instances, pose_instances
 from .file_dialog import FileDialog, dialogs_available
 from .imgui_renderer import Backdrop, ImguiRenderer
@@ -66,6 +66,7 @@ class FrameContent:
     instances: SceneInstances
     ground: GroundView
     overlays: Overlays | None
+    cast: ShadowCast | None = None  # its shapes and shadow, issued to the GL ahead of the frame
 
 
 def _ema(old: float, new: float, k: float = 0.1) -> float:
@@ -474,7 +475,9 @@ class Viewer:
         The 3-D view is handed to the GL (flushed) before the UI is built and the next
         frame's motion is solved, so a software renderer rasterises on its threads while
         Python works. The next frame is solved after this frame's UI, so an edit made in
-        the UI shows in the next frame, as it would if it were solved at that frame's start."""
+        the UI shows in the next frame, as it would if it were solved at that frame's start;
+        its shadow map is cast at once, so it is ready when that frame's view is drawn
+        (its creatures read it)."""
         opts, state, window, clock = self.options, self.state, self.window, time.perf_counter
         start = clock()
         dt = window.begin_frame(FRAME_DT if opts.frames is not None else None)
@@ -498,6 +501,9 @@ class Viewer:
         t3 = clock()
         if not last:
             self._next = self._prepare(dt)
+            if not minimized and viewport[2] > 0:
+                self._next = replace(self._next, cast=self.scene.cast(
+                    self._next.instances, self._next.ground.terrain, self.state.camera, viewport, self.state.options))
         t4 = clock()
         if not minimized:
             self.ui.render(imgui.get_draw_data(), self.ctx.screen, self._backdrop(viewport))
@@ -548,7 +554,7 @@ class Viewer:
         self.ctx.screen.use()
         self.scene.draw_instances(content.instances, content.ground, state.camera, self.ctx.screen,
                                   state.options, viewport, multisampled=self.options.samples > 0,
-                                  overlays=content.overlays, clear_target=True)
+                                  overlays=content.overlays, clear_target=True, cast=content.cast)
         self._resolve_pick(viewport)
         if state.screenshot_requested and not state.screenshot_with_ui:
             self._screenshot(viewport=viewport)  # the 3-D view alone, before the UI
