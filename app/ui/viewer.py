@@ -472,12 +472,12 @@ class Viewer:
         timed. With ``--report-fps`` every 8th frame waits for the GL after each stage to
         time it; the other frames run freely and give the frame rate.
 
-        The 3-D view is handed to the GL (flushed) before the UI is built and the next
-        frame's motion is solved, so a software renderer rasterises on its threads while
-        Python works. The next frame is solved after this frame's UI, so an edit made in
-        the UI shows in the next frame, as it would if it were solved at that frame's start;
-        its shadow map is cast at once, so it is ready when that frame's view is drawn
-        (its creatures read it)."""
+        The 3-D view is handed to the GL (flushed) before the UI is built, and the UI
+        before the next frame's motion is solved, so a software renderer rasterises on its
+        threads while Python works. The next frame is solved after this frame's UI, so an
+        edit made in the UI shows in the next frame, as it would if it were solved at that
+        frame's start; its shadow map is cast at once, so it is ready when that frame's
+        view is drawn (its creatures read it)."""
         opts, state, window, clock = self.options, self.state, self.window, time.perf_counter
         start = clock()
         dt = window.begin_frame(FRAME_DT if opts.frames is not None else None)
@@ -498,6 +498,11 @@ class Viewer:
         t2 = clock()
         draw_ui(state, self.panel, self.extra_panels)
         imgui.render()
+        if not minimized:
+            self.ui.render(imgui.get_draw_data(), self.ctx.screen, self._backdrop(viewport))
+            window.flush()
+            if sync:
+                self.ctx.finish()
         t3 = clock()
         if not last:
             self._next = self._prepare(dt)
@@ -505,17 +510,12 @@ class Viewer:
                 self._next = replace(self._next, cast=self.scene.cast(
                     self._next.instances, self._next.ground.terrain, self.state.camera, viewport, self.state.options))
         t4 = clock()
-        if not minimized:
-            self.ui.render(imgui.get_draw_data(), self.ctx.screen, self._backdrop(viewport))
-            if sync:
-                self.ctx.finish()
-        t5 = clock()
         self._outputs(frame, last, minimized)
         if minimized:
             time.sleep(0.05)  # nothing to draw: do not spin
         else:
             window.swap()
-        self._time(start, (t1 - t0) + (t4 - t3), t2 - t1, (t3 - t2) + (t5 - t4), clock(), sync)
+        self._time(start, (t1 - t0) + (t4 - t3), t2 - t1, t3 - t2, clock(), sync)
 
     def _prepare(self, dt: float) -> FrameContent:
         """Move the scene on by ``dt`` and gather what its next frame draws."""
