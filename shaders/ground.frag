@@ -5,7 +5,7 @@
 // feet stay on one spot of it), fading into the horizon colour with distance. The floor
 // is flat, so its lighting is one constant (u_floor_light, from the same lighting model
 // on the CPU); the creature's shadow is multiplied onto it afterwards by
-// floor_shadow.frag over the shadow's footprint only.
+// ground_shadow.frag over the shadow's footprint only.
 
 in vec2 v_grid;  // grid coordinate (grid.glsl)
 in vec2 v_focus_offset;  // world xz - u_focus (metres)

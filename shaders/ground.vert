@@ -15,7 +15,7 @@ uniform float u_grid_spacing;  // metres between minor grid lines
 
 out vec2 v_grid;   // grid coordinate (grid.glsl's grid_coord), linear in the world
 out vec3 v_shadow;  // light-space position (used by the shadow pass only)
-out vec2 v_focus_offset;  // world xz - u_focus (metres): linear, so exact per fragment
+out vec2 v_focus_offset;  // world xz - u_focus (metres): linear, so exact per fragment (the fog is round)
 
 void main() {
     vec3 world = vec3(u_center.x + in_xz.x * u_half_size.x, u_lift, u_center.y + in_xz.y * u_half_size.y);

@@ -92,25 +92,29 @@ def test_same_frame_twice_gives_identical_pixels(renderer) -> None:
 def test_a_shadow_cast_ahead_draws_the_same_frame(gl_ctx) -> None:
     """A viewer casts the next frame's shapes and shadow while the GL still draws this one:
     the frame drawn from that cast is the frame drawn in one go; the two shadow maps take
-    turns; a cast overtaken by a later one (whose shapes are now the ones uploaded) is
-    cast again rather than drawn with another frame's shapes."""
+    turns; a cast overtaken by a later one (whose shapes are now the ones uploaded), or
+    made for a camera that has moved since, is cast again rather than drawn with another
+    frame's shapes or levels of detail."""
+    from dataclasses import replace
+
     import moderngl
 
+    from app.render.bodies import motion_body
     from app.render.options import GroundView
     from app.render.renderer import SceneRenderer
     from app.render.scene import motion_instances
     from app.render.target import OffscreenTarget
 
     motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
-    frames = motion_instances(motion)
+    renderer, target = SceneRenderer(gl_ctx), OffscreenTarget(gl_ctx, SIZE)
+    frames = replace(motion_instances(motion, parts=False), bodies=(motion_body(motion, renderer.body_cache),))
     first, later = frames.frame(0), frames.frame(9)
     camera = frame_points(motion_bounds(motion), "three-quarter", aspect=SIZE[0] / SIZE[1])
-    renderer, target = SceneRenderer(gl_ctx), OffscreenTarget(gl_ctx, SIZE)
     options = RenderOptions()
     viewport = (0, 0, *SIZE)
     try:
-        def draw(scene, cast=None) -> np.ndarray:
-            renderer.draw_instances(scene, GroundView(), camera, target.fbo, options, cast=cast)
+        def draw(scene, cast=None, seen_by=camera) -> np.ndarray:
+            renderer.draw_instances(scene, GroundView(), seen_by, target.fbo, options, cast=cast)
             return target.read().astype(int)
 
         renderer.draw_instances(first, GroundView(), camera, target.fbo, RenderOptions(shadow=False))
@@ -126,9 +130,33 @@ def test_a_shadow_cast_ahead_draws_the_same_frame(gl_ctx) -> None:
         assert {one.shadow_map, two.shadow_map} == {0, 1}
         assert np.array_equal(draw(first, one), whole)  # overtaken: cast again
         assert not np.array_equal(draw(later, two), whole)
+        # The camera moved away between the cast and the draw (a zoom, a key): the far
+        # stand-in body is drawn, as a frame drawn in one go would.
+        away = replace(camera, distance=camera.distance * 12.0)
+        fresh = draw(first, seen_by=away)
+        near = renderer.cast(first, GroundView().terrain, camera, viewport, options)
+        assert np.array_equal(draw(first, near, seen_by=away), fresh)
     finally:
         target.release()
         renderer.release()
+
+
+@pytest.mark.parametrize("distance", [4.0, 4.5])
+def test_an_eye_just_below_the_floor_beyond_its_edge_sees_the_creature_and_the_sky(renderer, distance) -> None:
+    """Orbited down to -5 degrees and zoomed out, the eye sinks below the floor's level just
+    beyond the floor's round edge: it sees the dog and the sky over the edge, with no
+    floor overhead (a square floor's corner reached over such an eye at a diagonal and
+    blanked the view)."""
+    from dataclasses import replace
+
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    base = frame_points(motion_bounds(motion), "three-quarter", aspect=SIZE[0] / SIZE[1])
+    camera = replace(base, elevation=-5.0, azimuth=45.0, distance=distance)
+    assert camera.eye[1] < 0.0
+    image = renderer.frame(motion, 4, camera, RenderOptions()).astype(int)
+    dog = ((image[..., 0] - image[..., 2]) > 50).sum()  # orange-brown
+    sky = ((image[..., 2] - image[..., 0]) > 8).sum()  # bluish
+    assert dog > 100 and sky > 0.25 * image.shape[0] * image.shape[1], (dog, sky)
 
 
 def test_frames_differ_as_the_creature_walks(renderer) -> None:

@@ -21,10 +21,23 @@ from .scene import ELLIPSOID_FLOATS, SceneInstances, srgb_to_linear
 from .shaders import ShaderLibrary
 from .uniforms import Uniforms
 
+FLOOR_SIDES = 16  # corners of the floor's polygon (its edges stay past where the fog ends)
 TERRAIN_CELLS = 72  # the terrain patch around the creature is this many cells across
 PATH_DEPTH_OFFSET = (-2.0, -8.0)  # the path ribbon pulled towards the eye (polygon offset factor, units)
 ELLIPSOID_LAYOUT = ("3f", ("in_pos",), "3f 3f 3f 3f 3f 3f/i",
                     ("in_center", "in_axis_x", "in_axis_y", "in_axis_z", "in_radii", "in_color"), ELLIPSOID_FLOATS)
+
+
+def floor_strip(sides: int) -> np.ndarray:
+    """A regular polygon of ``sides`` corners on the unit circle as a triangle strip
+    zig-zagging across it (sides - 2 triangles): (sides, 2) xz corners."""
+    order = [0]
+    for k in range(1, sides // 2 + 1):
+        order.append(k)
+        if sides - k > k:
+            order.append(sides - k)
+    angles = np.array(order) * (2.0 * np.pi / sides)
+    return np.stack([np.cos(angles), np.sin(angles)], axis=1)
 
 
 class StreamBuffer:
@@ -55,12 +68,12 @@ class GroundPass:
         self.ctx = ctx
         self.uniforms = uniforms
         self.floor_prog = shaders.program("ground.vert", "ground.frag")
-        # The floor is a square (two triangles) out to where the fog has reached the horizon
-        # colour; the fog is round (ground.frag). A software rasteriser shades the blocks
-        # along every edge once for each triangle on it, so a fan of thin wedges meeting
-        # under the creature, in the middle of the view, costs more.
-        square = np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]], dtype="f4")
-        self.floor_vbo = ctx.buffer(square.tobytes())
+        # The floor is a disc out to where the fog has reached the horizon colour (no farther:
+        # an eye just beyond it, below the floor's level, must not find the floor overhead),
+        # a polygon of FLOOR_SIDES corners on that circle drawn as a zig-zag strip. A software
+        # rasteriser shades the blocks along every edge once for each triangle on it, so a
+        # fan of thin wedges meeting under the creature, in the middle of the view, costs more.
+        self.floor_vbo = ctx.buffer(floor_strip(FLOOR_SIDES).astype("f4").tobytes())
         self.floor_vao = ctx.vertex_array(self.floor_prog, [(self.floor_vbo, "2f", "in_xz")])
         self.shadow_prog = shaders.program("ground.vert", "ground_shadow.frag")
         # The shadow's outline on the floor (world xz corners; ground.vert's rectangle set to
@@ -112,7 +125,7 @@ class GroundPass:
         set_(g, "u_lift", 0.0)
         floor_ambient, floor_sun = floor_light(options)
         set_(g, "u_floor_light", tuple(floor_ambient + floor_sun))
-        self.floor_vao.render(moderngl.TRIANGLE_FAN)
+        self.floor_vao.render(moderngl.TRIANGLE_STRIP)
         if options.shadow:
             # The shadow on the floor, over the polygon holding it only, lifted a hair above the floor.
             self.shadow_vbo.write(shadow_outline(scene, shadow_texel).astype("f4").tobytes())

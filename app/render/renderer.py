@@ -203,6 +203,11 @@ class BodyPass:
             self._bones.release()
 
 
+def _pixel_angle(camera: Camera, viewport: tuple[int, int, int, int]) -> float | None:
+    """The angle (rad) one pixel of ``viewport`` spans at ``camera``'s eye (None: orthographic)."""
+    return None if camera.ortho else math.radians(camera.fov) / max(viewport[3], 1)
+
+
 @dataclass(frozen=True)
 class ShadowCast:
     """One frame's shapes uploaded and its shadow map drawn (:meth:`SceneRenderer.cast`):
@@ -218,6 +223,8 @@ class ShadowCast:
     radius: float
     ground_level: float
     shadow: bool  # whether the creatures cast a shadow (options.shadow)
+    eye: tuple[float, ...]  # the camera's eye (m) and the angle one pixel spans (rad; None: orthographic)
+    pixel: float | None     # the levels of detail were chosen for
 
 
 class SceneRenderer:
@@ -265,7 +272,7 @@ class SceneRenderer:
         shadow map the last cast did not use (a frame drawn from it may still be in the
         GL's hands). Give the result to the next :meth:`draw_instances`; a cast that is not
         the latest is cast again there."""
-        pixel = None if camera.ortho else math.radians(camera.fov) / max(viewport[3], 1)
+        pixel = _pixel_angle(camera, viewport)
         self.creatures.upload(scene, np.asarray(camera.eye, dtype=np.float32), pixel)
         centre, radius = creature_bounds(scene, terrain)
         ground_level = 0.0 if terrain.flat else float(terrain.height(centre[[0, 2]]))
@@ -273,7 +280,8 @@ class SceneRenderer:
         self.bodies.upload(scene, np.asarray(camera.eye, dtype=np.float64), shadow_texel, pixel)
         index, self._next_map = self._next_map, 1 - self._next_map
         self._shadow_pass(self.shadow_maps[index][1], light_vp, options)
-        self._latest = ShadowCast(scene, light_vp, shadow_texel, index, centre, radius, ground_level, options.shadow)
+        self._latest = ShadowCast(scene, light_vp, shadow_texel, index, centre, radius, ground_level, options.shadow,
+                                  tuple(float(c) for c in camera.eye), pixel)
         return self._latest
 
     def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
@@ -288,8 +296,8 @@ class SceneRenderer:
         its colour attachments; give it for a window's framebuffer). ``clear_target``:
         clear all of ``target``, not just ``viewport`` (cheaper on a software rasteriser
         than a clear cut to a rectangle, for callers that draw over the rest anyway).
-        ``cast``: this scene's shapes and shadow, issued ahead by :meth:`cast` (else
-        they are cast here).
+        ``cast``: this scene's shapes and shadow, issued ahead by :meth:`cast` (else, or
+        if the camera or the viewport's height has changed since, they are cast here).
 
         Without multisampling the creatures go first, nearest shapes first, so the depth
         test rejects the ground hidden behind them before shading it (a software
@@ -302,8 +310,9 @@ class SceneRenderer:
             ground = GroundView(offset=float(ground))
         terrain = ground.terrain
         viewport = viewport or (0, 0, *target.size)
-        if cast is None or cast is not self._latest or cast.scene is not scene or cast.shadow != options.shadow:
-            cast = self.cast(scene, terrain, camera, viewport, options)
+        if (cast is None or cast is not self._latest or cast.scene is not scene or cast.shadow != options.shadow
+                or cast.eye != tuple(float(c) for c in camera.eye) or cast.pixel != _pixel_angle(camera, viewport)):
+            cast = self.cast(scene, terrain, camera, viewport, options)  # (the camera moved since: other levels)
         aspect = viewport[2] / max(viewport[3], 1)
         centre, radius = cast.centre, cast.radius
         self._begin_main_pass(target, viewport, camera, aspect, cast, options, clear_target)

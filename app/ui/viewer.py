@@ -506,16 +506,20 @@ class Viewer:
         t3 = clock()
         if not last:
             self._next = self._prepare(dt)
-            if not minimized and viewport[2] > 0:
-                self._next = replace(self._next, cast=self.scene.cast(
-                    self._next.instances, self._next.ground.terrain, self.state.camera, viewport, self.state.options))
         t4 = clock()
+        if not last and not minimized and viewport[2] > 0:
+            assert self._next is not None
+            self._next = replace(self._next, cast=self.scene.cast(
+                self._next.instances, self._next.ground.terrain, self.state.camera, viewport, self.state.options))
+            if sync:
+                self.ctx.finish()
+        t5 = clock()
         self._outputs(frame, last, minimized)
         if minimized:
             time.sleep(0.05)  # nothing to draw: do not spin
         else:
             window.swap()
-        self._time(start, (t1 - t0) + (t4 - t3), t2 - t1, t3 - t2, clock(), sync)
+        self._time(start, (t1 - t0) + (t4 - t3), (t2 - t1) + (t5 - t4), t3 - t2, clock(), sync)
 
     def _prepare(self, dt: float) -> FrameContent:
         """Move the scene on by ``dt`` and gather what its next frame draws."""
