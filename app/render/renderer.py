@@ -208,6 +208,11 @@ def _pixel_angle(camera: Camera, viewport: tuple[int, int, int, int]) -> float |
     return None if camera.ortho else math.radians(camera.fov) / max(viewport[3], 1)
 
 
+def _view_key(camera: Camera, viewport: tuple[int, int, int, int]) -> tuple[float | None, ...]:
+    """What the levels of detail are chosen from: the eye (m) and the pixel's angle."""
+    return (*(float(c) for c in camera.eye), _pixel_angle(camera, viewport))
+
+
 @dataclass(frozen=True)
 class ShadowCast:
     """One frame's shapes uploaded and its shadow map drawn (:meth:`SceneRenderer.cast`):
@@ -223,8 +228,12 @@ class ShadowCast:
     radius: float
     ground_level: float
     shadow: bool  # whether the creatures cast a shadow (options.shadow)
-    eye: tuple[float, ...]  # the camera's eye (m) and the angle one pixel spans (rad; None: orthographic)
-    pixel: float | None     # the levels of detail were chosen for
+    view: tuple[float | None, ...]  # the view the levels of detail were chosen for (_view_key)
+
+    def fits(self, scene: SceneInstances, camera: Camera, viewport: tuple[int, int, int, int],
+             options: RenderOptions) -> bool:
+        """Whether this cast holds ``scene`` as ``camera`` sees it in ``viewport``, with ``options``' shadow."""
+        return self.scene is scene and self.shadow == options.shadow and self.view == _view_key(camera, viewport)
 
 
 class SceneRenderer:
@@ -281,7 +290,7 @@ class SceneRenderer:
         index, self._next_map = self._next_map, 1 - self._next_map
         self._shadow_pass(self.shadow_maps[index][1], light_vp, options)
         self._latest = ShadowCast(scene, light_vp, shadow_texel, index, centre, radius, ground_level, options.shadow,
-                                  tuple(float(c) for c in camera.eye), pixel)
+                                  _view_key(camera, viewport))
         return self._latest
 
     def draw_instances(self, scene: SceneInstances, ground: GroundView | float, camera: Camera,
@@ -310,9 +319,8 @@ class SceneRenderer:
             ground = GroundView(offset=float(ground))
         terrain = ground.terrain
         viewport = viewport or (0, 0, *target.size)
-        if (cast is None or cast is not self._latest or cast.scene is not scene or cast.shadow != options.shadow
-                or cast.eye != tuple(float(c) for c in camera.eye) or cast.pixel != _pixel_angle(camera, viewport)):
-            cast = self.cast(scene, terrain, camera, viewport, options)  # (the camera moved since: other levels)
+        if cast is None or cast is not self._latest or not cast.fits(scene, camera, viewport, options):
+            cast = self.cast(scene, terrain, camera, viewport, options)
         aspect = viewport[2] / max(viewport[3], 1)
         centre, radius = cast.centre, cast.radius
         self._begin_main_pass(target, viewport, camera, aspect, cast, options, clear_target)

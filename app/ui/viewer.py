@@ -507,8 +507,7 @@ class Viewer:
         if not last:
             self._next = self._prepare(dt)
         t4 = clock()
-        if not last and not minimized and viewport[2] > 0:
-            assert self._next is not None
+        if self._next is not None and not minimized and viewport[2] > 0:
             self._next = replace(self._next, cast=self.scene.cast(
                 self._next.instances, self._next.ground.terrain, self.state.camera, viewport, self.state.options))
             if sync:
