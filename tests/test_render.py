@@ -10,9 +10,10 @@ from app import build_rig, load_creature
 from app.gaits import gaits_for
 from app.kinematics.clip import clip_motion
 from app.kinematics.world import IN_PLACE
-from app.render.camera import frame_points
+from app.render.camera import Camera, frame_points
 from app.render.clip import ClipRenderer
 from app.render.framing import clip_camera, loop_grid_spacing
+from app.render.lighting import SKY_FADE, sky_band
 from app.render.options import RenderOptions, ViewSettings
 from app.render.scene import motion_bounds, srgb_to_linear
 
@@ -259,3 +260,18 @@ def test_poses_sheet_golden(snapshot) -> None:
     sheet = pose_sheet(load_creature("human"), size=(120, 150))
     assert sheet.names == ("contact", "down", "pass", "up", "contact")
     snapshot.check("human_poses_sheet", sheet.image)
+
+
+def test_no_sky_band_when_the_top_of_the_view_looks_below_the_horizon() -> None:
+    """Looking down by more than half the field of view, nothing above the horizon is in
+    view: beyond the floor lies only the horizon colour the frame is cleared to, so no
+    band is drawn (it cost ~0.7 ms a frame on llvmpipe for nothing). Looking down by less,
+    the band rises from the floor's far edge to the top, bottom to top."""
+    centre = np.array([0.0, 0.3, 0.0])
+    for elevation in (16.0, 20.0, 45.0):  # the view's top looks 1, 5 and 30 degrees down
+        assert sky_band(Camera(elevation=elevation, fov=30.0), 1.5, centre, 3.0) is None
+    band = sky_band(Camera(elevation=10.0, fov=30.0), 1.5, centre, 3.0)  # the top looks 5 degrees up
+    assert band is not None
+    assert band[-1, 0] == pytest.approx(1.0) and np.all(np.diff(band[:, 0]) > 0)
+    assert band[0, 1] == 0.0 and band[-1, 1] == pytest.approx(np.sin(np.radians(5.0)), abs=1e-3)
+    assert band[-1, 1] < SKY_FADE

@@ -342,6 +342,7 @@ def test_window_survives_resizing(display: str, tmp_path: Path) -> None:
                 continue
         else:
             raise AssertionError("the window never reported its final size 640x400")
+        assert state["window"]["framebuffer"] == [640, 400]  # the sizes kept from the resize events
         before = state["frame"]
         read_state(dump, until=lambda s: s["frame"] > before + 20)  # still drawing
         quit_viewer(display, proc, window)

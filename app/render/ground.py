@@ -104,13 +104,19 @@ class GroundPass:
         """The fog around the creatures and the grid's look, for every ground program."""
         set_ = self.uniforms.set
         horizon = tuple(srgb_to_linear(options.horizon_color))
+        start, end = radius * fog[0], radius * fog[1]
         for prog in (self.floor_prog, self.terrain_prog, self.overlay_prog):
             set_(prog, "u_horizon_color", horizon)
             set_(prog, "u_focus", (float(centre[0]), float(centre[2])))
-            set_(prog, "u_fog_range", (radius * fog[0], radius * fog[1]))
+        for prog in (self.terrain_prog, self.overlay_prog):
+            set_(prog, "u_fog_range", (start, end))
+        set_(self.floor_prog, "u_fog_ramp", (1.0 / (end - start), -start / (end - start)))
+        set_(self.terrain_prog, "u_ground_color", tuple(srgb_to_linear(options.ground_color)))
+        set_(self.terrain_prog, "u_line_color", tuple(srgb_to_linear(options.line_color)))
+        light = sum(floor_light(options))
+        set_(self.floor_prog, "u_ground_lit", tuple(srgb_to_linear(options.ground_color) * light))
+        set_(self.floor_prog, "u_line_lit", tuple(srgb_to_linear(options.line_color) * light))
         for prog in (self.floor_prog, self.terrain_prog):
-            set_(prog, "u_ground_color", tuple(srgb_to_linear(options.ground_color)))
-            set_(prog, "u_line_color", tuple(srgb_to_linear(options.line_color)))
             set_(prog, "u_grid_offset", (0.0, float(ground.offset)))
             set_(prog, "u_grid_spacing", float(options.grid_spacing))
             set_(prog, "u_grid_on", 1.0 if options.grid else 0.0)
@@ -124,7 +130,6 @@ class GroundPass:
         set_(g, "u_half_size", (reach, reach))
         set_(g, "u_lift", 0.0)
         floor_ambient, floor_sun = floor_light(options)
-        set_(g, "u_floor_light", tuple(floor_ambient + floor_sun))
         self.floor_vao.render(moderngl.TRIANGLE_STRIP)
         if options.shadow:
             # The shadow on the floor, over the polygon holding it only, lifted a hair above the floor.

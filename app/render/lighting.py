@@ -106,7 +106,9 @@ def sky_band(camera: Camera, aspect: float, centre: np.ndarray, reach: float,
     """The sky's screen band, from the floor's far edge straight ahead up to the top of
     the view, as rows (K, 2): ndc y and height (the sine of the elevation the row looks
     at), bottom to top, spaced to follow the gradient (:data:`SKY_ROWS` through the
-    fade, one more at the top); None when no sky is in view."""
+    fade, one more at the top); None when no sky is in view: when the view's top looks
+    no higher than the horizon, what lies beyond the floor is all horizon colour (the
+    clear colour), and a band would cost its pixels for nothing."""
     forward = np.asarray(camera.target, dtype=np.float64) - camera.eye
     flat = np.array([forward[0], 0.0, forward[2]])
     if camera.top_down or np.linalg.norm(flat) < 1e-6:
@@ -123,12 +125,12 @@ def sky_band(camera: Camera, aspect: float, centre: np.ndarray, reach: float,
     else:
         far = np.linalg.inv(vp) @ np.array([0.0, 1.0, 1.0, 1.0])
         ray = far[:3] / far[3] - camera.eye
-        h1 = max(float(ray[1] / np.linalg.norm(ray)), 0.0)
+        h1 = float(ray[1] / np.linalg.norm(ray))
+    if h1 <= 0.0:
+        return None
     # Height runs linearly up the screen from the edge (0) to the top (h1).
     heights = np.linspace(0.0, min(h1, SKY_FADE), SKY_ROWS + 1)
     if h1 > SKY_FADE:
         heights = np.append(heights, h1)
-    rows = y0 + (1.0 - y0) * heights / max(h1, 1e-9) if h1 > 0 else np.array([y0, 1.0])
-    if h1 <= 0:
-        heights = np.zeros(2)
+    rows = y0 + (1.0 - y0) * heights / h1
     return np.column_stack([rows, heights])

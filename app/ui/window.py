@@ -73,6 +73,10 @@ class GlfwWindow:
         glfw.window_hint(glfw.OPENGL_FORWARD_COMPAT, True)
         glfw.window_hint(glfw.SCALE_TO_MONITOR, True)
         glfw.window_hint(glfw.SAMPLES, samples)
+        # No stencil: nothing uses one, and a software rasteriser clearing the depth of a
+        # packed depth-stencil buffer must keep the stencil bits (a slower masked clear).
+        glfw.window_hint(glfw.DEPTH_BITS, 24)
+        glfw.window_hint(glfw.STENCIL_BITS, 0)
         self.handle = glfw.create_window(int(size[0]), int(size[1]), title, None, None)
         if not self.handle:
             glfw.terminate()
@@ -93,6 +97,11 @@ class GlfwWindow:
         glfw.set_mouse_button_callback(self.handle, self._on_button)
         glfw.set_scroll_callback(self.handle, self._on_scroll)
         glfw.set_window_focus_callback(self.handle, self._on_focus)
+        # The sizes as of the last event (asking the X server costs a round trip each).
+        self._window_size: tuple[int, int] = tuple(glfw.get_window_size(self.handle))  # type: ignore[assignment]
+        self._framebuffer_size: tuple[int, int] = tuple(glfw.get_framebuffer_size(self.handle))  # type: ignore[assignment]
+        glfw.set_window_size_callback(self.handle, self._on_window_size)
+        glfw.set_framebuffer_size_callback(self.handle, self._on_framebuffer_size)
 
     # -- input -> ImGui ---------------------------------------------------------------
 
@@ -126,15 +135,23 @@ class GlfwWindow:
     def _on_focus(self, window, focused) -> None:
         self._io.add_focus_event(bool(focused))
 
+    def _on_window_size(self, window, width, height) -> None:
+        self._window_size = (int(width), int(height))
+
+    def _on_framebuffer_size(self, window, width, height) -> None:
+        self._framebuffer_size = (int(width), int(height))
+
     # -- frame ------------------------------------------------------------------------
 
     @property
     def framebuffer_size(self) -> tuple[int, int]:
-        return tuple(glfw.get_framebuffer_size(self.handle))  # type: ignore[return-value]
+        """The framebuffer's size in pixels (as of the last event polled)."""
+        return self._framebuffer_size
 
     @property
     def window_size(self) -> tuple[int, int]:
-        return tuple(glfw.get_window_size(self.handle))  # type: ignore[return-value]
+        """The window's size in screen coordinates (as of the last event polled)."""
+        return self._window_size
 
     @property
     def content_scale(self) -> float:
