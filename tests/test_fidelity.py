@@ -65,7 +65,7 @@ def test_human_walk_curves_are_near_the_normative_mean(walk, joint: str) -> None
 
 @pytest.mark.xfail(strict=True, reason="the CMU 12_01 walker keeps 25-34 degrees of knee flexion through "
                                        "stance and peaks late, 17 degrees RMS from the normative mean; a knee "
-                                       "within 8 of the norm (6.0 here) is 14 from this walker")
+                                       "within 8 of the norm (5.1 here) is 14.5 from this walker")
 def test_human_walk_knee_is_near_the_cmu_walk(walk) -> None:
     clip = compare_curves(_walk_curves(walk), leg_curves(bvh_legs(str(CMU_WALK)), "L"))
     assert clip.rms["knee"] < 10.0
@@ -94,6 +94,23 @@ def test_a_walker_moves_without_jumps_at_toe_off(duty: float) -> None:
     hip_height = motion.joints[:, :, 0, 1]
     assert np.abs(np.diff(knee)).max() < 10.0
     assert np.abs(np.diff(hip_height, axis=0)).max() < 0.008
+
+
+@pytest.mark.parametrize("duty, most", [(0.60, 3.5), (0.72, 6.5)])
+def test_a_walker_s_knee_straightens_through_the_terminal_swing_not_at_the_strike(duty: float, most: float) -> None:
+    """People's knee straightens through the last sixth of the swing, nearly straight a
+    few hundredths of a cycle before the strike (Schwartz et al. 2008). Gaitlab's walker's
+    straightened in its last frames: 4.8 degrees in the last 240 fps frame at free speed,
+    7.6 at duty 0.72; now its largest turn in a frame over the last 0.15 cycle is under
+    ``most``, and it lands within 10 degrees of straight."""
+    rig = build_rig(load_creature("human").with_overrides({"gait.duty_factor": duty}))
+    motion, _ = clip_motion(rig, 240.0, cycles=3.0)
+    legs = motion_legs(motion)
+    knee, strikes = np.asarray(legs.angles["L"].knee), legs.strikes["L"]
+    late = int(0.15 * np.median(np.diff(strikes)))
+    for strike in strikes[1:]:
+        assert np.abs(np.diff(knee[strike - late:strike + 1])).max() < most
+        assert knee[strike] < 10.0
 
 
 def test_the_cmu_strikes_are_the_heel_strikes() -> None:
