@@ -40,6 +40,7 @@ from .style import setup_style
 from .window import GlfwWindow
 
 CLICK_SLOP = 4.0  # px: a press that moves no further than this before its release is a click
+DUMP_EVERY = 0.2  # s: the state dump is written every 20 frames, and at least this often on a slow machine
 
 
 @dataclass
@@ -119,6 +120,7 @@ class Viewer:
         self.frame_times: list[tuple[float, float, float, float, bool]] = []  # simulate, scene, ui, frame, synced
         self.extra_panels: tuple = ()
         self._next: FrameContent | None = None  # the next frame, solved while the GL draws this one
+        self._dumped = 0.0  # when the state dump was last written (perf_counter seconds)
 
     # -- input ------------------------------------------------------------------------
 
@@ -571,8 +573,10 @@ class Viewer:
         if last and self.options.screenshot is not None and not minimized:
             self._screenshot(self.options.screenshot)
         self._record_step()
-        if self.options.dump_state is not None and (frame % 20 == 0 or last):
+        now = time.perf_counter()
+        if self.options.dump_state is not None and (frame % 20 == 0 or last or now - self._dumped >= DUMP_EVERY):
             self._dump(self.options.dump_state, frame)
+            self._dumped = now
 
     def _time(self, start: float, simulate: float, scene: float, ui: float, end: float, sync: bool) -> None:
         """Keep the frame's timings (seconds spent simulating, drawing the scene and the
