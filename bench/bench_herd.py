@@ -121,7 +121,7 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None, ui: boo
             match = pattern.search(out.stdout + out.stderr)
             if out.returncode != 0 or match is None:
                 raise SystemExit(f"viewer {' '.join(herd)} ({tree}) failed (exit status {out.returncode}):\n"
-                                 f"{out.stderr[-2000:]}{out.stdout[-2000:]}")
+                                 f"{out.stderr[-2000:]}\n{out.stdout[-2000:]}")
             return tuple(float(v) for v in match.groups())
 
         with tempfile.TemporaryDirectory() as tmp:

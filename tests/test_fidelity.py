@@ -108,7 +108,9 @@ def test_a_walker_s_knee_straightens_through_the_terminal_swing_not_at_the_strik
     legs = motion_legs(motion)
     knee, strikes = np.asarray(legs.angles["L"].knee), legs.strikes["L"]
     late = int(0.15 * np.median(np.diff(strikes)))
-    for strike in strikes[1:]:
+    checked = [strike for strike in strikes if strike >= late]
+    assert len(checked) >= 2
+    for strike in checked:
         assert np.abs(np.diff(knee[strike - late:strike + 1])).max() < most
         assert knee[strike] < 10.0
 

@@ -436,7 +436,7 @@ def click_widget(display: str, dump: Path, key: str) -> None:
     """Click the centre of the widget ``key`` (from the state dump's widget rectangles),
     then wait for a dump made after the click: a panel that opened moves the widgets
     below it, and the next click must see where they went (the viewer dumps every 20
-    frames, however slowly a loaded machine draws them)."""
+    frames and at least every 0.2 s)."""
     state = read_state(dump, until=lambda s: key in s["widgets"])
     xdotool(display, "mousemove", *centre(state["widgets"][key]), "click", "1")
     read_state(dump, until=lambda s: s["frame"] >= state["frame"] + 40)

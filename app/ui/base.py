@@ -78,7 +78,7 @@ class StateBase:
         _heading: float | None
         _follow_ahead: float
         _elevation: float | None
-        _lowering_in: int
+        _lowering_in: float
 
         @property
         def session(self) -> CreatureSession: ...

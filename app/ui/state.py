@@ -115,7 +115,7 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
         self._heading: float | None = None  # path heading last frame (degrees)
         self._follow_ahead = 0.0  # m the camera aims ahead of the root
         self._elevation: float | None = None  # the user's camera elevation
-        self._lowering_in = 0  # frames before the follow camera may ease down from a raised view
+        self._lowering_in = 0.0  # seconds before the follow camera may ease down from a raised view
         self._init_terrain_values()
         self.frame_view()
 

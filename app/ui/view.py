@@ -3,6 +3,7 @@ follow camera, and what is drawn besides the creatures (ground, overlays, ghosts
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
@@ -19,8 +20,11 @@ from ..render.options import GroundView, nice_grid_spacing, path_half_width
 from ..render.overlays import Overlays
 from ..render.scene import leg_colors
 from .base import StateBase
+from .playback import MAX_FRAME_TIME
 
-LOWER_AFTER = 30  # frames the follow camera holds a raised view before easing down (no juddering over bumps)
+LOWER_AFTER = 0.5  # s the follow camera holds a raised view before easing down (no juddering over bumps)
+FOLLOW_EASE = 0.2  # s: the follow camera's height and a raised view's descent close on their goal with this time
+# constant, whatever the frame rate (once 8 % a frame: at 12 fps a climbing creature outran the view by 0.6 m)
 
 
 class ViewMixin(StateBase):
@@ -94,11 +98,14 @@ class ViewMixin(StateBase):
             point = (float(root[0]), float(root[1]), float(root[2]))
         self.camera = replace(self.camera, target=point3(point))
 
-    def follow_creature(self, pose: Pose | None = None) -> None:
-        """Keep the camera on the creature: the target over its root, its height eased
-        towards the root's (stairs, hills), and the view turning with the path's heading
-        (not while waypoints are edited)."""
+    def follow_creature(self, dt: float, pose: Pose | None = None) -> None:
+        """Keep the camera on the creature, ``dt`` seconds after it last did: the target
+        over its root, its height eased towards the root's (stairs, hills; time constant
+        :data:`FOLLOW_EASE`), and the view turning with the path's heading (not while
+        waypoints are edited)."""
         pose = pose or self.pose()
+        dt = min(max(dt, 0.0), MAX_FRAME_TIME)  # as the animation moves on (a stalled frame)
+        ease = 1.0 - math.exp(-dt / FOLLOW_EASE)
         root = pose.root[:3, 3]
         _, tangent = self.world.path.sample(np.array([pose.travel]))
         heading = float(np.degrees(np.arctan2(tangent[0, 0], tangent[0, 1])))
@@ -110,7 +117,7 @@ class ViewMixin(StateBase):
         offset = self._follow_height
         if offset is None:
             offset = self._follow_height = ty - float(root[1])
-        ty = ty + (float(root[1]) + offset - ty) * 0.08
+        ty = ty + (float(root[1]) + offset - ty) * ease
         turn = (heading - previous + 180.0) % 360.0 - 180.0
         ahead = self._follow_ahead * tangent[0] if not self.world.in_place else np.zeros(2)
         if self.herd is not None:  # aim between the creature and its herd's middle
@@ -134,10 +141,10 @@ class ViewMixin(StateBase):
             if goal > camera.elevation - 1e-9:
                 self._lowering_in = LOWER_AFTER  # risen: hold a moment before easing down again
                 camera = replace(camera, elevation=goal)
-            elif self._lowering_in > 0:
-                self._lowering_in -= 1
+            elif self._lowering_in > 0.0:
+                self._lowering_in -= dt
             else:
-                camera = replace(camera, elevation=camera.elevation + (goal - camera.elevation) * 0.08)
+                camera = replace(camera, elevation=camera.elevation + (goal - camera.elevation) * ease)
         self.camera = camera
 
     def overlays(self, pose: Pose) -> Overlays | None:

@@ -543,7 +543,7 @@ class Viewer:
         else:
             pose = state.pose()
         if not (state.waypoint_edit and self._press is not None):  # the camera holds still under a waypoint press
-            state.follow_creature(pose)
+            state.follow_creature(dt, pose)
         state.note_pose(pose)
         if self.options.dump_state is not None:
             self.monitor.measure(state.live.time)  # in step with the dumped state
