@@ -15,6 +15,7 @@ lighter underneath by ``look.countershade`` (countershading).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Literal
@@ -116,9 +117,13 @@ def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
 
 
 def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail,
-             groups: NDArray[np.int64] | None = None) -> tuple[NDArray[np.float64], NDArray[np.int64], float]:
-    """The union's zero surface: vertices (V, 3), faces (F, 3) and the blend width (m).
-    ``groups`` (P,): see :func:`app.skin.sdf.union_on_grid` (each arm its own)."""
+             groups: NDArray[np.int64] | None = None
+             ) -> tuple[NDArray[np.float64], NDArray[np.int64], float, Callable[[NDArray[np.float64]], NDArray]]:
+    """The union's zero surface: vertices (V, 3), faces (F, 3), the blend width (m) and
+    the surface's own normal at any points (N, 3) -> (N, 3) (the field's gradient,
+    trilinear between grid nodes: smooth, where a simplified mesh's own normals are as
+    faceted as its triangles). ``groups`` (P,): see :func:`app.skin.sdf.union_on_grid`
+    (each arm its own)."""
     from skimage.measure import marching_cubes
 
     lo = np.minimum(capsules[:, 0:3].min(axis=0) if len(capsules) else np.inf,
@@ -144,7 +149,16 @@ def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], det
                            None if groups is None else ARM_BLEND * blend)
     verts, faces, _normals, _values = marching_cubes(volume, level=0.0, spacing=(cell, cell, cell),
                                                      gradient_direction="ascent")
-    return verts + lo, faces.astype(np.int64), blend
+    gradient = np.stack(list(np.gradient(volume.astype(np.float32))), axis=0)  # (3, X, Y, Z), per cell
+
+    def normal_at(points: NDArray[np.float64]) -> NDArray[np.float64]:
+        from scipy.ndimage import map_coordinates
+
+        index = ((points - lo) / cell).T  # (3, N) grid coordinates
+        g = np.stack([map_coordinates(gradient[k], index, order=1, mode="nearest") for k in range(3)], axis=1)
+        return g / np.maximum(np.linalg.norm(g, axis=1, keepdims=True), 1e-12)  # outwards: the field grows out
+
+    return verts + lo, faces.astype(np.int64), blend, normal_at
 
 
 def _simplify(verts: NDArray[np.float64], faces: NDArray[np.int64], target: int
@@ -215,14 +229,19 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     capsules, ellipsoids = _parts(motion)
     part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
                                  bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
-    verts, faces, blend = _surface(capsules, ellipsoids, detail, _arm_groups(part_joint, clip))
+    verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, _arm_groups(part_joint, clip))
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
                 shadow: SkinnedBody | None = None, far: SkinnedBody | None = None) -> SkinnedBody:
         mesh = trimesh.Trimesh(verts, faces, process=False)
         mesh.fix_normals()
         verts, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces, dtype=np.int64)
+        # The surface's own normal (smooth: a simplified mesh's normals are as faceted as
+        # its triangles, and blotched the shading) where it agrees with the mesh's side;
+        # the mesh's where the field is flat or the mesh folds against it.
         normals = np.asarray(mesh.vertex_normals)
+        smooth = normal_at(verts)
+        normals = np.where((np.sum(smooth * normals, axis=1) > 0.2)[:, None], smooth, normals)
         joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1],
                                    0.45 * blend)
         return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),
