@@ -129,9 +129,9 @@ class GroundPass:
         set_(g, "u_center", (float(centre[0]), float(centre[2])))
         set_(g, "u_half_size", (reach, reach))
         set_(g, "u_lift", 0.0)
-        floor_ambient, floor_sun = floor_light(options)
         self.floor_vao.render(moderngl.TRIANGLE_STRIP)
         if options.shadow:
+            floor_ambient, floor_sun = floor_light(options)
             # The shadow on the floor, over the polygon holding it only, lifted a hair above the floor.
             self.shadow_vbo.write(shadow_outline(scene, shadow_texel).astype("f4").tobytes())
             gs = self.shadow_prog
