@@ -422,3 +422,14 @@ def test_a_question_unanswered_lapses(state: ViewerState, monkeypatch: pytest.Mo
     assert not state.reset_all()  # asks again
     assert state.spec.gait.duty_factor == pytest.approx(0.7)
     assert state.reset_all() and state.spec == state.base  # pressed again in time: done
+
+
+def test_the_window_gives_a_software_rasteriser_a_thread_more_than_the_cores_unless_told():
+    from app.ui.window import software_gl_threads
+
+    environ: dict[str, str] = {}
+    software_gl_threads(environ, cores=2)
+    assert environ == {"LP_NUM_THREADS": "3"}
+    chosen = {"LP_NUM_THREADS": "1"}
+    software_gl_threads(chosen, cores=8)
+    assert chosen == {"LP_NUM_THREADS": "1"}  # the user's choice stands

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -364,34 +365,60 @@ def _upright_spine(rig: Rig, girdles: Girdles, clock: NDArray[np.float64],
                  shoulder_lateral=lateral)
 
 
-def _equal_arc_segments(ctrl: NDArray[np.float64], ext_rear: float, ext_front: float,
-                        count: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """``count`` points (T, S, 3) and tangents (T, S, 3, not unit) at equal arc length along a
-    chain of cubic Bezier pieces ``ctrl`` (T, K-1, 4, 3), the chain extended before its
-    first piece by ``ext_rear`` and after its last by ``ext_front`` (in piece parameter)."""
-    frames, pieces = ctrl.shape[:2]
+def _bernstein(t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Cubic Bernstein weights (..., 4) at parameters ``t`` (...)."""
+    u = 1.0 - t
+    return np.stack([u * u * u, 3.0 * u * u * t, 3.0 * u * t * t, t * t * t], axis=-1)
+
+
+def _bernstein_slope(t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Their derivatives d/dt (..., 4): the weights of a cubic's tangent."""
+    u = 1.0 - t
+    return np.stack([-3.0 * u * u, 3.0 * u * u - 6.0 * u * t, 6.0 * u * t - 3.0 * t * t, 3.0 * t * t], axis=-1)
+
+
+@lru_cache(maxsize=32)
+def _arc_grid(pieces: int, ext_rear: float, ext_front: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Where :func:`_equal_arc_segments` measures a chain of ``pieces`` cubics: each
+    piece's parameters (pieces, n) (the first reaching back by ``ext_rear``, the last on
+    by ``ext_front``) and their Bernstein weights (pieces, n, 4)."""
     per = max(8, 64 // pieces)
-    local = np.linspace(0.0, 1.0, per + 1)
-    grid_t = np.broadcast_to(local, (pieces, per + 1)).copy()
+    grid_t = np.broadcast_to(np.linspace(0.0, 1.0, per + 1), (pieces, per + 1)).copy()
     grid_t[0] = np.linspace(-ext_rear, 1.0, per + 1)
     grid_t[-1] = np.linspace(grid_t[-1, 0], 1.0 + ext_front, per + 1)
-    samples = bezier(ctrl, np.broadcast_to(grid_t, (frames, pieces, per + 1)))  # (T, K-1, per+1, 3)
-    seg_len = np.linalg.norm(np.diff(samples, axis=-2), axis=-1)  # (T, K-1, per)
-    cum = np.concatenate([np.zeros((frames, 1)), np.cumsum(seg_len.reshape(frames, -1), axis=-1)], axis=-1)
-    fractions = (np.arange(count) + 0.5) / count
-    wanted = fractions[None, :] * cum[:, -1:]  # (T, S)
-    idx = np.clip((cum[:, :, None] <= wanted[:, None, :]).sum(axis=1) - 1, 0, cum.shape[1] - 2)
-    c0 = np.take_along_axis(cum, idx, axis=1)
-    c1 = np.take_along_axis(cum, idx + 1, axis=1)
-    w = np.clip((wanted - c0) / np.maximum(c1 - c0, 1e-15), 0.0, 1.0)
-    seg = idx // per
-    sub = idx % per
+    grid_t.flags.writeable = False
+    weights = _bernstein(grid_t)
+    weights.flags.writeable = False
+    return grid_t, weights
+
+
+def _equal_arc_segments(ctrl: NDArray[np.float64], ext_rear: float, ext_front: float,
+                        count: int) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``count`` points (T, S, 3) and unit tangents (T, S, 3) at equal arc length along a
+    chain of cubic Bezier pieces ``ctrl`` (T, K-1, 4, 3), the chain extended before its
+    first piece by ``ext_rear`` and after its last by ``ext_front`` (in piece parameter).
+    The arc length is measured along straight runs between sampled points."""
+    frames, pieces = ctrl.shape[:2]
+    grid_t, weights = _arc_grid(pieces, float(ext_rear), float(ext_front))
+    per = grid_t.shape[1] - 1
+    samples = weights @ ctrl  # (T, K-1, per+1, 3)
+    step = np.diff(samples, axis=-2)
+    seg_len = np.sqrt(np.sum(step * step, axis=-1))  # (T, K-1, per)
+    cum = np.empty((frames, pieces * per + 1))
+    cum[:, 0] = 0.0
+    np.cumsum(seg_len.reshape(frames, -1), axis=-1, out=cum[:, 1:])
+    wanted = ((np.arange(count) + 0.5) / count)[None, :] * cum[:, -1:]  # (T, S)
+    idx = np.minimum(np.maximum(np.sum(cum[:, :, None] <= wanted[:, None, :], axis=1) - 1, 0), cum.shape[1] - 2)
+    rows = np.arange(frames)[:, None]
+    c0, c1 = cum[rows, idx], cum[rows, idx + 1]
+    w = np.minimum(np.maximum((wanted - c0) / np.maximum(c1 - c0, 1e-15), 0.0), 1.0)
+    seg, sub = np.divmod(idx, per)
     t_lo = grid_t[seg, sub]
-    t_hi = grid_t[seg, sub + 1]
-    t_seg = t_lo + w * (t_hi - t_lo)
-    seg_ctrl = np.take_along_axis(ctrl, seg[..., None, None], axis=1)  # (T, S, 4, 3)
-    points = bezier(seg_ctrl, t_seg[..., None])[..., 0, :]
-    tangents = bezier_tangent(seg_ctrl, t_seg[..., None])[..., 0, :]
+    t_seg = t_lo + w * (grid_t[seg, sub + 1] - t_lo)
+    seg_ctrl = ctrl[rows, seg]  # (T, S, 4, 3)
+    points = np.einsum("tsk,tskc->tsc", _bernstein(t_seg), seg_ctrl)
+    d = np.einsum("tsk,tskc->tsc", _bernstein_slope(t_seg), seg_ctrl)
+    tangents = d / np.maximum(np.sqrt(np.sum(d * d, axis=-1, keepdims=True)), 1e-12)
     return points, tangents
 
 

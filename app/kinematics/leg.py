@@ -17,6 +17,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from .body import cross
+
 JOINT_NAMES: tuple[str, ...] = ("hip", "knee", "ankle", "ball", "toe")
 MAX_ANKLE_ANGLE = 0.75 * np.pi  # the ankle may pass over the ball a little, not fold flat forward
 BAND_CLEARANCE = 0.02  # m: a knee's ceiling lowers a swinging ball no nearer the ground
@@ -160,13 +162,14 @@ def _solve(hip, target, forward, up, toe_curl, ground_height, rolls=(None,) * 4,
     hip = np.broadcast_to(hip, shape)
     fwd = np.asarray(forward, dtype=np.float64)
     upv = np.asarray(up, dtype=np.float64)
-    lat = np.cross(upv, fwd)
+    lat = cross(upv, fwd)
     shared_frame = fwd.ndim == 1 and upv.ndim == 1  # one frame for every leg: use BLAS
     basis = np.stack([fwd, upv, lat], axis=-2)  # rows: forward, up, lateral
     h = np.asarray(target, dtype=np.float64) - hip
     # Components in the leg frame: forward, up, lateral.
     if shared_frame:
-        hf, hu, hl = np.moveaxis(h @ basis.T, -1, 0)
+        in_frame = h @ basis.T
+        hf, hu, hl = in_frame[..., 0], in_frame[..., 1], in_frame[..., 2]
     else:
         hf, hu, hl = (np.einsum("...i,...i->...", h, axis) for axis in (fwd, upv, lat))
 

@@ -19,10 +19,12 @@ the clip's joints to rounding; leg bones keep their lengths.
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
 
+from .body import cross
 from .motion import Motion
 
 LEG_JOINTS = ("hip", "knee", "ankle", "ball", "toe")
@@ -84,8 +86,7 @@ class SkeletonClip:
 
 
 def _unit(v: NDArray[np.float64]) -> NDArray[np.float64]:
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
-    return v / np.maximum(n, 1e-12)
+    return v / np.maximum(np.sqrt(np.sum(v * v, axis=-1, keepdims=True)), 1e-12)
 
 
 def skeleton_layout(motion: Motion) -> SkeletonLayout:
@@ -93,10 +94,111 @@ def skeleton_layout(motion: Motion) -> SkeletonLayout:
     spine, root = motion.spine[0], motion.root[0, :3, 3]
 
     def nearest(point: NDArray[np.float64]) -> int:
-        return int(np.argmin(np.linalg.norm(spine - point, axis=-1)))
+        # Of two spine points as near as each other (within a micrometre: the root halfway
+        # between two segments' centres), the rear one, whatever the rounding.
+        distance = np.linalg.norm(spine - point, axis=-1)
+        return int(np.nonzero(distance <= distance.min() + 1e-6)[0][0])
 
     return SkeletonLayout(middle=nearest(root), leg_spine=tuple(nearest(p) for p in motion.joints[0, :, 0]),
                           arm_spine=tuple(nearest(p) for p in motion.arms[0, :, 0]))
+
+
+@dataclass(frozen=True)
+class _Plan:
+    """What a skeleton is made of, worked out once per shape of clip and layout: the
+    hierarchy; each joint's point as an index into the clip's points stacked as
+    :func:`_stacked_points` stacks them; each joint's primary child; the spine joints
+    whose +Y is the spine's own tangent (its segment, and -1 going backwards); and the
+    joints :func:`skeleton_clip` aims at their primary child, frames, or leaves with
+    their parent's frame (the ends)."""
+
+    skeleton: Skeleton
+    sources: NDArray[np.int64]  # (J,)
+    primary: tuple[int, ...]
+    spine_joints: NDArray[np.int64]
+    spine_segments: NDArray[np.int64]
+    spine_signs: NDArray[np.float64]
+    aims: NDArray[np.int64]
+    aim_children: NDArray[np.int64]
+    ends: tuple[int, ...]
+    framed: NDArray[np.int64]
+
+
+@lru_cache(maxsize=64)
+def _plan(middle: int, leg_spine: tuple[int, ...], arm_spine: tuple[int, ...], spine_count: int, tail_count: int,
+          leg_names: tuple[str, ...], arm_count: int) -> _Plan:
+    names: list[str] = ["root"]
+    parents: list[int] = [-1]
+    sources: list[int] = [0]
+    primary: list[int] = [-1]
+
+    def add(name: str, parent: int, source: int) -> int:
+        names.append(name)
+        parents.append(parent)
+        sources.append(source)
+        primary.append(-1)
+        if primary[parent] == -1 and parent != 0:
+            primary[parent] = len(names) - 1
+        return len(names) - 1
+
+    spine_at, neck_at = 1, 1 + spine_count  # where each part starts in the stacked points
+    tail_at = neck_at + 3
+    legs_at = tail_at + tail_count
+    arms_at = legs_at + len(leg_names) * len(LEG_JOINTS)
+    spine_index: dict[int, int] = {}
+    spine_joints: list[tuple[int, int, float]] = []  # joint, segment, sign
+    parent = 0
+    for s in range(middle, spine_count):  # forwards: trunk, neck, head, nose
+        parent = spine_index[s] = add(f"spine{s}", parent, spine_at + s)
+        spine_joints.append((parent, s, 1.0))
+    parent = add("neck", parent, neck_at)
+    parent = add("head", parent, neck_at + 1)
+    add("nose", parent, neck_at + 2)
+    parent = 0
+    for s in range(middle - 1, -1, -1):  # backwards: trunk, tail
+        parent = spine_index[s] = add(f"spine{s}", parent, spine_at + s)
+        spine_joints.append((parent, s, -1.0))
+    for k in range(tail_count):
+        parent = add(f"tail{k}", parent, tail_at + k)
+    for leg, leg_name in enumerate(leg_names):
+        parent = spine_index[leg_spine[leg]]
+        for k, part in enumerate(LEG_JOINTS):
+            parent = add(f"{leg_name}_{part}", parent, legs_at + leg * len(LEG_JOINTS) + k)
+    for arm, side in zip(range(arm_count), "LR"):
+        parent = spine_index[arm_spine[arm]]
+        for k, part in enumerate(ARM_JOINTS):
+            parent = add(f"{side}_{part}", parent, arms_at + arm * len(ARM_JOINTS) + k)
+    own = {j for j, _, _ in spine_joints}
+    count = len(names)
+    aims = [j for j in range(1, count) if j not in own and primary[j] >= 0]
+    ends = tuple(j for j in range(1, count) if j not in own and primary[j] < 0)
+    index = np.array([j for j, _, _ in spine_joints], dtype=np.int64)
+    return _Plan(skeleton=Skeleton(tuple(names), tuple(parents)), sources=np.array(sources, dtype=np.int64),
+                 primary=tuple(primary), spine_joints=index,
+                 spine_segments=np.array([s for _, s, _ in spine_joints], dtype=np.int64),
+                 spine_signs=np.array([sign for _, _, sign in spine_joints]),
+                 aims=np.array(aims, dtype=np.int64), aim_children=np.array([primary[j] for j in aims], dtype=np.int64),
+                 ends=ends, framed=np.array([j for j in range(1, count) if j not in ends], dtype=np.int64))
+
+
+def _stacked_points(motion: Motion) -> NDArray[np.float64]:
+    """Every point a skeleton may stand a joint on (T, P, 3): the root, the spine's
+    segment centres, the neck's base and top and the nose, the tail, every leg's joints
+    and every arm's (the order :func:`_plan`'s sources index)."""
+    frames = motion.spine.shape[0]
+    return np.concatenate([motion.root[:, None, :3, 3], motion.spine, motion.neck[:, :2], motion.head[:, 1:2],
+                           motion.tail, motion.joints.reshape(frames, -1, 3), motion.arms.reshape(frames, -1, 3)],
+                          axis=1)
+
+
+def _plan_for(motion: Motion, layout: SkeletonLayout) -> _Plan:
+    return _plan(layout.middle, tuple(layout.leg_spine), tuple(layout.arm_spine), motion.spine.shape[1],
+                 motion.tail.shape[1], tuple(motion.leg_names), motion.arms.shape[1])
+
+
+def _spine_directions(motion: Motion, plan: _Plan) -> NDArray[np.float64]:
+    """The spine joints' own +Y (T, K, 3): the spine's tangent, away from the root."""
+    return _unit(motion.spine_tangent[:, plan.spine_segments]) * plan.spine_signs[:, None]
 
 
 def skeleton_points(motion: Motion, layout: SkeletonLayout | None = None
@@ -107,51 +209,10 @@ def skeleton_points(motion: Motion, layout: SkeletonLayout | None = None
     and the tail's root lie within millimetres of the end segments' centres, too close to
     aim at. ``layout`` (default: the first frame's) says where the trunk splits and
     where the limbs hang."""
-    layout = layout or skeleton_layout(motion)
-    spine = motion.spine  # (T, S, 3), rear to front
-    root = motion.root[:, :3, 3]
-    S = spine.shape[1]
-    names: list[str] = ["root"]
-    parents: list[int] = [-1]
-    points: list[NDArray] = [root]
-    primary: list[int] = [-1]
-
-    def add(name: str, parent: int, point: NDArray) -> int:
-        names.append(name)
-        parents.append(parent)
-        points.append(point)
-        primary.append(-1)
-        if primary[parent] == -1 and parent != 0:
-            primary[parent] = len(names) - 1
-        return len(names) - 1
-
-    middle = layout.middle
-    spine_index: dict[int, int] = {}
-    directions: dict[int, NDArray] = {}
-    parent = 0
-    for s in range(middle, S):  # forwards: trunk, neck, head, nose
-        parent = spine_index[s] = add(f"spine{s}", parent, spine[:, s])
-        directions[parent] = _unit(motion.spine_tangent[:, s])
-    parent = add("neck", parent, motion.neck[:, 0])
-    parent = add("head", parent, motion.neck[:, 1])
-    add("nose", parent, motion.head[:, 1])
-    parent = 0
-    for s in range(middle - 1, -1, -1):  # backwards: trunk, tail
-        parent = spine_index[s] = add(f"spine{s}", parent, spine[:, s])
-        directions[parent] = -_unit(motion.spine_tangent[:, s])
-    for k in range(motion.tail.shape[1]):
-        parent = add(f"tail{k}", parent, motion.tail[:, k])
-    joints = motion.joints  # (T, L, 5, 3)
-    for leg, leg_name in enumerate(motion.leg_names):
-        parent = spine_index[layout.leg_spine[leg]]
-        for k, part in enumerate(LEG_JOINTS):
-            parent = add(f"{leg_name}_{part}", parent, joints[:, leg, k])
-    for arm, side in zip(range(motion.arms.shape[1]), "LR"):
-        parent = spine_index[layout.arm_spine[arm]]
-        for k, part in enumerate(ARM_JOINTS):
-            parent = add(f"{side}_{part}", parent, motion.arms[:, arm, k])
-    # The root's frame is the body's own.
-    return Skeleton(tuple(names), tuple(parents)), np.stack(points, axis=1), primary, directions
+    plan = _plan_for(motion, layout or skeleton_layout(motion))
+    own = _spine_directions(motion, plan)
+    directions = {int(j): own[:, k] for k, j in enumerate(plan.spine_joints)}
+    return plan.skeleton, _stacked_points(motion)[:, plan.sources], list(plan.primary), directions
 
 
 def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> SkeletonClip:
@@ -159,8 +220,11 @@ def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> Skele
     as its first frame says or as ``layout`` does (another clip's, e.g. a skinned body's
     bind pose: then the same joints turn the same way in both). Each joint's roll is
     measured from the body axis most perpendicular to its bone in the first frame."""
-    skeleton, position, primary, directions = skeleton_points(motion, layout)
-    roll_axes = layout.roll_axes if layout is not None and layout.roll_axes else None
+    layout = layout or skeleton_layout(motion)
+    plan = _plan_for(motion, layout)
+    skeleton, aims, framed = plan.skeleton, plan.aims, plan.framed
+    position = _stacked_points(motion)[:, plan.sources]
+    roll_axes = layout.roll_axes or None
     T, J = position.shape[:2]
     body = motion.root[:, :3, :3]  # (T, 3, 3) columns: left, up, forward
     rotation = np.empty((T, J, 3, 3))
@@ -169,22 +233,18 @@ def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> Skele
     # Each joint's +Y: its own direction (spine), towards its primary child, or (an end
     # joint) its parent's frame whole. Every joint but the ends at once.
     y = np.zeros((T, J, 3))
-    aims = np.array([j for j in range(1, J) if j not in directions and primary[j] >= 0], dtype=np.int64)
     if aims.size:
-        bone = position[:, np.array([primary[j] for j in aims])] - position[:, aims]
-        length = np.linalg.norm(bone, axis=-1, keepdims=True)
+        bone = position[:, plan.aim_children] - position[:, aims]
+        length = np.sqrt(np.sum(bone * bone, axis=-1, keepdims=True))
         y[:, aims] = bone / np.maximum(length, 1e-12)
         short = np.nonzero((length[..., 0] <= 1e-9).any(axis=0))[0]
     else:
         short = np.zeros(0, dtype=np.int64)
-    for j, d in directions.items():
-        y[:, j] = d
-    ends = [j for j in range(1, J) if j not in directions and primary[j] < 0]
-    framed = np.array([j for j in range(1, J) if j not in ends], dtype=np.int64)
-    axes = [0] * J
+    y[:, plan.spine_joints] = _spine_directions(motion, plan)
+    axes = np.zeros(J, dtype=np.int64)
     for k in short:  # a bone of no length (a creature without a neck) takes its parent's direction, in order
         j = int(aims[k])
-        zero = np.linalg.norm(position[:, primary[j]] - position[:, j], axis=-1) <= 1e-9
+        zero = np.linalg.norm(position[:, plan.primary[j]] - position[:, j], axis=-1) <= 1e-9
         parent_y = y[:, parents_all[j]] if parents_all[j] > 0 else body[:, :, 1]
         y[:, j] = np.where(zero[:, None], parent_y, y[:, j])
     if framed.size:
@@ -193,19 +253,19 @@ def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> Skele
             # The roll reference: the body axis most perpendicular to the bone at the start.
             chosen = np.argmin(np.abs(np.einsum("ik,fi->fk", body[0], yf[0])), axis=1)
         else:
-            chosen = np.array([roll_axes[j] for j in framed])
-        for j, a in zip(framed, chosen):
-            axes[int(j)] = int(a)
-        ref = np.moveaxis(body[:, :, chosen], -1, 1)  # (T, F, 3): each joint's chosen body axis
+            chosen = np.asarray(roll_axes, dtype=np.int64)[framed]
+        axes[framed] = chosen
+        ref = np.swapaxes(body, 1, 2)[:, chosen]  # (T, F, 3): each joint's chosen body axis
         x = _unit(ref - np.sum(ref * yf, axis=-1, keepdims=True) * yf)
-        z = np.cross(x, yf)
-        rotation[:, framed] = np.stack([x, yf, z], axis=-1)
-    for j in ends:  # parents come first
+        frame = rotation[:, framed]
+        frame[..., 0], frame[..., 1], frame[..., 2] = x, yf, cross(x, yf)
+        rotation[:, framed] = frame
+    for j in plan.ends:  # parents come first
         rotation[:, j] = rotation[:, parents_all[j]]
         axes[j] = axes[parents_all[j]]
-    parents = np.array(skeleton.parents)
-    parent_rot = rotation[:, np.maximum(parents, 0)]
-    parent_pos = position[:, np.maximum(parents, 0)]
+    parents = np.maximum(parents_all, 0)
+    parent_rot = rotation[:, parents]
+    parent_pos = position[:, parents]
     local_rot = np.einsum("tjki,tjkl->tjil", parent_rot, rotation)  # R_parent^T R
     local_pos = np.einsum("tjki,tjk->tji", parent_rot, position - parent_pos)
     local_rot[:, 0] = rotation[:, 0]
@@ -213,7 +273,7 @@ def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> Skele
     return SkeletonClip(skeleton=skeleton, times=np.asarray(motion.times, dtype=np.float64),
                         world_position=position, world_rotation=rotation, local_rotation=local_rot,
                         local_translation=local_pos, fps=float(motion.fps),
-                        layout=replace(layout or skeleton_layout(motion), roll_axes=tuple(axes)))
+                        layout=replace(layout, roll_axes=tuple(axes.tolist())))
 
 
 def forward_kinematics(skeleton: Skeleton, local_rotation: NDArray[np.float64],
