@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import cached_property
 from typing import cast
 
 import numpy as np
@@ -61,15 +62,22 @@ class Camera:
     ortho: bool = False
     top_down: bool = False
 
-    @property
+    # A camera never changes (a new one is made for every move), so what it works out is
+    # kept: a frame asks for its eye and its matrices a dozen times. Read-only arrays.
+
+    @cached_property
     def direction(self) -> NDArray[np.float64]:
         """Unit vector from the target to the eye."""
         az, el = math.radians(self.azimuth), math.radians(self.elevation)
-        return np.array([-math.cos(el) * math.cos(az), math.sin(el), math.cos(el) * math.sin(az)])
+        direction = np.array([-math.cos(el) * math.cos(az), math.sin(el), math.cos(el) * math.sin(az)])
+        direction.flags.writeable = False
+        return direction
 
-    @property
+    @cached_property
     def eye(self) -> NDArray[np.float64]:
-        return np.asarray(self.target) + self.distance * self.direction
+        eye = np.asarray(self.target) + self.distance * self.direction
+        eye.flags.writeable = False
+        return eye
 
     @property
     def up(self) -> NDArray[np.float64]:
@@ -87,7 +95,12 @@ class Camera:
         return glm.perspective(math.radians(self.fov), aspect, near, far)
 
     def view_proj(self, aspect: float) -> glm.mat4:
-        return cast(glm.mat4, self.projection(aspect) * self.view())  # pyglm's stubs type mat4 * mat4 loosely
+        cached = self.__dict__.get("_view_proj")
+        if cached is None or cached[0] != aspect:
+            matrix = cast(glm.mat4, self.projection(aspect) * self.view())  # pyglm's stubs type mat4 * mat4 loosely
+            cached = (aspect, matrix)
+            self.__dict__["_view_proj"] = cached  # (frozen: kept beside the fields, as cached_property does)
+        return glm.mat4(cached[1])  # a copy: glm matrices are mutable
 
     def orbit(self, d_azimuth: float, d_elevation: float) -> Camera:
         return replace(self, azimuth=self.azimuth + d_azimuth,
