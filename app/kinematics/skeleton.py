@@ -173,12 +173,20 @@ def _plan(middle: int, leg_spine: tuple[int, ...], arm_spine: tuple[int, ...], s
     aims = [j for j in range(1, count) if j not in own and primary[j] >= 0]
     ends = tuple(j for j in range(1, count) if j not in own and primary[j] < 0)
     index = np.array([j for j, _, _ in spine_joints], dtype=np.int64)
-    return _Plan(skeleton=Skeleton(tuple(names), tuple(parents)), sources=np.array(sources, dtype=np.int64),
+    return _read_only(_Plan(skeleton=Skeleton(tuple(names), tuple(parents)), sources=np.array(sources, dtype=np.int64),
                  primary=tuple(primary), spine_joints=index,
                  spine_segments=np.array([s for _, s, _ in spine_joints], dtype=np.int64),
                  spine_signs=np.array([sign for _, _, sign in spine_joints]),
                  aims=np.array(aims, dtype=np.int64), aim_children=np.array([primary[j] for j in aims], dtype=np.int64),
-                 ends=ends, framed=np.array([j for j in range(1, count) if j not in ends], dtype=np.int64))
+                 ends=ends, framed=np.array([j for j in range(1, count) if j not in ends], dtype=np.int64)))
+
+
+def _read_only(plan: _Plan) -> _Plan:
+    """``plan`` with its arrays locked: every clip of its shape shares them (cached)."""
+    for value in vars(plan).values():
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+    return plan
 
 
 def _stacked_points(motion: Motion) -> NDArray[np.float64]:

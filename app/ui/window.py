@@ -64,7 +64,9 @@ def software_gl_threads(environ: dict[str, str] | os._Environ[str] = os.environ,
     more, the tiles even out around the main thread: the viewer ran 9 % faster on two
     cores (median of 8 interleaved pairs). Call it before the window's context exists."""
     if "LP_NUM_THREADS" not in environ:
-        environ["LP_NUM_THREADS"] = str((cores or os.cpu_count() or 1) + 1)
+        if cores is None:  # the cores this process may run on (a container may pin it to a few)
+            cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+        environ["LP_NUM_THREADS"] = str(max(cores, 1) + 1)
 
 
 class GlfwWindow:
