@@ -120,7 +120,7 @@ class _Plan:
     spine_signs: NDArray[np.float64]
     aims: NDArray[np.int64]
     aim_children: NDArray[np.int64]
-    ends: tuple[int, ...]
+    ends: NDArray[np.int64]
     framed: NDArray[np.int64]
 
 
@@ -171,14 +171,14 @@ def _plan(middle: int, leg_spine: tuple[int, ...], arm_spine: tuple[int, ...], s
     own = {j for j, _, _ in spine_joints}
     count = len(names)
     aims = [j for j in range(1, count) if j not in own and primary[j] >= 0]
-    ends = tuple(j for j in range(1, count) if j not in own and primary[j] < 0)
+    ends = [j for j in range(1, count) if j not in own and primary[j] < 0]
     index = np.array([j for j, _, _ in spine_joints], dtype=np.int64)
     return _read_only(_Plan(skeleton=Skeleton(tuple(names), tuple(parents)), sources=np.array(sources, dtype=np.int64),
                  primary=tuple(primary), spine_joints=index,
                  spine_segments=np.array([s for _, s, _ in spine_joints], dtype=np.int64),
                  spine_signs=np.array([sign for _, _, sign in spine_joints]),
                  aims=np.array(aims, dtype=np.int64), aim_children=np.array([primary[j] for j in aims], dtype=np.int64),
-                 ends=ends, framed=np.array([j for j in range(1, count) if j not in ends], dtype=np.int64)))
+                 ends=np.array(ends, dtype=np.int64), framed=np.array([j for j in range(1, count) if j not in ends], dtype=np.int64)))
 
 
 def _read_only(plan: _Plan) -> _Plan:
@@ -268,9 +268,9 @@ def skeleton_clip(motion: Motion, layout: SkeletonLayout | None = None) -> Skele
         frame = rotation[:, framed]
         frame[..., 0], frame[..., 1], frame[..., 2] = x, yf, cross(x, yf)
         rotation[:, framed] = frame
-    for j in plan.ends:  # parents come first
-        rotation[:, j] = rotation[:, parents_all[j]]
-        axes[j] = axes[parents_all[j]]
+    ends = plan.ends  # leaves: their parents are framed joints (a parent has a child)
+    rotation[:, ends] = rotation[:, parents_all[ends]]
+    axes[ends] = axes[parents_all[ends]]
     parents = np.maximum(parents_all, 0)
     parent_rot = rotation[:, parents]
     parent_pos = position[:, parents]
