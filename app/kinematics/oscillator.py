@@ -69,6 +69,8 @@ def bias_from_duty(duty: ArrayLike, iterations: int = 64) -> NDArray[np.float64]
     (and remembered) however large the array.
     """
     d = np.asarray(duty, dtype=np.float64)
+    if d.ndim == 0:  # one duty factor (a gait's): no sorting
+        return np.array(_bias_for_duty(float(d), iterations))
     values, inverse = np.unique(d, return_inverse=True)
     if values.size <= 16:
         solved = np.array([_bias_for_duty(float(v), iterations) for v in values])

@@ -178,7 +178,8 @@ def _plan(middle: int, leg_spine: tuple[int, ...], arm_spine: tuple[int, ...], s
                  spine_segments=np.array([s for _, s, _ in spine_joints], dtype=np.int64),
                  spine_signs=np.array([sign for _, _, sign in spine_joints]),
                  aims=np.array(aims, dtype=np.int64), aim_children=np.array([primary[j] for j in aims], dtype=np.int64),
-                 ends=np.array(ends, dtype=np.int64), framed=np.array([j for j in range(1, count) if j not in ends], dtype=np.int64)))
+                 ends=np.array(ends, dtype=np.int64),
+                 framed=np.array([j for j in range(1, count) if j not in ends], dtype=np.int64)))
 
 
 def _read_only(plan: _Plan) -> _Plan:

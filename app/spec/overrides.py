@@ -5,6 +5,7 @@ key's value; each foot's phase."""
 from __future__ import annotations
 
 from collections.abc import Mapping
+from functools import lru_cache
 from typing import Any
 
 import numpy as np
@@ -48,8 +49,10 @@ def _unknown_key(key: str, origin: str, spec: CreatureSpec | None) -> SpecError:
                      f"keys look like body.length, gait.duty_factor, {example}")
 
 
+@lru_cache(maxsize=1024)
 def rule_for(key: str) -> Rule | None:
-    """The rule that governs a dotted key, or ``None`` if there is no such key."""
+    """The rule that governs a dotted key, or ``None`` if there is no such key (remembered:
+    the panels ask for every slider's rule every frame)."""
     parts = key.split(".")
     if len(parts) == 1:
         return TOP_RULES.get(parts[0])

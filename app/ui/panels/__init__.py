@@ -34,18 +34,24 @@ PANELS = (
 )
 
 
+
+# Window flags, combined once (an enum's | is a Python call, and these windows are built every frame).
+# The sidebar: the scrollbar's room is always kept, so panels opening never change the
+# sliders' width; no ImGui background: the viewer clears the sidebar's rectangle to
+# SIDEBAR_COLOR, much cheaper than a blended full-height quad on a software rasteriser.
+_SIDEBAR_FLAGS = (imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize | imgui.WindowFlags_.no_collapse
+                  | imgui.WindowFlags_.no_title_bar | imgui.WindowFlags_.no_background
+                  | imgui.WindowFlags_.always_vertical_scrollbar)
+_MESSAGE_FLAGS = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_nav
+                  | imgui.WindowFlags_.no_focus_on_appearing | imgui.WindowFlags_.always_auto_resize)
+_SIGN_FLAGS = _MESSAGE_FLAGS | imgui.WindowFlags_.no_inputs  # HUDs and signs over the 3-D view: no input
+
 def sidebar(state: ViewerState, pc: PanelContext, extra_panels=()) -> None:
     io = imgui.get_io()
     width = SIDEBAR_WIDTH * pc.scale
     imgui.set_next_window_pos(imgui.ImVec2(0, 0))
     imgui.set_next_window_size(imgui.ImVec2(width, io.display_size.y))
-    # The scrollbar's room is always kept: panels opening never change the sliders' width.
-    flags = (imgui.WindowFlags_.no_move | imgui.WindowFlags_.no_resize | imgui.WindowFlags_.no_collapse
-             | imgui.WindowFlags_.no_title_bar | imgui.WindowFlags_.no_background
-             | imgui.WindowFlags_.always_vertical_scrollbar)
-    # No ImGui background: the viewer clears the sidebar's rectangle to SIDEBAR_COLOR, which
-    # is much cheaper than a blended full-height quad on a software rasteriser.
-    imgui.begin("Gaitlab", None, flags)
+    imgui.begin("Gaitlab", None, _SIDEBAR_FLAGS)
     gait = f"{state.driver.gait} (driving)" if state.driver is not None else state.spec.gait.preset
     imgui.text(f"Gaitlab  -  {state.spec.name}, {gait}")
     imgui.text_disabled("F1 help  -  Tab hide UI")
@@ -70,11 +76,9 @@ def message_bar(state: ViewerState, pc: PanelContext) -> None:
     imgui.set_next_window_pos(imgui.ImVec2(left, io.display_size.y), 0, imgui.ImVec2(0.0, 1.0))
     imgui.set_next_window_size(imgui.ImVec2(io.display_size.x - left, 0.0))
     imgui.set_next_window_bg_alpha(0.8)
-    flags = (imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_nav
-             | imgui.WindowFlags_.no_focus_on_appearing | imgui.WindowFlags_.always_auto_resize)
     if state.message is None and pc.recording_progress is None:
         return
-    imgui.begin("##messages", None, flags)
+    imgui.begin("##messages", None, _MESSAGE_FLAGS)
     if pc.recording_progress is not None:
         imgui.progress_bar(pc.recording_progress, imgui.ImVec2(-1, 0), pc.recording_label)
     if state.message is not None:
@@ -89,9 +93,7 @@ def message_bar(state: ViewerState, pc: PanelContext) -> None:
 def _begin_sign(name: str) -> None:
     """Begin a small window over the 3-D view that takes no input (HUDs, the PAUSED sign);
     place it and set its background first, end it with ``imgui.end()``."""
-    imgui.begin(name, None, imgui.WindowFlags_.no_decoration | imgui.WindowFlags_.always_auto_resize
-                | imgui.WindowFlags_.no_saved_settings | imgui.WindowFlags_.no_focus_on_appearing
-                | imgui.WindowFlags_.no_nav | imgui.WindowFlags_.no_inputs)
+    imgui.begin(name, None, _SIGN_FLAGS)
 
 
 def paused_marker(state: ViewerState, pc: PanelContext) -> None:
