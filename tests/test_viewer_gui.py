@@ -63,6 +63,16 @@ def read_state(path: Path, timeout: float = 120.0, until=None) -> dict:
     raise AssertionError(f"viewer state {path} not reached in {timeout} s")
 
 
+def after_frames(dump: Path, frames: int = 3, timeout: float = 120.0) -> dict:
+    """The state once the viewer has drawn ``frames`` whole frames after this call: input sent
+    before it has then been read, however slow the frames (ImGui reads a press, the moves
+    after it and the release in separate frames, but a burst that arrives within one slow
+    frame collapses: a drag becomes a click)."""
+    sent = time.time_ns()
+    first = read_state(dump, timeout, until=lambda s: dump.stat().st_mtime_ns > sent)
+    return read_state(dump, timeout, until=lambda s: s["frame"] >= first["frame"] + frames)
+
+
 def xdotool(display: str, *args: str) -> str:
     out = subprocess.run(["xdotool", *args], env=env_for(display), capture_output=True, text=True, timeout=30)
     assert out.returncode == 0, out.stderr
@@ -154,9 +164,11 @@ def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path
         x0, y0, x1, y1 = state["widgets"]["legs.fore.femur"]
         ym = str(int((y0 + y1) / 2))
         start = state["creature"]["legs"]["fore"]["femur"]
-        xdotool(display, "mousemove", "--window", window, str(int(x0 + 10)), ym, "mousedown", "1",
-                "mousemove", "--window", window, str(int(x0 + 60)), ym, "sleep", "0.2",
-                "mousemove", "--window", window, str(int(x1 - 30)), ym, "sleep", "0.2", "mouseup", "1")
+        xdotool(display, "mousemove", "--window", window, str(int(x0 + 10)), ym)
+        for step in (("mousedown", "1"), ("mousemove", "--window", window, str(int(x0 + 60)), ym),
+                     ("mousemove", "--window", window, str(int(x1 - 30)), ym), ("mouseup", "1")):
+            after_frames(dump)  # each step read in a frame of its own, as a hand's drag is
+            xdotool(display, *step)
         dragged = read_state(dump, until=lambda s: s["creature"]["legs"]["fore"]["femur"] > start + 0.1)
         femur = dragged["creature"]["legs"]["fore"]["femur"]
 
@@ -452,10 +464,13 @@ def test_terrain_slider_regenerates_the_ground_without_a_planted_foot_jump(displ
         x0, y0, x1, y1 = before["widgets"]["terrain.amp"]
         # Press on the knob (ImGui sliders jump to where they are pressed): 0.04 of 0..1 m.
         x, y = x0 + 0.04 * (x1 - x0), int((y0 + y1) / 2)
-        xdotool(display, "mousemove", str(int(x)), str(y), "mousedown", "1")
+        xdotool(display, "mousemove", str(int(x)), str(y))
+        after_frames(dump)
+        xdotool(display, "mousedown", "1")
         for dx in range(3, 18, 3):  # a drag over several frames, to about 0.1 m
+            after_frames(dump, 1)
             xdotool(display, "mousemove", str(int(x) + dx), str(y))
-            time.sleep(0.05)
+        after_frames(dump)
         xdotool(display, "mouseup", "1")
         after = read_state(dump, until=lambda s: s["terrain"] != before["terrain"])
         later = read_state(dump, until=lambda s: s["time"] > after["time"] + 1.5)

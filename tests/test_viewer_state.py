@@ -259,6 +259,14 @@ def test_undo_and_redo_edits(state: ViewerState, monkeypatch: pytest.MonkeyPatch
     for value in (0.31, 0.32, 0.33, 0.34):
         state.set("legs.fore.femur", value)
     assert state.undo() and state.spec.leg("fore").femur == start.leg("fore").femur
+    # A drag at two frames a second (changes 5 s apart here): the mouse held the slider from
+    # one change to the next, so it is still one step; the next press starts another.
+    monkeypatch.setattr(state_module.time, "monotonic", lambda: next(clock))
+    for held, value in ((False, 0.41), (True, 0.42), (True, 0.43), (False, 0.5), (True, 0.51)):
+        state.drag_held = held
+        state.set("legs.fore.femur", value)
+    assert state.undo() and state.spec.leg("fore").femur == 0.43
+    assert state.undo() and state.spec.leg("fore").femur == start.leg("fore").femur
 
 
 def test_recent_files_and_the_dialog_fallback(state: ViewerState, tmp_path: Path) -> None:

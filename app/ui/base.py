@@ -39,6 +39,7 @@ class StateBase:
         _undo: list[CreatureSpec]
         _redo: list[CreatureSpec]
         _last_edit: tuple[str, float]
+        drag_held: bool
         _waypoint_s: list[float]
         error: str | None
         status: str

@@ -17,7 +17,8 @@ from ..styles import DEFAULT_TIMING_FPS, style_heights
 from .base import StateBase
 
 UNDO_DEPTH = 200  # edits kept for undo
-UNDO_MERGE_SECONDS = 0.75  # changes of one control closer together than this are one edit (a drag)
+UNDO_MERGE_SECONDS = 0.75  # changes of one control closer together than this are one edit (arrow keys,
+# a drag at any frame rate is one edit by itself: see drag_held)
 
 # Gait keys whose value, when not set in the file, comes from the gait preset: the UI shows
 # the resolved number.
@@ -166,7 +167,8 @@ class EditingMixin(StateBase):
         self.error = None
         if edit is not None and spec != previous:
             now = time.monotonic()
-            same_drag = edit and edit == self._last_edit[0] and now - self._last_edit[1] < UNDO_MERGE_SECONDS
+            same_drag = edit and edit == self._last_edit[0] and (now - self._last_edit[1] < UNDO_MERGE_SECONDS
+                                                                 or self.drag_held)
             if not same_drag:
                 self._undo.append(previous)
                 del self._undo[:-UNDO_DEPTH]

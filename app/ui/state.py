@@ -82,6 +82,7 @@ class ViewerState(EditingMixin, FilesMixin, PlaybackMixin, WorldMixin, ViewMixin
         self.screenshot_with_ui = False  # F12: the 3-D view alone; Shift+F12: the whole window
         self.record_requested = False
         self.widget_rects: dict[str, tuple[float, float, float, float]] = {}
+        self.drag_held = False  # the control being changed was already held by the mouse last frame
         self.samples: list[dict[str, Any]] = []  # sub-step inputs for the gait monitor
         self.fine_sampling = True  # sub-step at SAMPLE_RATE (the viewer turns it off while nobody measures)
         self.reset_pending = False  # "reset everything" asked once

@@ -89,8 +89,12 @@ def _icon(pc: PanelContext, icon: str, text: str) -> str:
 
 
 def _remember(state: ViewerState, key: str) -> None:
+    """Note the control just drawn: where it is (for automation) and whether the mouse is
+    still holding it from an earlier frame (its changes then continue one drag, one undo
+    step, however slow the frames)."""
     lo, hi = imgui.get_item_rect_min(), imgui.get_item_rect_max()
     state.widget_rects[key] = (lo.x, lo.y, hi.x, hi.y)
+    state.drag_held = imgui.is_item_active() and not imgui.is_item_activated()
 
 
 def _doc(key: str) -> str:
