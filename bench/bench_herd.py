@@ -104,7 +104,7 @@ def viewer(size: tuple[int, int], repeats: int, old: Path | None = None, ui: boo
         display = ":" + pipe.readline().strip()
     env = {**os.environ, "DISPLAY": display, "PYTHONPATH": str(ROOT)}
     pattern = re.compile(r"([\d.]+) fps .*simulate ([\d.]+), draw scene ([\d.]+), draw UI ([\d.]+), "
-                         r"swap and rest ([\d.]+)")
+                         r"swap and rest (-?[\d.]+)")
     try:
         shown = "UI shown" if ui else "UI hidden"
         print(f"viewer at {size[0]}x{size[1]}, {shown}, no vsync (median of {repeats} runs of 240 frames):")

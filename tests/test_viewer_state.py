@@ -441,3 +441,23 @@ def test_the_window_gives_a_software_rasteriser_a_thread_more_than_the_cores_unl
     chosen = {"LP_NUM_THREADS": "1"}
     software_gl_threads(chosen, cores=8)
     assert chosen == {"LP_NUM_THREADS": "1"}  # the user's choice stands
+
+
+def test_the_frame_report_splits_each_synced_frame_and_never_reads_below_zero(capsys: pytest.CaptureFixture) -> None:
+    """--report-fps: "swap and rest" is what each synced frame left over, so it is never
+    negative (the medians of the parts do not add up to the median of the whole)."""
+    from types import SimpleNamespace
+
+    from app.ui.viewer import Viewer
+
+    viewer = object.__new__(Viewer)
+    viewer.window = SimpleNamespace(framebuffer_size=(1280, 720))
+    viewer.state = SimpleNamespace(show_ui=True)
+    # (simulate, scene, UI, whole frame, synced) in seconds: the parts' medians add up to
+    # more than the median frame, but no frame spent less than its parts.
+    synced = [(0.001, 0.010, 0.002, 0.0135, True), (0.005, 0.004, 0.002, 0.0115, True),
+              (0.004, 0.008, 0.001, 0.0135, True)]
+    viewer.frame_times = [(0.0, 0.0, 0.0, 0.02, False)] * 10 + synced + [(0.0, 0.0, 0.0, 0.016, False)] * 20
+    viewer.report()
+    line = capsys.readouterr().out
+    assert "62.5 fps" in line and "swap and rest 0.50 ms" in line

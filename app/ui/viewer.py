@@ -598,12 +598,13 @@ class Viewer:
         if not times:
             return
         frame_ms = statistics.median(t[3] for t in free) * 1000
-        split = [statistics.median(t[i] for t in synced) * 1000 for i in range(4)]
+        split = [statistics.median(t[i] for t in synced) * 1000 for i in range(3)]
+        rest = statistics.median(t[3] - t[0] - t[1] - t[2] for t in synced) * 1000  # per frame: never below 0
         fb_w, fb_h = self.window.framebuffer_size
         print(f"viewer {fb_w}x{fb_h}, UI {'shown' if self.state.show_ui else 'hidden'}: {1000 / frame_ms:.1f} fps "
               f"(median frame {frame_ms:.2f} ms over {len(free)} frames); split over {len(synced)} synced frames: "
               f"simulate {split[0]:.2f}, draw scene {split[1]:.2f}, draw UI {split[2]:.2f}, "
-              f"swap and rest {split[3] - split[0] - split[1] - split[2]:.2f} ms")
+              f"swap and rest {rest:.2f} ms")
 
     def close(self) -> None:
         if self.recording is not None:
