@@ -1,5 +1,5 @@
 """Running ``gaitlab`` in the test process: ``cli.main(argv)`` with its working folder,
-standard output and error captured, and its exit status — the same three things a
+standard output and error captured (with the warnings a process would print), and its exit status — the same three things a
 subprocess gives, without starting Python and importing numpy, scipy and moderngl again
 for each command (which cost 1.5-3 s a call).
 
@@ -14,6 +14,7 @@ import io
 import os
 import subprocess
 import sys
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -39,14 +40,21 @@ def gaitlab(*args: str | os.PathLike[str], cwd: Path | str | None = None) -> Com
     try:
         if cwd is not None:
             os.chdir(cwd)
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), \
+                warnings.catch_warnings(record=True) as caught:
+            # The warnings a real process would print (Python's default filters: each
+            # once, deprecations and resource warnings not at all), printed as it would.
+            warnings.simplefilter("default")
+            for quiet in (DeprecationWarning, PendingDeprecationWarning, ImportWarning, ResourceWarning):
+                warnings.simplefilter("ignore", quiet)
             try:
                 code = main(list(argv))
             except SystemExit as exc:  # argparse: --help, --version and usage errors
                 code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     finally:
         os.chdir(here)
-    return Completed(argv, int(code), out.getvalue(), err.getvalue())
+    printed = "".join(warnings.formatwarning(w.message, w.category, w.filename, w.lineno, w.line) for w in caught)
+    return Completed(argv, int(code), out.getvalue(), printed + err.getvalue())
 
 
 def gaitlab_process(*args: str | os.PathLike[str], cwd: Path | str | None = None, env: dict | None = None,

@@ -619,3 +619,30 @@ def test_a_rig_map_may_name_the_neck_and_tail() -> None:
         with pytest.raises(RigError) as caught:
             legs_from_map(fox, {"legs": legs, **table}, "fox.toml")
         assert expected in str(caught.value) and str(caught.value).startswith("fox.toml: ")
+
+
+@pytest.mark.parametrize("texture", ["30000", "10000", "garbage"])
+def test_a_model_whose_texture_is_a_bomb_or_no_image_is_one_clear_line(tmp_path: Path, texture: str) -> None:
+    """The base colour texture's declared size is checked before it is decoded (Pillow's
+    own refusal and its warning never show), and bytes that are no image say so."""
+    import base64
+
+    import pygltflib
+    from cli_runner import gaitlab
+    from test_world_cli import _png
+
+    side = int(texture) if texture.isdigit() else 0
+    data = _png(side, side, rows=20) if side else b"not an image at all"
+    gltf = pygltflib.GLTF2().load(str(MODELS / "Fox.glb"))
+    (image,) = gltf.images
+    image.bufferView, image.mimeType = None, None
+    image.uri = "data:image/png;base64," + base64.b64encode(data).decode()
+    model = tmp_path / "fox.gltf"
+    gltf.convert_buffers(pygltflib.BufferFormat.DATAURI)
+    gltf.save(str(model))
+    with pytest.raises(RigError) as refused:
+        load_rigged_model(model)
+    assert ("may have at most 67,108,864 pixels" if side else "not an image Gaitlab can read") in str(refused.value)
+    result = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120")
+    assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1, result.stderr
+    assert not (tmp_path / "fox.png").exists()

@@ -20,6 +20,8 @@ from numpy.typing import NDArray
 from ..errors import GaitlabError
 
 MAX_FACES = 2_000_000  # triangles a model may have (a larger mesh is refused before it is read)
+MAX_TEXTURE_SIDE = 8192
+MAX_TEXTURE_PIXELS = MAX_TEXTURE_SIDE * MAX_TEXTURE_SIDE  # a base colour texture (its declared size is checked first)
 _COMPONENTS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}
 _DTYPES = {5120: np.int8, 5121: np.uint8, 5122: np.int16, 5123: np.uint16, 5125: np.uint32, 5126: np.float32}
 
@@ -246,7 +248,9 @@ def _colors(reader: _Reader, prim, gltf, count: int) -> NDArray[np.float64]:
     if source is None:  # an image only an extension gives (KTX2, WebP): the factor alone
         return np.tile(factor, (count, 1))
     image = gltf.images[source]
-    from PIL import Image
+    from PIL import Image, UnidentifiedImageError
+
+    from ..images import opened_image
 
     if image.bufferView is not None:
         data = reader.view_bytes(image.bufferView)
@@ -259,11 +263,20 @@ def _colors(reader: _Reader, prim, gltf, count: int) -> NDArray[np.float64]:
         import base64
 
         data = base64.b64decode((image.uri or ",").split(",", 1)[1])
-    Image.MAX_IMAGE_PIXELS = 64_000_000
-    with Image.open(io.BytesIO(data)) as img:
-        pixels = np.asarray(img.convert("RGB"), dtype=np.float64) / 255.0
+    limit = f"a texture may have at most {MAX_TEXTURE_PIXELS:,} pixels ({MAX_TEXTURE_SIDE}x{MAX_TEXTURE_SIDE})"
+    try:
+        with opened_image(io.BytesIO(data)) as img:
+            cols, rows = img.size  # checked before a byte of it is decoded
+            if cols * rows > MAX_TEXTURE_PIXELS:
+                raise RigError(f"{reader.path}: image {source} declares {cols}x{rows} pixels; {limit}")
+            pixels = np.asarray(img.convert("RGB"))  # one byte a channel: only the texels read become floats
+    except Image.DecompressionBombError:
+        raise RigError(f"{reader.path}: image {source} declares more pixels than Pillow will decode; {limit}") from None
+    except (UnidentifiedImageError, OSError, SyntaxError, ValueError) as exc:
+        raise RigError(f"{reader.path}: image {source} is not an image Gaitlab can read ({type(exc).__name__}); "
+                       "give a PNG or JPEG base colour texture") from None
     uv = reader.accessor(prim.attributes.TEXCOORD_0).astype(np.float64)
     h, w = pixels.shape[:2]
     x = np.clip((uv[:, 0] % 1.0) * w, 0, w - 1).astype(np.int64)
     y = np.clip((uv[:, 1] % 1.0) * h, 0, h - 1).astype(np.int64)
-    return pixels[y, x] * factor
+    return pixels[y, x].astype(np.float64) / 255.0 * factor

@@ -25,9 +25,11 @@ def load_heightmap(file: FilePath, size: float, height: float, max_slope: float 
     along +Z), black at 0 and white at ``height`` m. 8- and 16-bit images keep their depth."""
     from PIL import Image, UnidentifiedImageError
 
+    from ..images import opened_image
+
     _check_file(file)
     try:
-        with Image.open(file) as image:
+        with opened_image(file) as image:
             # The size an image declares is checked before a byte of it is decoded.
             cols, rows = image.size
             if cols * rows > MAX_HEIGHTMAP_PIXELS:
