@@ -131,7 +131,7 @@ BAD_INPUTS = {
     "size zero": (["render", "dog", "--size", "0x0", "-o", "x.gif"], "between 1 and 8192"),
     "size too big": (["render", "dog", "--size", "9000x9000", "-o", "x.gif"], "between 1 and 8192"),
     "size garbage": (["render", "dog", "--size", "big", "-o", "x.gif"], "WIDTHxHEIGHT"),
-    "fps zero": (["render", "dog", "--fps", "0", "-o", "x.gif"], "greater than 0"),
+    "fps zero": (["render", "dog", "--fps", "0", "-o", "x.gif"], "at least 1"),
     "seconds and cycles": (["render", "dog", "--seconds", "1", "--cycles", "2", "-o", "x.gif"], "not allowed with"),
     "odd mp4 size": (["render", "dog", "--size", "95x72", "-o", "x.mp4"], "even width and height"),
     "unknown antialias": (["render", "dog", "--antialias", "ssaa", "-o", "x.gif"], "choose from 'fxaa', 'msaa', 'off'"),

@@ -24,6 +24,7 @@ _WHOLE = re.compile(r"[0-9]{1,12}")  # ASCII digits only ("²".isdigit() is True
 MAX_FILE_BYTES = 512 * 2**20
 MAX_JOINTS = 10_000
 MAX_CHANNELS_PER_JOINT = 9
+MIN_FRAME_TIME = 1e-4  # s: a BVH or CSV clip sampled faster than 10 kHz is no capture (and breaks the maths)
 
 
 class InputError(GaitlabError):
@@ -60,7 +61,12 @@ class BvhClip:
         raise KeyError(name)
 
     def positions(self, names: list[str]) -> NDArray[np.float64]:
-        """World positions (T, len(names), 3) of the named joints, in file units and axes."""
+        """World positions (T, len(names), 3) of the named joints, in file units and axes
+        (inf or NaN where a file's numbers overflow: the callers check, numpy does not warn)."""
+        with np.errstate(over="ignore", invalid="ignore"):
+            return self._positions(names)
+
+    def _positions(self, names: list[str]) -> NDArray[np.float64]:
         wanted = [self.index(n) for n in names]
         needed: set[int] = set()
         for i in wanted:
@@ -245,9 +251,10 @@ def _motion(path: str, lines: list[str], motion_at: int, channel_count: int) -> 
         frame_time = float(time_text)
     except ValueError:
         frame_time = math.nan
-    if time_label.strip().lower() != "frame time" or not (0 < frame_time < 3600):
-        raise InputError(f"{path}:{header[1][0] + 1}: malformed BVH: expected 'Frame Time: seconds' (more than 0, "
-                         f"less than an hour), found {header[1][1][:80]!r}")
+    if time_label.strip().lower() != "frame time" or not (MIN_FRAME_TIME <= frame_time < 3600):
+        raise InputError(f"{path}:{header[1][0] + 1}: malformed BVH: expected 'Frame Time: seconds' (at least "
+                         f"{MIN_FRAME_TIME:g}, a {1 / MIN_FRAME_TIME:,.0f} Hz capture, and less than an hour), found "
+                         f"{header[1][1][:80]!r}")
     first = motion_at + 3
     data_lines = [(n, line) for n, line in enumerate(lines[first:], start=first + 1) if line.strip()]
     if len(data_lines) < frame_count:

@@ -104,7 +104,7 @@ def leg_chains(clip: BvhClip, path: str, feet: dict[str, tuple[str, str | None]]
 def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -> Legs:
     """Every leg of a BVH clip with its strikes (from ``analyze``'s events)."""
     from . import analyze_tracks
-    from .sources import _leading_jumps, _to_y_up, detect_up, tracks_from_bvh
+    from .sources import MAX_COORDINATE, _leading_jumps, _to_y_up, detect_up, tracks_from_bvh
 
     clip = read_bvh(path)
     if clip.frames.shape[0] < 2:
@@ -113,6 +113,9 @@ def bvh_legs(path: str, feet: dict[str, tuple[str, str | None]] | None = None) -
     mapping, chains = leg_chains(clip, path, feet)
     names = [n for chain in chains.values() for n in chain] + [clip.joints[0].name]
     points = clip.positions(names)  # (T, N, 3)
+    if not np.all(np.abs(points) < MAX_COORDINATE):
+        raise InputError(f"{path}: joint positions reach {float(np.nanmax(np.abs(points))):.3g} (or are not finite); "
+                         f"positions must be under {MAX_COORDINATE:g} in file units")
     feet_pts = points[:, [4 * i + 2 for i in range(len(chains))]]
     toes_pts = points[:, [4 * i + 3 for i in range(len(chains))]]
     skip = _leading_jumps(np.concatenate([feet_pts, toes_pts, points[:, -1:]], axis=1))

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import did_you_mean
-from .bvh import InputError, read_bvh
+from .bvh import MIN_FRAME_TIME, InputError, read_bvh
 from .tracks import FootTracks
 
 Units = Literal["auto", "m", "cm", "mm", "in", "ft", "cmu"]
@@ -349,9 +349,10 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
         raise InputError(f"{path}: the CSV holds {data.shape[0]} rows; a clip needs at least one full stride")
     col = {h: i for i, h in enumerate(header)}
     times = data[:, col["time"]]
-    if np.any(np.diff(times) <= 0):
-        bad = int(np.nonzero(np.diff(times) <= 0)[0][0]) + 3
-        raise InputError(f"{path}:{bad}: time must increase from row to row")
+    if np.any(np.diff(times) < MIN_FRAME_TIME):
+        bad = int(np.nonzero(np.diff(times) < MIN_FRAME_TIME)[0][0]) + 3
+        raise InputError(f"{path}:{bad}: time must increase from row to row, by at least {MIN_FRAME_TIME:g} s "
+                         f"(a {1 / MIN_FRAME_TIME:,.0f} Hz capture)")
     heel = np.stack([data[:, [col[f"{f}_x"], col[f"{f}_y"], col[f"{f}_z"]]] for f in feet], axis=1)
     has_toe = all(f"{f}_toe_x" in col for f in feet)
     toe = np.stack([data[:, [col[f"{f}_toe_x"], col[f"{f}_toe_y"], col[f"{f}_toe_z"]]] for f in feet], axis=1) \

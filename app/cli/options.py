@@ -15,7 +15,7 @@ from pathlib import Path
 
 from ..choices import MAX_CRF, MAX_HERD, MAX_SIZE, OVERLAYS, PANEL_TITLES
 from ..gaits import GAIT_PRESETS
-from ..limits import MAX_FPS, MAX_SECONDS, MAX_SPEED
+from ..limits import MAX_FPS, MAX_SECONDS, MAX_SPEED, MIN_FPS
 from ..numbers import NumberProblem, Range
 from ..styles import WALK_STYLES
 from ..worlds.kinds import PATH_KINDS, TERRAIN_KINDS, path_usage, terrain_usage
@@ -42,9 +42,11 @@ def size(text: str) -> tuple[int, int]:
     return w, h
 
 
-def positive(name: str, upper: float) -> Callable[[str], float]:
-    """A number in (0, ``upper``] of ``name`` (the unit, for the message)."""
-    allowed = Range(0.0, upper, lo_open=True)
+def positive(name: str, upper: float, least: float | None = None) -> Callable[[str], float]:
+    """A number in (0, ``upper``] of ``name`` (the unit, for the message); in
+    [``least``, ``upper``] when ``least`` is given."""
+    allowed = Range(0.0, upper, lo_open=True) if least is None else Range(least, upper)
+    bounds = "greater than 0" if least is None else f"at least {least:g}"
 
     def parse(text: str) -> float:
         try:
@@ -52,7 +54,7 @@ def positive(name: str, upper: float) -> Callable[[str], float]:
         except NumberProblem as exc:
             if str(exc) == "is not a number":
                 raise argparse.ArgumentTypeError(f"{text!r}: expected a number") from None
-            raise argparse.ArgumentTypeError(f"{text!r}: must be greater than 0 and at most {upper:g} {name}") from None
+            raise argparse.ArgumentTypeError(f"{text!r}: must be {bounds} and at most {upper:g} {name}") from None
 
     return parse
 
@@ -182,7 +184,7 @@ def add_clip(parser: argparse.ArgumentParser, output_help: str, cycles_help: str
     length = parser.add_mutually_exclusive_group()
     length.add_argument("--seconds", metavar="S", type=positive("seconds", MAX_SECONDS), help="clip length in seconds")
     length.add_argument("--cycles", metavar="N", type=positive("cycles", MAX_SECONDS), help=cycles_help)
-    parser.add_argument("--fps", metavar="F", type=positive("frames per second", MAX_FPS), default=None,
+    parser.add_argument("--fps", metavar="F", type=positive("frames per second", MAX_FPS, least=MIN_FPS), default=None,
                         help=f"frames per second (default: {fps:g}, or the creature's timing frame rate when its "
                              "timing is given in frames per cycle)")
     parser.set_defaults(default_fps=fps)

@@ -255,8 +255,11 @@ class GifWriter:
 
     def _discard(self) -> None:
         if self._file is not None:
-            self._file.close()
-            self._file = None
+            file, self._file = self._file, None
+            try:
+                file.close()  # flushes: on a full disk it fails again, and the part is deleted below anyway
+            except OSError:
+                pass
         for chunk in self._chunks:
             chunk.discard()
         self._output.discard()

@@ -10,7 +10,9 @@ no skin, is a one-line :class:`RigError` naming the file.
 
 from __future__ import annotations
 
+import binascii
 import io
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -144,7 +146,9 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
     if not path.is_file():
         raise RigError(f"{path}: no such file")
     try:
-        gltf = pygltflib.GLTF2().load(str(path))
+        with warnings.catch_warnings():  # pygltflib warns of what it reads anyway (an old GLB version)
+            warnings.simplefilter("ignore")
+            gltf = pygltflib.GLTF2().load(str(path))
     except Exception as exc:  # pygltflib raises many kinds on bad files
         raise RigError(f"{path}: not a readable glTF file ({type(exc).__name__})") from None
     if gltf is None:
@@ -156,6 +160,28 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
     skinned = [i for i, node in enumerate(gltf.nodes) if node.skin is not None and node.mesh is not None]
     if not gltf.skins or not skinned:
         raise RigError(f"{path}: has no skinned mesh (a glTF with a skin: a skeleton and a mesh weighted to it)")
+    try:
+        with np.errstate(all="ignore"):  # what a damaged file's numbers give is checked below, not warned of
+            model = _read_model(gltf, path)
+    except RigError as exc:
+        text = str(exc)
+        raise RigError(text if text.startswith(str(path)) else f"{path}: {text}") from None
+    except (ValueError, TypeError, KeyError, IndexError, AttributeError, ArithmeticError, np.linalg.LinAlgError,
+            binascii.Error) as exc:  # an index past a list's end, a buffer too short for its accessor, ...
+        raise RigError(f"{path}: a damaged glTF ({type(exc).__name__} while reading its skin and mesh); "
+                       "export it again from the modelling tool") from None
+    numbers = (model.rest, model.inverse_bind, model.positions, model.weights)
+    if not all(np.all(np.isfinite(a)) for a in numbers) or (len(model.colors) and not np.all(np.isfinite(model.colors))):
+        raise RigError(f"{path}: its skeleton or mesh holds values that are not finite numbers (NaN or infinity)")
+    if model.faces.size and (model.faces.min() < 0 or model.faces.max() >= len(model.positions)):
+        raise RigError(f"{path}: its mesh's triangles name vertex {int(model.faces.max())} of "
+                       f"{len(model.positions)}; the file is damaged")
+    return model
+
+
+def _read_model(gltf, path: Path) -> RiggedModel:
+    """The model in ``gltf`` (opened from ``path``), read as :func:`load_rigged_model` says."""
+    skinned = [i for i, node in enumerate(gltf.nodes) if node.skin is not None and node.mesh is not None]
     reader = _Reader(gltf, path)
     world = world_matrices(gltf)
     node = gltf.nodes[skinned[0]]
@@ -199,6 +225,9 @@ def world_matrices(gltf) -> dict[int, NDArray[np.float64]]:
     stack = [(i, np.eye(4)) for i in roots]
     while stack:
         i, above = stack.pop()
+        if i in world:  # a node reached twice: two parents, or its own ancestor (no end to the walk)
+            raise RigError(f"its node {i} ({gltf.nodes[i].name or 'unnamed'}) has two parents or is its own "
+                           "ancestor; the nodes must form a tree")
         world[i] = above @ node_matrix(gltf.nodes[i])
         stack.extend((c, world[i]) for c in (gltf.nodes[i].children or []))
     return world

@@ -142,7 +142,7 @@ OVERLAP_RULES: dict[str, Rule] = {
 
 GAIT_RULES: dict[str, Rule] = {
     "preset": Rule("choice", choices=tuple(GAIT_PRESETS), doc="gait preset the other keys adjust"),
-    "frequency": _num(0.0, 20.0, lo_open=True, unit="Hz", doc="stride frequency (default: from the preset and hip height)"),
+    "frequency": _num(0.05, 20.0, unit="Hz", doc="stride frequency (default: from the preset and hip height)"),
     "duty_factor": _num(*DUTY_RANGE, lo_open=True, hi_open=True, doc="fraction of the cycle each foot is planted"),
     "bias": _num(-BIAS_LIMIT, BIAS_LIMIT, doc="the seed's swing/stance bias b; duty = 1/2 + asin(ln(cosh b)/b)/pi"),
     "front_back": _num(-1, 1, doc="how far (cycle fraction) a foot lags the one behind it on its side"),

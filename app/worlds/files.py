@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path as FilePath
 
 import numpy as np
@@ -42,7 +43,7 @@ def load_heightmap(file: FilePath, size: float, height: float, max_slope: float 
                 data = np.asarray(image, dtype=np.float32)
                 top = 65535.0 if mode.startswith("I;16") else max(float(data.max()), 1.0)
             elif mode == "F":
-                data = np.asarray(image, dtype=np.float32)
+                data = np.array(image, dtype=np.float32)  # a copy: Pillow's own buffer is read-only
                 top = max(float(data.max()), 1e-12)
             else:
                 data = np.asarray(image.convert("L"), dtype=np.float32)
@@ -68,6 +69,7 @@ def load_heightmap(file: FilePath, size: float, height: float, max_slope: float 
 MAX_GRID = 1024
 MAX_MESH_BYTES = 256 * 2**20  # checked before the file is parsed
 MAX_MESH_FACES = 4_000_000
+MAX_MESH_REACH = 1e5  # m from the origin (farther, the grid's and the rays' numbers lose their centimetres)
 
 
 def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFAULT_MAX_SLOPE) -> HeightGrid:
@@ -82,7 +84,11 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
         raise WorldError(f"{file}: {size / 2**20:.0f} MB; a terrain mesh may be at most {MAX_MESH_BYTES // 2**20} MB "
                          "(simplify it first)")
     try:
-        loaded: trimesh.Trimesh = trimesh.load(str(file), force="mesh")  # type: ignore[assignment]  # force="mesh"
+        with warnings.catch_warnings(), np.errstate(all="ignore"):  # what it reads is checked below, not warned of
+            warnings.simplefilter("ignore")
+            loaded: trimesh.Trimesh = trimesh.load(str(file), force="mesh")  # type: ignore[assignment]  # force="mesh"
+    except ImportError:  # trimesh reaches for an optional reader when a file is not what it says
+        raise WorldError(f"{file}: cannot read the mesh (damaged, or not an OBJ, PLY, STL or glTF/GLB)") from None
     except Exception as exc:  # trimesh raises many kinds for broken files
         raise WorldError(f"{file}: cannot read the mesh ({type(exc).__name__}: {str(exc)[:80]})") from None
     faces = getattr(loaded, "faces", None)
@@ -94,13 +100,20 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
     vertices = np.asarray(loaded.vertices, dtype=np.float64)
     if not np.all(np.isfinite(vertices)):
         raise WorldError(f"{file}: the mesh has vertices that are not finite numbers")
+    if np.abs(vertices).max() > MAX_MESH_REACH:
+        raise WorldError(f"{file}: the mesh reaches {np.abs(vertices).max():.3g} m from the origin; a terrain mesh "
+                         f"must lie within {MAX_MESH_REACH:g} m of it (metres, up is +Y)")
     lo, hi = vertices.min(axis=0), vertices.max(axis=0)
-    extent = max(hi[0] - lo[0], hi[2] - lo[2])
-    if extent <= 0:
-        raise WorldError(f"{file}: the mesh has no extent on the ground (x, z)")
-    cell = cell or extent / 256.0
-    cols = int(min(MAX_GRID, math.ceil((hi[0] - lo[0]) / cell) + 1))
-    rows = int(min(MAX_GRID, math.ceil((hi[2] - lo[2]) / cell) + 1))
+    width, depth = float(hi[0] - lo[0]), float(hi[2] - lo[2])
+    if min(width, depth) <= 0:
+        raise WorldError(f"{file}: the mesh spreads {width:g} m along x and {depth:g} m along z; a terrain must "
+                         "spread both ways over the ground (up is +Y)")
+    cell = cell or max(width, depth) / 256.0
+
+    def points(span: float) -> int:  # grid points across a span, at most MAX_GRID (a tiny cell asks for more)
+        return MAX_GRID if span >= cell * (MAX_GRID - 1) else math.ceil(span / cell) + 1
+
+    cols, rows = points(width), points(depth)
     xs = np.linspace(lo[0], hi[0], max(cols, 2))
     zs = np.linspace(lo[2], hi[2], max(rows, 2))
     gx, gz = np.meshgrid(xs, zs, indexing="xy")
@@ -113,5 +126,4 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
         np.maximum.at(hit, index_ray, locations[:, 1])
         heights = np.where(np.isfinite(hit), hit, lo[1])  # no surface above a point: the mesh's lowest
     grid = heights.reshape(len(zs), len(xs))
-    return HeightGrid(grid, (float(lo[0]), float(lo[2])), (float(hi[0] - lo[0]), float(hi[2] - lo[2])),
-                      label=f"mesh:file={file}", max_slope=max_slope)
+    return HeightGrid(grid, (float(lo[0]), float(lo[2])), (width, depth), label=f"mesh:file={file}", max_slope=max_slope)

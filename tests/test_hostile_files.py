@@ -1,0 +1,115 @@
+"""Damaged and hostile files a user may give end in one line and exit 2 (or load), with no
+warning printed, no hang and nothing left behind (found by an audit with real processes)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cli_runner import gaitlab
+from PIL import Image
+
+from app.rigged.gltf import RigError, load_rigged_model
+
+FOX = Path(__file__).parent / "data" / "models" / "Fox.glb"
+RENDER = ("--size", "160x120", "--seconds", "0.2", "-q")
+
+
+def _one_line(result, *words: str) -> None:
+    assert result.returncode == 2, result.stderr
+    assert len(result.stderr.strip().splitlines()) == 1, result.stderr
+    for word in words:
+        assert word in result.stderr
+
+
+def _fox_with(tmp_path: Path, change) -> Path:
+    import pygltflib
+
+    gltf = pygltflib.GLTF2().load(str(FOX))
+    change(gltf)
+    out = tmp_path / "fox.glb"
+    gltf.save(str(out))
+    return out
+
+
+def test_a_model_whose_nodes_loop_is_refused_not_walked_forever(tmp_path: Path) -> None:
+    def loop(gltf) -> None:
+        root = gltf.skins[0].joints[0]
+        gltf.nodes[root].children = [*(gltf.nodes[root].children or []), root]  # its own child
+
+    with pytest.raises(RigError, match="its own ancestor"):
+        load_rigged_model(_fox_with(tmp_path, loop))
+
+
+@pytest.mark.parametrize("damage", ["vertex index", "accessor count", "nan translation"])
+def test_a_damaged_model_is_one_line(tmp_path: Path, damage: str) -> None:
+    def change(gltf) -> None:
+        prim = next(p for m in gltf.meshes for p in m.primitives)
+        if damage == "vertex index":  # a triangle naming a vertex the mesh does not have
+            gltf.accessors[prim.indices].max = None
+            gltf.buffers[0].uri = None
+            data = bytearray(gltf.binary_blob())
+            view = gltf.bufferViews[gltf.accessors[prim.indices].bufferView]
+            start = (view.byteOffset or 0) + (gltf.accessors[prim.indices].byteOffset or 0)
+            data[start:start + 2] = (60000).to_bytes(2, "little")
+            gltf.set_binary_blob(bytes(data))
+        elif damage == "accessor count":  # more rows than its buffer holds
+            gltf.accessors[prim.attributes.POSITION].count = 10**9
+        else:  # written as 123456.5, then made NaN in the file's text (JSON has no NaN; Python's reader takes it)
+            gltf.nodes[gltf.skins[0].joints[1]].translation = [123456.5, 0.0, 0.0]
+
+    model = _fox_with(tmp_path, change)
+    if damage == "nan translation":
+        import pygltflib
+
+        gltf = pygltflib.GLTF2().load(str(model))
+        gltf.convert_buffers(pygltflib.BufferFormat.DATAURI)
+        model = tmp_path / "fox.gltf"
+        gltf.save(str(model))
+        model.write_text(model.read_text().replace("123456.5", "NaN"))
+    with pytest.raises(RigError):
+        load_rigged_model(model)
+    _one_line(gaitlab("render", model, *RENDER, "-o", tmp_path / "o.png"), str(model))
+    assert not (tmp_path / "o.png").exists()
+
+
+def test_a_float_heightmap_loads_and_palette_pngs_print_no_warning(tmp_path: Path) -> None:
+    ramp = np.tile(np.linspace(0.0, 1.0, 64, dtype=np.float32), (48, 1))
+    Image.fromarray(ramp, mode="F").save(tmp_path / "float.tiff")
+    result = gaitlab("render", "dog", "--terrain", f"heightmap:file={tmp_path / 'float.tiff'},height=0.05",
+                     *RENDER, "-o", tmp_path / "a.png")
+    assert result.returncode == 0 and not result.stderr, result.stderr
+    palette = Image.fromarray(np.arange(64 * 48, dtype=np.uint8).reshape(48, 64) % 4, mode="P")
+    palette.putpalette([0, 0, 0, 60, 60, 60, 120, 120, 120, 180, 180, 180])
+    palette.info["transparency"] = b"\x00\xff\xff\xff"  # transparency as bytes: Pillow warns on converting it
+    palette.save(tmp_path / "pal.png", transparency=b"\x00\xff\xff\xff")
+    result = gaitlab("render", "dog", "--terrain", f"heightmap:file={tmp_path / 'pal.png'},height=0.02",
+                     *RENDER, "-o", tmp_path / "b.png")
+    assert result.returncode == 0 and not result.stderr, result.stderr
+
+
+def test_a_wall_and_a_far_away_mesh_are_refused_as_terrain(tmp_path: Path) -> None:
+    (tmp_path / "wall.obj").write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n")
+    _one_line(gaitlab("render", "dog", "--terrain", f"mesh:file={tmp_path / 'wall.obj'}", *RENDER, "-o",
+                      tmp_path / "o.png"), "spread both ways")
+    (tmp_path / "far.obj").write_text("v -1e300 0 -1e300\nv 1e300 0 -1e300\nv 1e300 0 1e300\nf 1 2 3\n")
+    _one_line(gaitlab("render", "dog", "--terrain", f"mesh:file={tmp_path / 'far.obj'}", *RENDER, "-o",
+                      tmp_path / "o.png"), "must lie within")
+    (tmp_path / "ok.obj").write_text("v -3 0 -3\nv 3 0 -3\nv 3 0 3\nv -3 0 3\nf 1 2 3\nf 1 3 4\n")
+    result = gaitlab("render", "dog", "--terrain", f"mesh:file={tmp_path / 'ok.obj'},cell=1e-320", *RENDER, "-o",
+                     tmp_path / "o.png")
+    assert result.returncode == 0 and not result.stderr, result.stderr  # the finest grid it allows
+
+
+def test_clips_sampled_impossibly_fast_and_tiny_values_are_one_line(tmp_path: Path) -> None:
+    from app.analysis.bvh import MIN_FRAME_TIME
+
+    bvh = tmp_path / "fast.bvh"
+    bvh.write_text("HIERARCHY\nROOT hips\n{\n OFFSET 0 0 0\n CHANNELS 3 Xposition Yposition Zposition\n"
+                   " End Site\n {\n  OFFSET 0 -1 0\n }\n}\nMOTION\nFrames: 2\nFrame Time: 1e-300\n0 1 0\n0 1 0\n")
+    _one_line(gaitlab("analyze", bvh), f"at least {MIN_FRAME_TIME:g}")
+    _one_line(gaitlab("render", "dog", "--fps", "1e-300", "-o", tmp_path / "o.gif"), "at least 1")
+    _one_line(gaitlab("render", "dog", "--set", "gait.frequency=1e-300", "-o", tmp_path / "o.gif"), "0.05")
+    _one_line(gaitlab("render", "dog", "--time", "1e300", "-o", tmp_path / "o.png"), "86400")
+    assert not list(tmp_path.glob("o.*"))
