@@ -62,6 +62,12 @@ def test_csv_input(tmp_path: Path) -> None:
     out = gaitlab("analyze", str(path), "--json", cwd=tmp_path)
     assert out.returncode == 0, out.stderr
     assert json.loads(out.stdout)["gait_match"] == "pace"
+    # Saved by a spreadsheet, with a byte-order mark before "time": the same clip.
+    marked = tmp_path / "marked.csv"
+    marked.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    out = gaitlab("analyze", str(marked), "--json", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert json.loads(out.stdout)["gait_match"] == "pace"
 
 
 def write(tmp_path: Path, name: str, text: str) -> Path:

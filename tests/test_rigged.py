@@ -646,3 +646,12 @@ def test_a_model_whose_texture_is_a_bomb_or_no_image_is_one_clear_line(tmp_path:
     result = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120")
     assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1, result.stderr
     assert not (tmp_path / "fox.png").exists()
+
+
+def test_export_of_a_model_writes_a_glb_by_default(tmp_path: Path) -> None:
+    """With no -o, a rigged model's walk goes onto the model (MODEL.glb): a BVH default was refused."""
+    from cli_runner import gaitlab
+
+    result = gaitlab("export", MODELS / "Fox.glb", "--cycles", "1", "-q", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert [p.name for p in tmp_path.iterdir()] == ["Fox.glb"]

@@ -89,7 +89,7 @@ def read_normative(path: str | os.PathLike[str]) -> Curves:
         raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
     if len(raw) > MAX_CSV_BYTES:
         raise InputError(f"{path}: over {MAX_CSV_BYTES // 2**20} MiB; a normative curve file is a few KiB")
-    rows = [r for r in csv.reader(io.StringIO(raw.decode("utf-8", errors="replace")))
+    rows = [r for r in csv.reader(io.StringIO(raw.decode("utf-8-sig", errors="replace")))  # -sig: a BOM
             if r and not r[0].lstrip().startswith("#")]
     if len(rows) < 3:
         raise InputError(f"{path}: expected a header and rows: phase,JOINT_mean,JOINT_sd,... (JOINT: "

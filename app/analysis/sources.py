@@ -306,7 +306,7 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
         if len(raw) > MAX_CSV_BYTES:
             raise InputError(f"{path}: the file is over {MAX_CSV_BYTES // 2**20} MiB; CSV files up to that size "
                              "are read")
-        rows = list(csv.reader(io.StringIO(raw.decode("utf-8"), newline="")))
+        rows = list(csv.reader(io.StringIO(raw.decode("utf-8-sig"), newline="")))  # -sig: a spreadsheet's BOM
     except OSError as exc:
         raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
     except (csv.Error, UnicodeDecodeError) as exc:

@@ -37,7 +37,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                         ".usda text or .usdc binary; needs usd-core).",
                             epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     add_creature(parser)
-    add_clip(parser, output_help=f"output file: {', '.join('.' + f for f in EXPORT_FORMATS)} (default: CREATURE.bvh)",
+    add_clip(parser, output_help=f"output file: {', '.join('.' + f for f in EXPORT_FORMATS)} "
+                                 "(default: CREATURE.bvh; a rigged model's: MODEL.glb)",
              cycles_help="clip length in gait cycles (default: 2)", fps=30.0)
     parser.add_argument("--time", metavar="T", type=seconds_from_zero, default=0.0,
                         help="time in seconds of the first frame (default: 0)")
@@ -53,9 +54,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from ..export import export_cast
+    from ..rigged import is_model_path
     from .inputs import choose_fps, load_cast
 
-    output = args.output or Path(f"{Path(args.creature).stem}.bvh")
+    # A rigged model's walk is written onto the model itself: a .glb beside it by default.
+    suffix = ".glb" if is_model_path(str(args.creature)) else ".bvh"
+    output = args.output or Path(f"{Path(args.creature).stem}{suffix}")
     cast = load_cast(args)
     lead = cast[0]
     fps = choose_fps(args, lead.spec, lead.speed)
