@@ -349,8 +349,9 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
         raise InputError(f"{path}: the CSV holds {data.shape[0]} rows; a clip needs at least one full stride")
     col = {h: i for i, h in enumerate(header)}
     times = data[:, col["time"]]
-    if np.any(np.diff(times) < MIN_FRAME_TIME):
-        bad = int(np.nonzero(np.diff(times) < MIN_FRAME_TIME)[0][0]) + 3
+    too_soon = np.nonzero(np.diff(times) < MIN_FRAME_TIME)[0]
+    if len(too_soon):
+        bad = int(too_soon[0]) + 3
         raise InputError(f"{path}:{bad}: time must increase from row to row, by at least {MIN_FRAME_TIME:g} s "
                          f"(a {1 / MIN_FRAME_TIME:,.0f} Hz capture)")
     heel = np.stack([data[:, [col[f"{f}_x"], col[f"{f}_y"], col[f"{f}_z"]]] for f in feet], axis=1)

@@ -162,7 +162,7 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
         raise RigError(f"{path}: has no skinned mesh (a glTF with a skin: a skeleton and a mesh weighted to it)")
     try:
         with np.errstate(all="ignore"):  # what a damaged file's numbers give is checked below, not warned of
-            model = _read_model(gltf, path)
+            model = _read_model(gltf, gltf.nodes[skinned[0]], path)
     except RigError as exc:
         text = str(exc)
         raise RigError(text if text.startswith(str(path)) else f"{path}: {text}") from None
@@ -170,8 +170,8 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
             binascii.Error) as exc:  # an index past a list's end, a buffer too short for its accessor, ...
         raise RigError(f"{path}: a damaged glTF ({type(exc).__name__} while reading its skin and mesh); "
                        "export it again from the modelling tool") from None
-    numbers = (model.rest, model.inverse_bind, model.positions, model.weights)
-    if not all(np.all(np.isfinite(a)) for a in numbers) or (len(model.colors) and not np.all(np.isfinite(model.colors))):
+    if not all(np.all(np.isfinite(a)) for a in (model.rest, model.inverse_bind, model.positions, model.weights,
+                                                model.colors)):
         raise RigError(f"{path}: its skeleton or mesh holds values that are not finite numbers (NaN or infinity)")
     if model.faces.size and (model.faces.min() < 0 or model.faces.max() >= len(model.positions)):
         raise RigError(f"{path}: its mesh's triangles name vertex {int(model.faces.max())} of "
@@ -179,12 +179,11 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
     return model
 
 
-def _read_model(gltf, path: Path) -> RiggedModel:
-    """The model in ``gltf`` (opened from ``path``), read as :func:`load_rigged_model` says."""
-    skinned = [i for i, node in enumerate(gltf.nodes) if node.skin is not None and node.mesh is not None]
+def _read_model(gltf, node, path: Path) -> RiggedModel:
+    """The model of ``gltf``'s skinned mesh ``node`` (opened from ``path``), read as
+    :func:`load_rigged_model` says."""
     reader = _Reader(gltf, path)
     world = world_matrices(gltf)
-    node = gltf.nodes[skinned[0]]
     skin = gltf.skins[node.skin]
     joints = list(skin.joints)
     names = tuple(gltf.nodes[j].name or f"joint{k}" for k, j in enumerate(joints))
