@@ -32,6 +32,26 @@ def test_json_csv_and_plot(tmp_path: Path) -> None:
     assert sorted(p.name for p in tmp_path.iterdir()) == ["events.csv", "plot.png"]
 
 
+def test_csv_and_plot_are_written_both_or_neither(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """When the plot cannot be written (a full disk, say), the CSV given with it is not
+    written either, and an earlier file of that name is left as it was."""
+    import errno
+
+    from app.analysis import plot
+
+    def full_disk(report, path) -> None:
+        Path(path).write_bytes(b"half a png")
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(plot, "save_plot", full_disk)
+    (tmp_path / "events.csv").write_text("yesterday's events\n")
+    out = gaitlab("analyze", str(DOG_WALK), "--csv", "events.csv", "--plot", "plot.png", cwd=tmp_path)
+    assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1, out.stderr
+    assert "plot.png" in out.stderr and "No space left" in out.stderr
+    assert (tmp_path / "events.csv").read_text() == "yesterday's events\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["events.csv"]
+
+
 def test_speed_ramp_reports_gait_per_time_span(tmp_path: Path) -> None:
     """Issue 8: from a walk to a gallop, the named walk, trot and gallop spans cover at
     least 80% of the ramp (the switches are short; the clip's ends are measured too)."""
@@ -118,6 +138,7 @@ def bad_cases(tmp_path: Path) -> dict[str, tuple[list[str], str]]:
     no_feet = write(tmp_path, "nofeet.bvh", NO_FEET_BVH)
     csv_missing = write(tmp_path, "missing.csv", "time,LH_x,LH_y\n0,0,0\n0.1,0,0\n")
     csv_bad = write(tmp_path, "bad.csv", "time,LH_x,LH_y,LH_z\n0,0,0,0\n0.1,0,x,0\n")
+    csv_twice = write(tmp_path, "twice.csv", "time,LH_x,LH_y,LH_z,LH_y\n0,0,0,0,1\n0.1,0,0,0,1\n")
     return {
         "no feet": (["analyze", str(no_feet)], "no feet recognised among the joints (Hips, Spine)"),
         "truncated bvh": (["analyze", str(truncated)], f"{truncated}:{motion + 50}: truncated BVH"),
@@ -126,6 +147,7 @@ def bad_cases(tmp_path: Path) -> dict[str, tuple[list[str], str]]:
         "clip shorter than a step": (["analyze", str(short)], "at least one full stride"),
         "csv missing columns": (["analyze", str(csv_missing)], "missing columns LH_z"),
         "csv not a number": (["analyze", str(csv_bad)], f"{csv_bad}:3: malformed CSV: column 'LH_y' value 'x'"),
+        "csv column twice": (["analyze", str(csv_twice)], f"{csv_twice}:1: column 'LH_y' appears 2 times"),
         "unknown feet joint": (["analyze", str(DOG_WALK), "--feet", "LH=b_LeftAnkel"], "did you mean 'b_LeftAnkle'"),
         "bad feet syntax": (["analyze", str(DOG_WALK), "--feet", "LH"], "expected NAME=ANKLE[:TOE]"),
         "gait for a file": (["analyze", str(DOG_WALK), "--gait", "trot"], "for creatures"),
@@ -138,7 +160,8 @@ def bad_cases(tmp_path: Path) -> dict[str, tuple[list[str], str]]:
 
 
 CASE_NAMES = ["no feet", "truncated bvh", "malformed bvh value", "malformed hierarchy", "clip shorter than a step",
-              "csv missing columns", "csv not a number", "unknown feet joint", "bad feet syntax", "gait for a file",
+              "csv missing columns", "csv not a number", "csv column twice", "unknown feet joint", "bad feet syntax",
+              "gait for a file",
               "units for a creature", "plot suffix", "missing file", "unknown file type", "bad speed"]
 
 

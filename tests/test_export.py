@@ -234,6 +234,29 @@ def test_a_looped_export_ends_where_it_began(tmp_path: Path, in_place: bool) -> 
         export_clip(load_creature("cat"), tmp_path / "x.bvh", seconds=2.0, loop=True)
 
 
+def test_a_usd_that_cannot_be_written_is_one_line_without_cpp_locations(tmp_path: Path,
+                                                                         monkeypatch: pytest.MonkeyPatch) -> None:
+    pxr = pytest.importorskip("pxr", reason="usd-core (Pixar's USD) is optional")
+
+    from types import SimpleNamespace
+
+    from app.export import usd
+
+    def refuse(path: str):
+        # What pxr raises when it cannot write (here, a folder it may not create files in).
+        return pxr.Usd.Stage.CreateNew("/proc/no-such-dir/x.usda")
+
+    modules = list(usd._pxr())
+    modules[2] = SimpleNamespace(Stage=SimpleNamespace(CreateNew=refuse))  # Usd, with a stage that cannot be made
+    monkeypatch.setattr(usd, "_pxr", lambda: tuple(modules))
+    out = gaitlab("export", "dog", "-o", "dog.usda", "--seconds", "0.2", cwd=tmp_path)
+    assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1, out.stderr
+    assert "dog.usda: cannot write USD: Could not create directory '/proc/no-such-dir/'" in out.stderr
+    assert out.stderr.rstrip().endswith("x.usda'")
+    assert ".cpp" not in out.stderr and "pxrInternal" not in out.stderr and "line " not in out.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.parametrize("creature, suffix", [("dog", "usda"), ("spider", "usdc")])
 def test_usd_skeleton_animation_reads_back(tmp_path: Path, creature: str, suffix: str) -> None:
     pytest.importorskip("pxr", reason="usd-core (Pixar's USD) is optional")

@@ -234,6 +234,10 @@ def test_compare_json_against_the_bundled_norms(tmp_path) -> None:
     ("nolegs.bvh", "HIERARCHY\nROOT Hips\n{\n OFFSET 0 0 0\n CHANNELS 3 Xposition Yposition Zposition\n"
                    " End Site\n {\n  OFFSET 0 1 0\n }\n}\nMOTION\nFrames: 2\nFrame Time: 0.1\n0 0 0\n0 0 1\n",
      "no feet recognised"),
+    ("negative_sd.csv", "phase,knee_mean,knee_sd\n0,5,2\n50,10,-3\n100,5,2\n",
+     "knee_sd is -3 at phase 50; a standard deviation is 0 or more"),
+    ("twice.csv", "phase,knee_mean,knee_sd,knee_mean\n0,5,2,6\n50,10,3,7\n100,5,2,6\n",
+     "column knee_mean appears more than once"),
 ])
 def test_compare_refuses_bad_references_in_one_line(tmp_path, case: str, text: str | None, expect: str) -> None:
     path = tmp_path / case

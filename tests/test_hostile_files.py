@@ -102,6 +102,17 @@ def test_a_wall_and_a_far_away_mesh_are_refused_as_terrain(tmp_path: Path) -> No
     assert result.returncode == 0 and not result.stderr, result.stderr  # the finest grid it allows
 
 
+@pytest.mark.parametrize("text", ["ply\nend_header\n", "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                                  "property float x\nend_header\n"])
+def test_a_damaged_mesh_says_so_in_words_not_an_exception_name(tmp_path: Path, text: str) -> None:
+    (tmp_path / "ground.ply").write_text(text)
+    result = gaitlab("render", "dog", "--terrain", f"mesh:file={tmp_path / 'ground.ply'}", *RENDER, "-o",
+                     tmp_path / "o.png")
+    _one_line(result, "ground.ply", "cannot read the mesh: damaged, or not an OBJ, PLY, STL or glTF/GLB file")
+    assert "Error" not in result.stderr.split("error:", 1)[1] and "index out of range" not in result.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ground.ply"]
+
+
 def test_clips_sampled_impossibly_fast_and_tiny_values_are_one_line(tmp_path: Path) -> None:
     from app.analysis.bvh import MIN_FRAME_TIME
 

@@ -123,6 +123,35 @@ def test_mesh_file_becomes_a_height_grid(tmp_path: Path) -> None:
     assert motion.root[-1, 1, 3] - motion.root[0, 1, 3] > 0.3
 
 
+def test_the_highest_surface_over_a_grid() -> None:
+    """A bridge over a ramp, a wall, a triangle off the grid and a huge one that needs a
+    chunk of its own: each grid point gets the highest triangle over it, exactly."""
+    from app.worlds import files
+
+    ramp = [[0, 0, 0], [4, 2, 0], [4, 2, 4], [0, 0, 4]]  # y = x / 2 over 0 <= x, z <= 4
+    bridge = [[1, 3, 1], [3, 3, 1], [3, 3, 3]]  # y = 3 over the triangle z <= x between 1 and 3
+    wall = [[2, 0, 0], [2, 9, 0], [2, 9, 4]]  # stands on edge: no extent seen from above
+    far = [[10, 5, 10], [11, 5, 10], [11, 5, 11]]
+    vertices = np.array(ramp + bridge + wall + far, dtype=np.float64)
+    faces = np.array([[0, 1, 2], [0, 2, 3], [4, 5, 6], [7, 8, 9], [10, 11, 12]])
+    xs = np.linspace(0.0, 4.0, 41)
+    zs = np.linspace(0.0, 4.0, 33)
+    gx, gz = np.meshgrid(xs, zs)
+    expected = np.where((gx >= 1) & (gx <= 3) & (gz >= 1) & (gz <= gx + 1e-12), 3.0, gx / 2)
+    got = files.highest_surface(vertices, faces, xs, zs, floor=-1.0)
+    assert got.shape == (33, 41) and np.allclose(got, expected, atol=1e-12)
+    # Beyond every triangle: the floor given. In chunks of a few points: the same heights.
+    wide = np.linspace(-2.0, 6.0, 81)
+    outside = files.highest_surface(vertices, faces, wide, zs, floor=-1.0)
+    assert np.all(outside[:, wide < 0] == -1.0) and np.all(outside[:, wide > 4] == -1.0)
+    chunk = files.SURFACE_CHUNK
+    try:
+        files.SURFACE_CHUNK = 7
+        assert np.array_equal(files.highest_surface(vertices, faces, wide, zs, floor=-1.0), outside)
+    finally:
+        files.SURFACE_CHUNK = chunk
+
+
 def test_python_api_keeps_the_world() -> None:
     motion = simulate("cat", seconds=1.0, fps=30.0, path="circle:r=1", terrain="hills:amp=0.05")
     assert isinstance(motion.path, CirclePath) and isinstance(motion.terrain, HillsTerrain)

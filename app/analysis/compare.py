@@ -95,6 +95,9 @@ def read_normative(path: str | os.PathLike[str]) -> Curves:
         raise InputError(f"{path}: expected a header and rows: phase,JOINT_mean,JOINT_sd,... (JOINT: "
                          f"{', '.join(JOINTS)})")
     header = [h.strip() for h in rows[0]]
+    twice = sorted({h for h in header if header.count(h) > 1})
+    if twice:
+        raise InputError(f"{path}: column {twice[0]} appears more than once in the header; give each column once")
     joints = [j for j in JOINTS if f"{j}_mean" in header and f"{j}_sd" in header]
     if "phase" not in header or not joints:
         raise InputError(f"{path}: columns {', '.join(header[:8])}: expected phase and, for at least one of "
@@ -108,6 +111,12 @@ def read_normative(path: str | os.PathLike[str]) -> Curves:
     phase = table[:, header.index("phase")]
     if np.any(np.diff(phase) <= 0) or phase[0] > 5.0 or phase[-1] < 95.0:
         raise InputError(f"{path}: phase must rise from about 0 to about 100 (% of the cycle)")
+    for j in joints:
+        sds = table[:, header.index(f"{j}_sd")]
+        if np.any(sds < 0):
+            row = int(np.argmax(sds < 0))
+            raise InputError(f"{path}: {j}_sd is {sds[row]:g} at phase {phase[row]:g}; a standard deviation is "
+                             "0 or more (degrees)")
     mean = {j: np.interp(GRID, phase, table[:, header.index(f"{j}_mean")]) for j in joints}
     sd = {j: np.interp(GRID, phase, table[:, header.index(f"{j}_sd")]) for j in joints}
     return Curves(name=Path(path).name, mean=mean, sd=sd, cycles=0)

@@ -3,7 +3,6 @@ Hildebrand gait diagram (stance bars per foot) over two cycles. Matplotlib, head
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 from .metrics import GaitReport
@@ -12,14 +11,13 @@ _EVENT_STYLE = {"strike": ("v", "#d62728"), "landing": ("s", "#ff7f0e"), "stance
                 "lift": ("^", "#1f77b4"), "liftoff": ("D", "#9467bd")}
 
 
-def write_plot(report: GaitReport, path: str | os.PathLike[str]) -> Path:
-    """Write the PNG atomically; returns its path."""
+def save_plot(report: GaitReport, path: Path) -> None:
+    """Draw the plot into the PNG file ``path``, in place (callers give a temporary file:
+    :func:`app.output.write_together`)."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-
-    from ..output import AtomicPath
 
     tracks = report.tracks
     assert tracks is not None
@@ -70,7 +68,7 @@ def write_plot(report: GaitReport, path: str | os.PathLike[str]) -> Path:
                  fontsize=9, loc="left")
     ax.grid(axis="x", alpha=0.3)
     fig.suptitle(str(report.source), fontsize=10)
-    with AtomicPath(path) as out:
-        fig.savefig(out.tmp, format="png")
-    plt.close(fig)
-    return Path(path)
+    try:
+        fig.savefig(path, format="png")
+    finally:
+        plt.close(fig)

@@ -5,8 +5,6 @@ from __future__ import annotations
 import csv
 import io
 import math
-import os
-from pathlib import Path
 
 from .metrics import GaitReport
 
@@ -70,7 +68,3 @@ def events_csv(report: GaitReport) -> str:
     return out.getvalue()
 
 
-def write_events_csv(report: GaitReport, path: str | os.PathLike[str]) -> Path:
-    from ..output import atomic_write_text
-
-    return atomic_write_text(path, events_csv(report))

@@ -316,6 +316,10 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
     header = [h.strip() for h in rows[0]]
     if "time" not in header:
         raise InputError(f"{path}:1: missing column 'time' (seconds); the header is {','.join(header)}")
+    twice = [h for h in dict.fromkeys(header) if h and header.count(h) > 1]
+    if twice:
+        raise InputError(f"{path}:1: column {_shown(twice[0])} appears {header.count(twice[0])} times in the header; "
+                         "give each column once")
     feet = list(dict.fromkeys(h[:-2] for h in header if h.endswith(("_x", "_y", "_z"))
                               and not h[:-2].endswith("_toe") and h[:-2] != "body"))
     if not feet:

@@ -162,8 +162,9 @@ def _run_folder(args: argparse.Namespace) -> int:
 
 def run(args: argparse.Namespace) -> int:
     from ..analysis import analyze_tracks
-    from ..analysis.plot import write_plot
-    from ..analysis.report import format_table, write_events_csv
+    from ..analysis.plot import save_plot
+    from ..analysis.report import events_csv, format_table
+    from ..output import write_together
 
     _check_outputs(args)
     if Path(args.creature).is_dir():
@@ -182,10 +183,9 @@ def run(args: argparse.Namespace) -> int:
         tracks, notes, path_report, gait, requested = _creature_tracks(args)
         report = analyze_tracks(tracks, requested_gait=gait)
         report.path_error = path_report
-    if args.csv is not None:
-        write_events_csv(report, args.csv)
-    if args.plot is not None:
-        write_plot(report, args.plot)
+    outputs = [(args.csv, lambda tmp: tmp.write_text(events_csv(report), encoding="utf-8")),
+               (args.plot, lambda tmp: save_plot(report, tmp))]
+    write_together([(path, write) for path, write in outputs if path is not None])  # both or neither
     if args.json:
         print(json.dumps(report.to_json(), indent=2))
     else:

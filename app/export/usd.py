@@ -84,8 +84,7 @@ def write_usd(path: str | os.PathLike[str], motion: Motion | list[Motion], clip:
     except Exception as exc:  # pxr raises Tf.ErrorException with several lines of context
         out.discard()
         if type(exc).__module__.startswith("pxr"):
-            first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-            raise OutputError(f"{os.fspath(path)}: cannot write USD: {first[:200]}") from None
+            raise OutputError(f"{os.fspath(path)}: cannot write USD: {usd_error_text(exc)}") from None
         raise
     except BaseException:
         out.discard()
@@ -142,3 +141,17 @@ def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
         Vt.FloatArray.FromNumpy(mesh_data.weights.reshape(-1).astype(np.float32)))
     binding.CreateGeomBindTransformAttr(Gf.Matrix4d(1.0))
     return root
+
+
+def usd_error_text(exc: BaseException) -> str:
+    """What a pxr error says, without its C++ locations: each of its lines reads
+    "Error in 'Function' at line N in file F.cpp : 'message'"; the first message is kept."""
+    lines = [line.strip() for line in str(exc).splitlines() if line.strip()]
+    if not lines:
+        return type(exc).__name__
+    first = lines[0]
+    if " : " in first and first.startswith("Error in "):
+        first = first.split(" : ", 1)[1].strip()
+        if len(first) > 1 and first[0] == first[-1] == "'":  # the message is quoted once
+            first = first[1:-1]
+    return first[:200]

@@ -20,6 +20,7 @@ from .files import (
                     output_format,
                     remove_stale_partials,
                     stale_partials,
+                    write_together,
 )
 from .gif import GIF_MAX_FPS, GIF_PROFILES, GifWriter, gif_durations, gifsicle_path
 from .png import write_png
@@ -27,4 +28,5 @@ from .video import Mp4Writer, check_crf
 
 __all__ = ["GIF_MAX_FPS", "GIF_PROFILES", "OUTPUT_FORMATS", "AtomicPath", "GifWriter", "Mp4Writer", "OutputFormat",
            "atomic_write_text", "cannot_write", "check_crf", "check_output_dir", "gif_durations", "gifsicle_path",
-           "output_format", "remove_stale_partials", "stale_partials", "write_png"]
+           "output_format", "remove_stale_partials", "stale_partials", "write_png",
+           "write_together"]

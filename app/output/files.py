@@ -13,6 +13,7 @@ import os
 import re
 import socket
 import tempfile
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Literal
 
@@ -156,6 +157,26 @@ class AtomicPath:
         self.discard()
         if isinstance(exc, OSError):
             raise cannot_write(self.final, exc) from None
+
+
+def write_together(outputs: Sequence[tuple[str | os.PathLike[str], Callable[[Path], object]]]) -> None:
+    """Write several files, all or none: each ``(path, write)`` pair's ``write`` fills a
+    temporary file beside ``path``, and they are renamed into place only once every one
+    has succeeded (a failure deletes them all and leaves any earlier files as they were)."""
+    staged: list[AtomicPath] = []
+    try:
+        for final, write in outputs:
+            staged.append(AtomicPath(final))
+            try:
+                write(staged[-1].tmp)
+            except OSError as exc:
+                raise cannot_write(final, exc) from None
+    except BaseException:
+        for out in staged:
+            out.discard()
+        raise
+    for out in staged:
+        out.commit()
 
 
 def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:

@@ -7,6 +7,7 @@ import warnings
 from pathlib import Path as FilePath
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..kinematics.terrain import DEFAULT_MAX_SLOPE, HeightGrid
 from ..kinematics.world import WorldError
@@ -69,12 +70,57 @@ def load_heightmap(file: FilePath, size: float, height: float, max_slope: float 
 MAX_GRID = 1024
 MAX_MESH_BYTES = 256 * 2**20  # checked before the file is parsed
 MAX_MESH_FACES = 4_000_000
-MAX_MESH_REACH = 1e5  # m from the origin (farther, the grid's and the rays' numbers lose their centimetres)
+MAX_MESH_REACH = 1e5  # m from the origin (farther, the grid's numbers lose their centimetres)
+
+
+SURFACE_CHUNK = 1 << 21  # grid points tested against triangles at a time (memory: ~50 bytes each)
+
+
+def highest_surface(vertices: NDArray[np.float64], faces: NDArray[np.int64], xs: NDArray[np.float64],
+                    zs: NDArray[np.float64], floor: float) -> NDArray[np.float64]:
+    """The height (m) of the highest triangle over each point of a grid: (len(zs), len(xs)),
+    ``floor`` where no triangle lies over a point. ``vertices`` (V, 3) with +Y up,
+    ``faces`` (F, 3); ``xs`` and ``zs`` evenly spaced, rising. Each triangle is laid on the
+    grid points within its own x-z box (barycentric test and height), vectorised over
+    triangles in chunks; triangles standing on edge (no extent seen from above) are skipped."""
+    tri = vertices[faces]  # (F, 3, 3)
+    x, y, z = tri[..., 0], tri[..., 1], tri[..., 2]
+    det = (z[:, 1] - z[:, 2]) * (x[:, 0] - x[:, 2]) + (x[:, 2] - x[:, 1]) * (z[:, 0] - z[:, 2])
+    dx, dz = xs[1] - xs[0], zs[1] - zs[0]
+    i0 = np.clip(np.ceil((x.min(axis=1) - xs[0]) / dx - 1e-9), 0, len(xs)).astype(np.int64)
+    i1 = np.clip(np.floor((x.max(axis=1) - xs[0]) / dx + 1e-9), -1, len(xs) - 1).astype(np.int64)
+    j0 = np.clip(np.ceil((z.min(axis=1) - zs[0]) / dz - 1e-9), 0, len(zs)).astype(np.int64)
+    j1 = np.clip(np.floor((z.max(axis=1) - zs[0]) / dz + 1e-9), -1, len(zs) - 1).astype(np.int64)
+    across, down = np.maximum(i1 - i0 + 1, 0), np.maximum(j1 - j0 + 1, 0)
+    keep = np.flatnonzero((across * down > 0) & (np.abs(det) > 1e-300))
+    counts = (across * down)[keep]
+    best = np.full(len(zs) * len(xs), -np.inf)
+    ends = np.cumsum(counts)
+    start = 0
+    while start < len(keep):  # chunks of about SURFACE_CHUNK points (a huge triangle alone)
+        stop = max(int(np.searchsorted(ends, (ends[start - 1] if start else 0) + SURFACE_CHUNK, side="right")),
+                   start + 1)
+        t = keep[start:stop]
+        n = counts[start:stop]
+        owner = np.repeat(np.arange(len(t)), n)
+        k = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n, n)  # index within its triangle's box
+        f = t[owner]
+        ii = i0[f] + k % across[f]
+        jj = j0[f] + k // across[f]
+        px, pz = xs[ii], zs[jj]
+        a = ((z[f, 1] - z[f, 2]) * (px - x[f, 2]) + (x[f, 2] - x[f, 1]) * (pz - z[f, 2])) / det[f]
+        b = ((z[f, 2] - z[f, 0]) * (px - x[f, 2]) + (x[f, 0] - x[f, 2]) * (pz - z[f, 2])) / det[f]
+        c = 1.0 - a - b
+        inside = (a >= -1e-9) & (b >= -1e-9) & (c >= -1e-9)
+        height = a * y[f, 0] + b * y[f, 1] + c * y[f, 2]
+        np.maximum.at(best, (jj * len(xs) + ii)[inside], height[inside])
+        start = stop
+    return np.where(np.isfinite(best), best, floor).reshape(len(zs), len(xs))
 
 
 def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFAULT_MAX_SLOPE) -> HeightGrid:
     """A mesh file (anything trimesh reads: OBJ, PLY, STL, glTF/GLB) as a height grid: the
-    highest surface above each grid point, found by casting rays straight down (up is +Y).
+    highest surface above each grid point, found by laying each triangle on the grid (up is +Y).
     ``cell`` is the grid spacing in metres (default: the mesh's size / 256)."""
     import trimesh
 
@@ -87,10 +133,12 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
         with warnings.catch_warnings(), np.errstate(all="ignore"):  # what it reads is checked below, not warned of
             warnings.simplefilter("ignore")
             loaded: trimesh.Trimesh = trimesh.load(str(file), force="mesh")  # type: ignore[assignment]  # force="mesh"
-    except ImportError:  # trimesh reaches for an optional reader when a file is not what it says
-        raise WorldError(f"{file}: cannot read the mesh (damaged, or not an OBJ, PLY, STL or glTF/GLB)") from None
-    except Exception as exc:  # trimesh raises many kinds for broken files
-        raise WorldError(f"{file}: cannot read the mesh ({type(exc).__name__}: {str(exc)[:80]})") from None
+    except Exception as exc:  # trimesh raises many kinds for broken files (ImportError: an optional reader)
+        unreadable = f"{file}: cannot read the mesh: damaged, or not an OBJ, PLY, STL or glTF/GLB file"
+        said = " ".join(str(exc).split())
+        if isinstance(exc, (ValueError, OSError)) and " " in said:  # the reader's own sentence, not a bare key or index
+            unreadable += f" (the reader says: {said[:80]})"
+        raise WorldError(unreadable) from None
     faces = getattr(loaded, "faces", None)
     if faces is None or len(faces) == 0:
         raise WorldError(f"{file}: the mesh has no faces; a terrain mesh needs triangles")
@@ -116,14 +164,5 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
     cols, rows = points(width), points(depth)
     xs = np.linspace(lo[0], hi[0], max(cols, 2))
     zs = np.linspace(lo[2], hi[2], max(rows, 2))
-    gx, gz = np.meshgrid(xs, zs, indexing="xy")
-    origins = np.column_stack([gx.ravel(), np.full(gx.size, hi[1] + 1.0), gz.ravel()])
-    directions = np.broadcast_to([0.0, -1.0, 0.0], origins.shape)
-    heights = np.full(gx.size, lo[1])
-    locations, index_ray, _ = loaded.ray.intersects_location(origins, directions, multiple_hits=False)
-    if len(index_ray):
-        hit = np.full(gx.size, -np.inf)
-        np.maximum.at(hit, index_ray, locations[:, 1])
-        heights = np.where(np.isfinite(hit), hit, lo[1])  # no surface above a point: the mesh's lowest
-    grid = heights.reshape(len(zs), len(xs))
-    return HeightGrid(grid, (float(lo[0]), float(lo[2])), (width, depth), label=f"mesh:file={file}", max_slope=max_slope)
+    heights = highest_surface(vertices, faces, xs, zs, floor=float(lo[1]))  # no surface above a point: the lowest
+    return HeightGrid(heights, (float(lo[0]), float(lo[2])), (width, depth), label=f"mesh:file={file}", max_slope=max_slope)
