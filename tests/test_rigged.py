@@ -648,6 +648,34 @@ def test_a_model_whose_texture_is_a_bomb_or_no_image_is_one_clear_line(tmp_path:
     assert not (tmp_path / "fox.png").exists()
 
 
+def test_a_model_whose_texture_file_is_missing_loads_plain_and_says_so(tmp_path: Path) -> None:
+    """A texture named by file that is not there: the model loads in its material's
+    colour, and the command and the viewer's message line say which file was missing."""
+    import pygltflib
+    from cli_runner import gaitlab
+
+    from app.spec import load_creature
+    from app.ui.state import ViewerState
+
+    gltf = pygltflib.GLTF2().load(str(MODELS / "Fox.glb"))
+    (image,) = gltf.images
+    image.bufferView, image.mimeType, image.uri = None, None, "fur.png"
+    model = tmp_path / "fox.gltf"
+    gltf.convert_buffers(pygltflib.BufferFormat.DATAURI)
+    gltf.save(str(model))
+    loaded = load_rigged_model(model)
+    assert np.ptp(loaded.colors, axis=0).max() == 0.0  # one plain colour (the fox's texture has many)
+    (note,) = loaded.notes
+    assert "its texture fur.png is missing" in note and str(tmp_path / "fur.png") in note
+    result = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120", "--seconds", "0.2")
+    assert result.returncode == 0, result.stderr
+    assert f"note: {model}: its texture fur.png is missing" in result.stderr
+    quiet = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120", "--seconds", "0.2", "-q")
+    assert quiet.returncode == 0 and quiet.stderr == "", quiet.stderr
+    state = ViewerState(load_creature("dog"))
+    assert state.load(str(model)) and "note: its texture fur.png is missing" in state.status
+
+
 def test_export_of_a_model_writes_a_glb_by_default(tmp_path: Path) -> None:
     """With no -o, a rigged model's walk goes onto the model (MODEL.glb): a BVH default was refused."""
     from cli_runner import gaitlab

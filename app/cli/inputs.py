@@ -75,6 +75,11 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
 
         use_rig_map(name, rig_map or "")  # this command's map, or none (names decide)
     spec = model_creature(name) if is_model_path(name) else load_creature(name)
+    if is_model_path(name) and not getattr(args, "quiet", False):
+        from ..rigged.loaded import model_notes
+
+        for note in model_notes(name):
+            print(f"note: {name}: {note}", file=sys.stderr)
     if base_overrides:
         for key in base_overrides:
             _not_the_model_s(name, key, f"{origin} {key}")

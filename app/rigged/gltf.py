@@ -40,7 +40,8 @@ class RiggedModel:
     none); ``rest`` (J, 4, 4) each joint's world transform at rest; ``inverse_bind``
     (J, 4, 4); ``positions`` (V, 3) and ``normals`` (V, 3) in the bind pose; ``colors``
     (V, 3) display RGB 0-1; ``faces`` (F, 3); ``joints`` (V, 4) and ``weights`` (V, 4),
-    the weights summing to one."""
+    the weights summing to one. ``notes``: what was read in part (a texture file that
+    is missing, say), one sentence each, for the user to be told."""
 
     path: Path
     names: tuple[str, ...]
@@ -53,6 +54,7 @@ class RiggedModel:
     faces: NDArray[np.int64]
     joints: NDArray[np.int64]
     weights: NDArray[np.float64]
+    notes: tuple[str, ...] = ()
 
     @property
     def rest_points(self) -> NDArray[np.float64]:
@@ -96,6 +98,7 @@ class _Reader:
         self.path = path
         self.blob = gltf.binary_blob()
         self._buffers: dict[int, bytes] = {}
+        self.notes: list[str] = []  # what could be read only in part (RiggedModel.notes)
 
     def _buffer(self, index: int) -> bytes:
         if index not in self._buffers:
@@ -213,7 +216,7 @@ def _read_model(gltf, node, path: Path) -> RiggedModel:
     weights = np.where(total > 0, weights / np.maximum(total, 1e-12), np.array([1.0, 0.0, 0.0, 0.0]))
     return RiggedModel(path=path, names=names, parents=parents, rest=rest, inverse_bind=inverse_bind,
                        positions=positions, normals=normals, colors=colors, faces=faces,
-                       joints=vertex_joints, weights=weights)
+                       joints=vertex_joints, weights=weights, notes=tuple(dict.fromkeys(reader.notes)))
 
 
 def world_matrices(gltf) -> dict[int, NDArray[np.float64]]:
@@ -285,6 +288,8 @@ def _colors(reader: _Reader, prim, gltf, count: int) -> NDArray[np.float64]:
     elif image.uri and not image.uri.startswith("data:"):
         file = (reader.path.parent / image.uri).resolve()
         if not file.is_file():
+            reader.notes.append(f"its texture {image.uri} is missing (looked for {file}); that part is drawn in "
+                                "its material's plain colour")
             return np.tile(factor, (count, 1))
         data = file.read_bytes()
     else:

@@ -97,3 +97,8 @@ def load_model(path: str) -> LoadedModel:
     if rig_map and not Path(rig_map).is_file():
         raise RigError(f"--rig {rig_map}: no such file")
     return _load(str(file.resolve()), file.stat().st_mtime, rig_map, Path(rig_map).stat().st_mtime if rig_map else 0.0)
+
+
+def model_notes(path: str) -> tuple[str, ...]:
+    """What the model at ``path`` could be read only in part (:attr:`RiggedModel.notes`)."""
+    return load_model(path).model.notes

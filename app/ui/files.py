@@ -106,6 +106,10 @@ class FilesMixin(StateBase):
             if text.endswith(".toml"):
                 self._know(spec.source)
         self.status = f"loaded {spec.name}" + (f" from {Path(spec.source).resolve()}" if from_file else "")
+        if is_model_path(text):
+            from ..rigged.loaded import model_notes
+
+            self.status += "".join(f"; note: {note}" for note in model_notes(text))
         self.frame_view()
         return True
 
