@@ -9,6 +9,7 @@ with status 2; it never shows a traceback for these.
 from __future__ import annotations
 
 import difflib
+import os
 from collections.abc import Iterable
 
 
@@ -38,3 +39,16 @@ def did_you_mean(word: str, options: Iterable[str]) -> str:
     """' (did you mean 'x'?)' for the closest of ``options``, or ''."""
     match = difflib.get_close_matches(word, list(options), n=1, cutoff=0.6)
     return f" (did you mean {match[0]!r}?)" if match else ""
+
+
+def not_a_file(path: str | os.PathLike[str]) -> str:
+    """Why ``path``, which is not a readable regular file, cannot be read: for a message
+    after the path ("no such file", "is a folder, not a file", ...)."""
+    try:
+        if os.path.isdir(path):
+            return "is a folder, not a file"
+        if os.path.exists(path):
+            return "is not a regular file (a device or a pipe)"
+    except (OSError, ValueError):  # a name too long, a NUL in it
+        pass
+    return "no such file"

@@ -73,7 +73,7 @@ def pose_sheet(spec: CreatureSpec, size: tuple[int, int] = (320, 360), second_st
             height = float(motion.joints[0, hips, 0, 1].mean()) - rest  # the rear hips against their rest
             heights.append(height)
             # The label on its own cell, so a long one is cut at the cell's edge.
-            cell = Image.new("RGB", (w - 2, LABEL_HEIGHT), (250, 248, 244))
+            cell = Image.new("RGB", (max(w - 2, 1), LABEL_HEIGHT), (250, 248, 244))
             draw = ImageDraw.Draw(cell)
             side = "left" if (phase % 1.0) < 0.5 else "right"
             title = f"{i + 1} {name}" + (f" ({side})" if name == "contact" else "")

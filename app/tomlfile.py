@@ -40,7 +40,9 @@ def read_toml(path: str | os.PathLike[str]) -> dict[str, Any]:
             data = fh.read(MAX_TOML_BYTES + 1)  # not stat(): pipes and /proc files say 0
         if len(data) > MAX_TOML_BYTES:
             raise TomlProblem(f"the file is over {MAX_TOML_BYTES // 2**20} MiB; TOML files up to that size are read")
-        text = data.decode("utf-8")
+        text = data.decode("utf-8-sig")  # -sig: an editor's byte-order mark is not part of the TOML
+    except IsADirectoryError:
+        raise TomlProblem("is a folder; give a .toml file") from None
     except OSError as exc:
         raise TomlProblem(f"cannot read: {exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:

@@ -283,6 +283,12 @@ def test_poses_sheet_shows_five_labelled_poses(tmp_path) -> None:
     assert "contact, down, pass, up, contact" in result.stdout
 
 
+def test_a_pose_sheet_one_pixel_wide_is_made_not_a_traceback(tmp_path) -> None:
+    result = gaitlab("poses", "human", "-o", str(tmp_path / "thin.png"), "--size", "1x100", "-q")
+    assert result.returncode == 0, result.stderr
+    assert np.asarray(Image.open(tmp_path / "thin.png")).shape[:2] == (100 + 44, 5)
+
+
 @pytest.mark.parametrize("args, needle", [
     (["--set", "poses.down_height=3"], "poses.down_height"),
     (["--set", "poses.arm_swing=-5"], "poses.arm_swing"),

@@ -95,6 +95,10 @@ def test_export_command_writes_a_bvh_that_analyze_reads(tmp_path: Path) -> None:
     (["--gait", "gallp", "-o", "dog.bvh"], "did you mean 'gallop'"),
     (["--fps", "0", "-o", "dog.bvh"], "frames per second"),
     (["--set", "legs.hind.femur=-1", "-o", "dog.bvh"], "legs.hind.femur"),
+    (["--loop", "--cycles", "1.5", "-o", "dog.bvh"], "--cycles 1.5 with --loop: a loop is whole cycles"),
+    (["--loop", "--cycles", "0.01", "-o", "dog.bvh"], "--cycles 0.01 with --loop"),
+    (["-o", "z" * 300 + ".bvh"], "cannot write: File name too long"),
+    (["-o", "/".join(["q" * 200] * 30) + "/dog.bvh"], "cannot write: File name too long"),
 ])
 def test_export_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path: Path, args, message) -> None:
     out = gaitlab("export", "dog", *args, cwd=tmp_path)
@@ -102,6 +106,30 @@ def test_export_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path: Path, 
     assert message in out.stderr and "Traceback" not in out.stderr
     assert len(out.stderr.strip().splitlines()) == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_scene_s_bvh_files_are_named_safely_and_written_all_or_none(tmp_path: Path) -> None:
+    """Each creature's BVH is named after it: a name with a slash, a control character or
+    300 letters is made safe (it was a traceback); when one file cannot be written (a folder
+    has its name) none is, and an earlier file of another's name is left as it was."""
+    cat = (Path(__file__).parents[1] / "creatures" / "cat.toml").read_text()
+    for stem, name in (("slash", "a/b"), ("long", "x" * 300), ("tab", "one\ttwo")):
+        (tmp_path / f"{stem}.toml").write_text(cat.replace('name = "cat"', f"name = {name!r}".replace("'", '"')))
+        (tmp_path / f"{stem}_scene.toml").write_text(
+            f'[[creatures]]\ncreature = "dog"\n[[creatures]]\ncreature = "{stem}.toml"\n')
+        out = gaitlab("export", f"{stem}_scene.toml", "--seconds", "0.3", "-q", "-o", f"{stem}.bvh", cwd=tmp_path)
+        assert out.returncode == 0, out.stderr
+    names = sorted(p.name for p in tmp_path.glob("*-*.bvh"))
+    assert names == ["long-dog.bvh", f"long-{'x' * 60}.bvh", "slash-a_b.bvh", "slash-dog.bvh", "tab-dog.bvh",
+                     "tab-one_two.bvh"]
+    (tmp_path / "pair.toml").write_text('[[creatures]]\ncreature = "dog"\n[[creatures]]\ncreature = "cat"\n')
+    (tmp_path / "s-dog.bvh").write_text("yesterday's dog\n")
+    (tmp_path / "s-cat.bvh").mkdir()
+    out = gaitlab("export", "pair.toml", "--seconds", "0.3", "-q", "-o", "s.bvh", cwd=tmp_path)
+    assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1, out.stderr
+    assert "s-cat.bvh: is a folder" in out.stderr
+    assert (tmp_path / "s-dog.bvh").read_text() == "yesterday's dog\n"
+    assert not list(tmp_path.glob(".*partial*"))
 
 
 def glb_world_positions(path: Path, times: np.ndarray, rotations: bool = False):

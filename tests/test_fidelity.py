@@ -228,6 +228,14 @@ def test_compare_json_against_the_bundled_norms(tmp_path) -> None:
     assert all(np.isfinite(v) for v in data["rms_deg"].values())
 
 
+def test_compare_asks_for_a_reference_for_animals_that_are_not_bipeds() -> None:
+    """The bundled curves are a person's walk: a spider against them read knee -142 degrees."""
+    result = gaitlab("compare", "spider")
+    assert result.returncode == 2 and len(result.stderr.strip().splitlines()) == 1, result.stderr
+    assert "the bundled reference is a person's walk, and the spider has 8 legs; give --reference" in result.stderr
+    assert result.stdout == ""
+
+
 @pytest.mark.parametrize("case, text, expect", [
     ("missing.bvh", None, "no such file"),
     ("columns.csv", "a,b\n1,2\n", "expected a header"),
@@ -236,8 +244,12 @@ def test_compare_json_against_the_bundled_norms(tmp_path) -> None:
      "no feet recognised"),
     ("negative_sd.csv", "phase,knee_mean,knee_sd\n0,5,2\n50,10,-3\n100,5,2\n",
      "knee_sd is -3 at phase 50; a standard deviation is 0 or more"),
+    ("per_mille.csv", "phase,knee_mean,knee_sd\n0,5,2\n500,10,3\n1000,5,2\n",
+     "phase must rise from about 0 to about 100"),
+    ("huge.csv", "phase,knee_mean,knee_sd\n0,5,2\n50,1e308,3\n100,5,2\n",
+     "knee_mean is 1e+308 at phase 50; joint angles are degrees, within -360 to 360"),
     ("twice.csv", "phase,knee_mean,knee_sd,knee_mean\n0,5,2,6\n50,10,3,7\n100,5,2,6\n",
-     "column knee_mean appears more than once"),
+     "column 'knee_mean' appears 2 times"),
 ])
 def test_compare_refuses_bad_references_in_one_line(tmp_path, case: str, text: str | None, expect: str) -> None:
     path = tmp_path / case

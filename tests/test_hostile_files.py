@@ -124,3 +124,23 @@ def test_clips_sampled_impossibly_fast_and_tiny_values_are_one_line(tmp_path: Pa
     _one_line(gaitlab("render", "dog", "--set", "gait.frequency=1e-300", "-o", tmp_path / "o.gif"), "0.05")
     _one_line(gaitlab("render", "dog", "--time", "1e300", "-o", tmp_path / "o.png"), "86400")
     assert not list(tmp_path.glob("o.*"))
+
+
+def test_a_folder_or_a_device_given_as_a_file_says_what_it_is(tmp_path: Path) -> None:
+    (tmp_path / "dir.toml").mkdir()
+    _one_line(gaitlab("render", tmp_path / "dir.toml", *RENDER, "-o", tmp_path / "o.png"), "dir.toml: is a folder")
+    _one_line(gaitlab("render", "dog", "--terrain", "mesh:file=/dev/zero", *RENDER, "-o", tmp_path / "o.png"),
+              "/dev/zero: is not a regular file")
+    _one_line(gaitlab("render", "dog", "--terrain", f"heightmap:file={tmp_path}", *RENDER, "-o", tmp_path / "o.png"),
+              "is a folder")
+    keys = gaitlab("creatures", "--keys", tmp_path / "dir.toml")
+    _one_line(keys, "dir.toml: is a folder")
+    assert keys.stdout == ""  # the error alone, not the whole listing before it
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["dir.toml"]
+
+
+def test_a_creature_file_saved_with_a_byte_order_mark_loads(tmp_path: Path) -> None:
+    dog = (Path(__file__).parents[1] / "creatures" / "dog.toml").read_bytes()
+    (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + dog)
+    result = gaitlab("render", tmp_path / "bom.toml", *RENDER, "-o", tmp_path / "o.png")
+    assert result.returncode == 0 and not result.stderr, result.stderr

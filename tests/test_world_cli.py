@@ -124,8 +124,10 @@ def test_mesh_file_becomes_a_height_grid(tmp_path: Path) -> None:
 
 
 def test_the_highest_surface_over_a_grid() -> None:
-    """A bridge over a ramp, a wall, a triangle off the grid and a huge one that needs a
-    chunk of its own: each grid point gets the highest triangle over it, exactly."""
+    """A bridge over a ramp, a wall and a triangle off the grid: each grid point gets the
+    highest triangle over it, exactly; in chunks of any size (a triangle bigger than a
+    chunk alone, or several together); and 3 km from the origin, where rounding once lost
+    the grid's last row and column."""
     from app.worlds import files
 
     ramp = [[0, 0, 0], [4, 2, 0], [4, 2, 4], [0, 0, 4]]  # y = x / 2 over 0 <= x, z <= 4
@@ -146,10 +148,18 @@ def test_the_highest_surface_over_a_grid() -> None:
     assert np.all(outside[:, wide < 0] == -1.0) and np.all(outside[:, wide > 4] == -1.0)
     chunk = files.SURFACE_CHUNK
     try:
-        files.SURFACE_CHUNK = 7
-        assert np.array_equal(files.highest_surface(vertices, faces, wide, zs, floor=-1.0), outside)
+        for files.SURFACE_CHUNK in (7, 50, 400):
+            assert np.array_equal(files.highest_surface(vertices, faces, wide, zs, floor=-1.0), outside)
     finally:
         files.SURFACE_CHUNK = chunk
+    # A square bowl (rim 5 m up) 2968 m from the origin on a 1024-point grid (its far edge was lost).
+    off, w = -2968.408, 33.743
+    corners = np.array([[off, 5, off], [off + w, 5, off], [off + w, 5, off + w], [off, 5, off + w],
+                        [off + w / 2, 0, off + w / 2]])
+    sides = np.array([[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]])
+    grid = np.linspace(off, off + w, 1024)
+    top = files.highest_surface(corners, sides, grid, grid, floor=-1.0)
+    assert top.min() > -1.0 and np.allclose(top[[0, -1], :], 5.0) and np.allclose(top[:, [0, -1]], 5.0)
 
 
 def test_python_api_keeps_the_world() -> None:

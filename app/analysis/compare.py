@@ -89,19 +89,28 @@ def read_normative(path: str | os.PathLike[str]) -> Curves:
         raise InputError(f"{path}: cannot read: {exc.strerror or exc}") from None
     if len(raw) > MAX_CSV_BYTES:
         raise InputError(f"{path}: over {MAX_CSV_BYTES // 2**20} MiB; a normative curve file is a few KiB")
-    rows = [r for r in csv.reader(io.StringIO(raw.decode("utf-8-sig", errors="replace")))  # -sig: a BOM
-            if r and not r[0].lstrip().startswith("#")]
+    try:
+        text = raw.decode("utf-8-sig")  # -sig: a spreadsheet's byte-order mark
+        if "\x00" in text:
+            raise ValueError("it holds NUL bytes")
+        rows = [r for r in csv.reader(io.StringIO(text, newline="")) if r and not r[0].lstrip().startswith("#")]
+    except (UnicodeDecodeError, ValueError, csv.Error) as exc:
+        why = "bytes that are not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc).split(" - ")[0]
+        raise InputError(f"{path}: not a CSV text file ({why[:80]}); a normative curve file is UTF-8 text: "
+                         "phase,JOINT_mean,JOINT_sd,...") from None
     if len(rows) < 3:
         raise InputError(f"{path}: expected a header and rows: phase,JOINT_mean,JOINT_sd,... (JOINT: "
                          f"{', '.join(JOINTS)})")
     header = [h.strip() for h in rows[0]]
-    twice = sorted({h for h in header if header.count(h) > 1})
+    twice = [h for h in dict.fromkeys(header) if h and header.count(h) > 1]  # (unnamed columns are not read)
     if twice:
-        raise InputError(f"{path}: column {twice[0]} appears more than once in the header; give each column once")
+        raise InputError(f"{path}: column {twice[0][:40]!r} appears {header.count(twice[0])} times in the header; "
+                         "give each column once")
     joints = [j for j in JOINTS if f"{j}_mean" in header and f"{j}_sd" in header]
     if "phase" not in header or not joints:
-        raise InputError(f"{path}: columns {', '.join(header[:8])}: expected phase and, for at least one of "
-                         f"{', '.join(JOINTS)}, JOINT_mean and JOINT_sd (degrees)")
+        shown = ", ".join(repr(h[:20]) for h in header[:8])
+        raise InputError(f"{path}: columns {shown}: expected phase and, for at least one of {', '.join(JOINTS)}, "
+                         "JOINT_mean and JOINT_sd (degrees)")
     try:
         table = np.array([[float(x) for x in r] for r in rows[1:]], dtype=np.float64)
     except ValueError:
@@ -109,9 +118,15 @@ def read_normative(path: str | os.PathLike[str]) -> Curves:
     if table.shape[1] != len(header) or not np.all(np.isfinite(table)):
         raise InputError(f"{path}: every row needs {len(header)} finite numbers, as the header has columns")
     phase = table[:, header.index("phase")]
-    if np.any(np.diff(phase) <= 0) or phase[0] > 5.0 or phase[-1] < 95.0:
+    if np.any(np.diff(phase) <= 0) or not (-5.0 <= phase[0] <= 5.0) or not (95.0 <= phase[-1] <= 105.0):
         raise InputError(f"{path}: phase must rise from about 0 to about 100 (% of the cycle)")
     for j in joints:
+        for column in (f"{j}_mean", f"{j}_sd"):
+            values = table[:, header.index(column)]
+            if np.abs(values).max() > 360.0:
+                row = int(np.argmax(np.abs(values)))
+                raise InputError(f"{path}: {column} is {values[row]:g} at phase {phase[row]:g}; joint angles are "
+                                 "degrees, within -360 to 360")
         sds = table[:, header.index(f"{j}_sd")]
         if np.any(sds < 0):
             row = int(np.argmax(sds < 0))

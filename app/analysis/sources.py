@@ -13,7 +13,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import did_you_mean
+from ..errors import did_you_mean, not_a_file
 from .bvh import MIN_FRAME_TIME, InputError, read_bvh
 from .tracks import FootTracks
 
@@ -371,7 +371,7 @@ def load_tracks(source: str, feet: str | None = None, units: Units = "auto", up:
     """Tracks from a .bvh or .csv file (by suffix)."""
     suffix = os.path.splitext(source)[1].lower()
     if not os.path.isfile(source):
-        raise InputError(f"{source}: no such file")
+        raise InputError(f"{source}: {not_a_file(source)}")
     if suffix == ".bvh":
         return tracks_from_bvh(source, parse_feet(feet) if feet else None, units, up)
     if suffix == ".csv":

@@ -8,7 +8,7 @@ import json
 import math
 from pathlib import Path
 
-from ..errors import GaitlabError
+from ..errors import GaitlabError, not_a_file
 from .options import add_creature, add_world, positive
 
 EPILOG = """\
@@ -44,7 +44,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     add_creature(parser, default="human", scenes=False)
     parser.add_argument("--reference", metavar="FILE",
                         help=f"a .bvh clip or a .csv of normative curves (default: the bundled {BUNDLED}, a "
-                             "human walk at free speed)")
+                             "human walk at free speed, for two-legged creatures; others need a reference of their "
+                             "kind)")
     parser.add_argument("--leg", metavar="NAME",
                         help="which leg to compare: a foot name such as L or LH (default: the left, or left hind, "
                              "foot of both)")
@@ -67,7 +68,7 @@ def _reference(args: argparse.Namespace, leg: str):
     if suffix != ".bvh":
         raise GaitlabError(f"--reference {path}: expected a .bvh clip or a .csv of normative curves")
     if not Path(path).is_file():
-        raise GaitlabError(f"--reference {path}: no such file")
+        raise GaitlabError(f"--reference {path}: {not_a_file(path)}")
     legs = bvh_legs(path)
     name = leg if leg in legs.angles else next((n for n in ("L", "LH", "L1") if n in legs.angles), None)
     if name is None:
@@ -90,12 +91,17 @@ def run(args: argparse.Namespace) -> int:
     args.speed = None
     actor = load_cast(args)[0]
     rig = build_rig(actor.spec)
+    if args.reference is None and rig.leg_count != 2:
+        raise GaitlabError(f"{actor.spec.name}: the bundled reference is a person's walk, and the "
+                           f"{actor.spec.name} has {rig.leg_count} legs; give --reference FILE (a clip or normative "
+                           "curves of its kind)")
     leg = args.leg or next(n for n in ("L", "LH", f"L{rig.leg_count // 2}") if n in rig.leg_names)
     if leg not in rig.leg_names:
         raise GaitlabError(f"--leg {leg}: {actor.spec.name} has feet {', '.join(rig.leg_names)}")
     reference = _reference(args, leg)
     fps = float(max(120, math.ceil(200 * rig.gait.frequency)))
-    motion, _ = clip_motion(rig, fps, cycles=args.cycles + 1.0, world=actor.world)
+    # A cycle more than asked, to find whole strides in (at least 2.25: a strike at the very start is not seen).
+    motion, _ = clip_motion(rig, fps, cycles=max(args.cycles + 1.0, 2.25), world=actor.world)
     gait = leg_curves(motion_legs(motion), leg, contact_fraction=rig.gait.duty_factor)
     gait = type(gait)(name=f"{actor.spec.name} {actor.spec.gait.preset}, {leg}", mean=gait.mean, sd=gait.sd,
                       cycles=gait.cycles, toe_off=gait.toe_off)

@@ -27,6 +27,12 @@ def run(args: argparse.Namespace) -> int:
     from ..spec import leg_type, load_creature
     from ..worlds import scene_description
 
+    keyed = None
+    if args.keys:  # read before anything is printed: a bad name is one line, not a listing and then an error
+        from ..rigged import is_model_path
+        from ..rigged.creature import model_creature
+
+        keyed = model_creature(args.keys) if is_model_path(args.keys) else load_creature(args.keys)
     print("Creatures (gaitlab render NAME):")
     found = []
     for name in preset_creature_names():
@@ -42,11 +48,10 @@ def run(args: argparse.Namespace) -> int:
           for g in GAIT_PRESETS.values()])
     print("\nExample scenes (gaitlab render PATH, gaitlab view PATH):")
     rows([(str(path), scene_description(path)) for path in sorted(scenes_dir().glob("*.toml"))])
-    if args.keys:
+    if keyed is not None:
         from ..spec import override_keys, rule_for
 
-        spec = load_creature(args.keys)
-        print(f"\nCreature file keys (--set KEY=VALUE), with the {spec.name}'s leg pairs and feet:")
-        rows([(key, f"{rule.doc}; {rule.allowed()}") for key in override_keys(spec)
+        print(f"\nCreature file keys (--set KEY=VALUE), with the {keyed.name}'s leg pairs and feet:")
+        rows([(key, f"{rule.doc}; {rule.allowed()}") for key in override_keys(keyed)
               if (rule := rule_for(key)) is not None])
     return 0

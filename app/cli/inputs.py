@@ -75,11 +75,6 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
 
         use_rig_map(name, rig_map or "")  # this command's map, or none (names decide)
     spec = model_creature(name) if is_model_path(name) else load_creature(name)
-    if is_model_path(name) and not getattr(args, "quiet", False):
-        from ..rigged.loaded import model_notes
-
-        for note in model_notes(name):
-            print(f"note: {name}: {note}", file=sys.stderr)
     if base_overrides:
         for key in base_overrides:
             _not_the_model_s(name, key, f"{origin} {key}")
@@ -105,7 +100,21 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
         if getattr(args, "speed", None) is not None and not getattr(args, "quiet", False):
             print(f"note: --style {style} with --speed: the speed sets the stride; the style's key poses apply",
                   file=sys.stderr)
+    if is_model_path(name) and not getattr(args, "quiet", False):
+        _tell_model_notes(args, name)
     return spec
+
+
+def _tell_model_notes(args: argparse.Namespace, model: str) -> None:
+    """Print what the rigged model at ``model`` could be read only in part, once a command
+    (a scene may hold the model several times)."""
+    from ..rigged.loaded import model_notes
+
+    told: set[tuple[str, str]] = vars(args).setdefault("_notes_told", set())
+    for note in model_notes(model):
+        if (model, note) not in told:
+            told.add((model, note))
+            print(f"note: {model}: {note}", file=sys.stderr)
 
 
 def load_cast(args: argparse.Namespace) -> Cast:

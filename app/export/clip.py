@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 
 from ..cast import Actor, Cast, cast_motions
@@ -13,9 +14,9 @@ from ..errors import OutputError
 from ..kinematics.skeleton import SkeletonClip, skeleton_clip
 from ..kinematics.world import World
 from ..limits import check_clip
-from ..output import check_output_dir
+from ..output import check_output_dir, write_together
 from ..spec import CreatureSpec
-from .bvh import write_bvh
+from .bvh import bvh_text
 from .formats import export_format
 from .gltf import write_glb
 from .mesh import export_layout
@@ -40,18 +41,29 @@ def export_clip(spec: CreatureSpec, output: str | os.PathLike[str], fps: float =
     return export_cast((Actor(spec, world or World(), speed),), output, fps, seconds, cycles, start, loop, ground)
 
 
+FILE_NAME_PART = 60  # characters of a creature's name put into a file name, at most
+
+
+def file_name_part(name: str) -> str:
+    """``name`` made safe as part of a file name: no folder separators, control
+    characters or NULs (each becomes "_"), at most :data:`FILE_NAME_PART` characters."""
+    safe = "".join("_" if c in '/\\' or not c.isprintable() else c for c in name).strip() or "creature"
+    return safe[:FILE_NAME_PART]
+
+
 def bvh_paths(output: str | os.PathLike[str], cast: Cast) -> list[Path]:
     """Where each creature's BVH goes: ``output`` itself for one creature; for several,
-    ``STEM-NAME.bvh`` beside it (``STEM-NAME-2.bvh`` for a second of the same name)."""
+    ``STEM-NAME.bvh`` beside it (``STEM-NAME-2.bvh`` for a second of the same name; the
+    name made safe for a file name by :func:`file_name_part`)."""
     output = Path(output)
     if len(cast) == 1:
         return [output]
     seen: dict[str, int] = {}
     paths = []
     for actor in cast:
-        seen[actor.spec.name] = seen.get(actor.spec.name, 0) + 1
-        count = seen[actor.spec.name]
-        suffix = actor.spec.name + (f"-{count}" if count > 1 else "")
+        name = file_name_part(actor.spec.name)
+        seen[name] = seen.get(name, 0) + 1
+        suffix = name + (f"-{seen[name]}" if seen[name] > 1 else "")
         paths.append(output.with_name(f"{output.stem}-{suffix}{output.suffix}"))
     return paths
 
@@ -72,6 +84,9 @@ def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, s
     :class:`GaitlabError` with one line for bad input."""
     fmt = export_format(output)
     check_output_dir(output)
+    if fmt == "bvh":
+        for path in bvh_paths(output, cast):  # each creature's file, before anything is simulated
+            check_output_dir(path)
     model = cast[0].spec.source if cast[0].spec.source.lower().endswith((".glb", ".gltf")) else ""
     if model and (fmt != "glb" or len(cast) > 1 or ground):
         raise OutputError(f"{os.fspath(output)}: a rigged model is exported alone, on its own skeleton, as .glb "
@@ -86,6 +101,9 @@ def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, s
     if loop and (seconds is not None or any(speeds)):
         raise OutputError("a looped export is whole cycles whose last frame equals the first: give a length in "
                           "cycles, without seconds or a speed")
+    if loop and cycles is not None and (cycles < 1 or abs(cycles - round(cycles)) > 1e-9):
+        raise OutputError(f"--cycles {cycles:g} with --loop: a loop is whole cycles whose last frame equals the "
+                          "first; give 1, 2, 3, ...")
     if ground and fmt != "glb":
         raise OutputError(f"--ground adds the terrain as a mesh to glTF files; write .glb (not .{fmt})")
     if ground and any(actor.world.in_place for actor in cast):
@@ -103,7 +121,10 @@ def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, s
     seconds_out = (clips[0].frame_count - int(loop)) / fps  # a looped clip's closing frame adds no time
     names = [p.stem.removeprefix(Path(output).stem + "-") for p in bvh_paths(output, cast)]
     if fmt == "bvh":
-        paths = [write_bvh(p, c) for p, c in zip(bvh_paths(output, cast), clips)]
+        paths = bvh_paths(output, cast)
+        texts = [bvh_text(c) for c in clips]
+        write_together([(p, partial(Path.write_text, data=t, encoding="utf-8"))
+                        for p, t in zip(paths, texts)])  # every creature's file, or none
     elif model:
         from .model import write_model_glb
 

@@ -50,9 +50,15 @@ def check_output_dir(path: str | os.PathLike[str]) -> None:
     """Fail early (before rendering) if ``path`` cannot be written."""
     path = Path(path)
     parent = path.parent if str(path.parent) else Path(".")
-    if not parent.is_dir():
+    try:
+        parent_there, folder = parent.is_dir(), path.is_dir()
+    except ValueError:  # a NUL in the name
+        raise OutputError(f"{os.fspath(path)!r}: a file name cannot hold a NUL character") from None
+    except OSError as exc:  # a name or path too long for the file system, say
+        raise cannot_write(path, exc) from None
+    if not parent_there:
         raise OutputError(f"{os.fspath(path)}: output folder {os.fspath(parent)!r} does not exist")
-    if path.is_dir():
+    if folder:
         raise OutputError(f"{os.fspath(path)}: is a folder; give a file name")
     try:  # a real probe: permission bits say nothing for root or for special file systems
         fd, probe = tempfile.mkstemp(prefix=".gaitlab-probe-", dir=parent)
@@ -162,7 +168,9 @@ class AtomicPath:
 def write_together(outputs: Sequence[tuple[str | os.PathLike[str], Callable[[Path], object]]]) -> None:
     """Write several files, all or none: each ``(path, write)`` pair's ``write`` fills a
     temporary file beside ``path``, and they are renamed into place only once every one
-    has succeeded (a failure deletes them all and leaves any earlier files as they were)."""
+    has succeeded (a failure deletes them all and leaves any earlier files as they were).
+    The renames themselves are one after another: should one fail (rare: the folder
+    was checked), the files already renamed stay and the rest are deleted."""
     staged: list[AtomicPath] = []
     try:
         for final, write in outputs:
@@ -175,8 +183,13 @@ def write_together(outputs: Sequence[tuple[str | os.PathLike[str], Callable[[Pat
         for out in staged:
             out.discard()
         raise
-    for out in staged:
-        out.commit()
+    for k, out in enumerate(staged):
+        try:
+            out.commit()  # (discards its own file when it fails)
+        except BaseException:
+            for rest in staged[k + 1:]:
+                rest.discard()
+            raise
 
 
 def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:

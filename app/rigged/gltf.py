@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import GaitlabError
+from ..errors import GaitlabError, not_a_file
 
 MAX_FACES = 2_000_000  # triangles a model may have (a larger mesh is refused before it is read)
 MAX_TEXTURE_SIDE = 8192
@@ -147,7 +147,7 @@ def load_rigged_model(path: str | Path) -> RiggedModel:
 
     path = Path(path)
     if not path.is_file():
-        raise RigError(f"{path}: no such file")
+        raise RigError(f"{path}: {not_a_file(path)}")
     try:
         with warnings.catch_warnings():  # pygltflib warns of what it reads anyway (an old GLB version)
             warnings.simplefilter("ignore")

@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import not_a_file
 from ..kinematics.appendages import Appendages
 from .drive import drive_joints, rest_in_metres
 from .gltf import RigError, RiggedModel, load_rigged_model
@@ -92,10 +93,10 @@ def load_model(path: str) -> LoadedModel:
     """The model at ``path``, read once while the file is unchanged."""
     file = Path(path)
     if not file.is_file():
-        raise RigError(f"{path}: no such file")
+        raise RigError(f"{path}: {not_a_file(path)}")
     rig_map = _RIG_MAPS.get(str(file.resolve()), "")
     if rig_map and not Path(rig_map).is_file():
-        raise RigError(f"--rig {rig_map}: no such file")
+        raise RigError(f"--rig {rig_map}: {not_a_file(rig_map)}")
     return _load(str(file.resolve()), file.stat().st_mtime, rig_map, Path(rig_map).stat().st_mtime if rig_map else 0.0)
 
 

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import SpecError, did_you_mean
+from ..errors import SpecError, did_you_mean, not_a_file
 from ..gaits import MAX_PAIRS, foot_names, gaits_for
 from ..kinematics.rig import leg_lengths
 from ..resources import creatures_dir, preset_creature_names
@@ -64,7 +64,8 @@ def load_creature(name_or_path: str | os.PathLike[str]) -> CreatureSpec:
             raise SpecError(f"unknown creature {text_name!r}{hint}; presets are: {', '.join(known)} "
                             "(or give a path to a .toml file)")
     if not path.is_file():
-        raise SpecError(f"{text_name}: no such creature file")
+        why = not_a_file(path)
+        raise SpecError(f"{text_name}: {'no such creature file' if why == 'no such file' else why}")
     try:
         data = read_toml(path)
     except TomlProblem as exc:

@@ -91,6 +91,10 @@ class FilesMixin(StateBase):
         text = str(name_or_path)
         try:
             spec = model_creature(text) if is_model_path(text) else load_creature(name_or_path)
+            if is_model_path(text):
+                from ..rigged.loaded import model_notes
+
+                notes = model_notes(text)
         except GaitlabError as exc:
             self.error = str(exc)
             return False
@@ -107,9 +111,7 @@ class FilesMixin(StateBase):
                 self._know(spec.source)
         self.status = f"loaded {spec.name}" + (f" from {Path(spec.source).resolve()}" if from_file else "")
         if is_model_path(text):
-            from ..rigged.loaded import model_notes
-
-            self.status += "".join(f"; note: {note}" for note in model_notes(text))
+            self.status += "".join(f"; note: {note}" for note in notes)
         self.frame_view()
         return True
 
@@ -208,7 +210,7 @@ class FilesMixin(StateBase):
                                  seconds=r.length if r.unit == "seconds" else None,
                                  cycles=r.length if r.unit == "cycles" else None,
                                  start=float(self.live.clock) / self.live.rig.gait.frequency,
-                                 loop=r.unit == "cycles")
+                                 loop=r.unit == "cycles" and float(r.length).is_integer())  # (whole cycles loop)
         except GaitlabError as exc:
             self.error = str(exc)
             return False

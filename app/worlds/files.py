@@ -9,13 +9,14 @@ from pathlib import Path as FilePath
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import not_a_file
 from ..kinematics.terrain import DEFAULT_MAX_SLOPE, HeightGrid
 from ..kinematics.world import WorldError
 
 
 def _check_file(file: FilePath) -> None:
     if not file.is_file():
-        raise WorldError(f"{file}: no such file")
+        raise WorldError(f"{file}: {not_a_file(file)}")
 
 
 MAX_HEIGHTMAP_SIDE = 8192
@@ -73,24 +74,26 @@ MAX_MESH_FACES = 4_000_000
 MAX_MESH_REACH = 1e5  # m from the origin (farther, the grid's numbers lose their centimetres)
 
 
-SURFACE_CHUNK = 1 << 21  # grid points tested against triangles at a time (memory: ~50 bytes each)
+SURFACE_CHUNK = 1 << 20  # grid points tested against triangles at a time (memory: ~130 bytes each)
 
 
 def highest_surface(vertices: NDArray[np.float64], faces: NDArray[np.int64], xs: NDArray[np.float64],
                     zs: NDArray[np.float64], floor: float) -> NDArray[np.float64]:
     """The height (m) of the highest triangle over each point of a grid: (len(zs), len(xs)),
-    ``floor`` where no triangle lies over a point. ``vertices`` (V, 3) with +Y up,
-    ``faces`` (F, 3); ``xs`` and ``zs`` evenly spaced, rising. Each triangle is laid on the
-    grid points within its own x-z box (barycentric test and height), vectorised over
-    triangles in chunks; triangles standing on edge (no extent seen from above) are skipped."""
+    ``floor`` where no triangle lies over a point. ``vertices`` (V, 3) finite, with +Y up,
+    ``faces`` (F, 3); ``xs`` and ``zs`` evenly spaced and rising, at least two points each.
+    Each triangle is laid on the grid points within its own x-z box, widened by a point
+    each way (the barycentric test decides, so rounding far from the origin loses no
+    edge), vectorised over triangles in chunks; triangles standing on edge (no extent seen
+    from above) are skipped."""
     tri = vertices[faces]  # (F, 3, 3)
     x, y, z = tri[..., 0], tri[..., 1], tri[..., 2]
     det = (z[:, 1] - z[:, 2]) * (x[:, 0] - x[:, 2]) + (x[:, 2] - x[:, 1]) * (z[:, 0] - z[:, 2])
-    dx, dz = xs[1] - xs[0], zs[1] - zs[0]
-    i0 = np.clip(np.ceil((x.min(axis=1) - xs[0]) / dx - 1e-9), 0, len(xs)).astype(np.int64)
-    i1 = np.clip(np.floor((x.max(axis=1) - xs[0]) / dx + 1e-9), -1, len(xs) - 1).astype(np.int64)
-    j0 = np.clip(np.ceil((z.min(axis=1) - zs[0]) / dz - 1e-9), 0, len(zs)).astype(np.int64)
-    j1 = np.clip(np.floor((z.max(axis=1) - zs[0]) / dz + 1e-9), -1, len(zs) - 1).astype(np.int64)
+    dx, dz = (xs[-1] - xs[0]) / (len(xs) - 1), (zs[-1] - zs[0]) / (len(zs) - 1)
+    i0 = np.clip(np.ceil((x.min(axis=1) - xs[0]) / dx) - 1, 0, len(xs)).astype(np.int64)
+    i1 = np.clip(np.floor((x.max(axis=1) - xs[0]) / dx) + 1, -1, len(xs) - 1).astype(np.int64)
+    j0 = np.clip(np.ceil((z.min(axis=1) - zs[0]) / dz) - 1, 0, len(zs)).astype(np.int64)
+    j1 = np.clip(np.floor((z.max(axis=1) - zs[0]) / dz) + 1, -1, len(zs) - 1).astype(np.int64)
     across, down = np.maximum(i1 - i0 + 1, 0), np.maximum(j1 - j0 + 1, 0)
     keep = np.flatnonzero((across * down > 0) & (np.abs(det) > 1e-300))
     counts = (across * down)[keep]
