@@ -144,3 +144,20 @@ def test_a_creature_file_saved_with_a_byte_order_mark_loads(tmp_path: Path) -> N
     (tmp_path / "bom.toml").write_bytes(b"\xef\xbb\xbf" + dog)
     result = gaitlab("render", tmp_path / "bom.toml", *RENDER, "-o", tmp_path / "o.png")
     assert result.returncode == 0 and not result.stderr, result.stderr
+
+
+def test_a_scene_with_a_misspelt_creatures_table_is_read_as_a_scene(tmp_path: Path) -> None:
+    """It was read as a creature file: "unknown key 'terrain'; allowed here: ... body"."""
+    (tmp_path / "typo.toml").write_text('terrain = "hills"\n[[creature]]\ncreature = "dog"\n')
+    _one_line(gaitlab("render", tmp_path / "typo.toml", *RENDER, "-o", tmp_path / "o.png"),
+              "unknown key 'creature' (did you mean 'creatures'?)")
+
+
+def test_a_gait_that_does_not_fit_names_the_option_and_the_scene_s_creature(tmp_path: Path) -> None:
+    """It said "--set: gait.preset = 'tripod' ..." though no --set was given, and not which creature."""
+    garden = Path(__file__).parents[1] / "scenes" / "garden.toml"
+    _one_line(gaitlab("render", garden, "--gait", "tripod", *RENDER, "-o", tmp_path / "o.png"),
+              "--gait tripod (centipede): gait.preset = 'tripod' is a gait for 3 pairs")
+    _one_line(gaitlab("render", "dog", "--gait", "tripod", *RENDER, "-o", tmp_path / "o.png"),
+              "--gait tripod: gait.preset = 'tripod' is a gait for 3 pairs; this creature has 2 leg pairs")
+    assert list(tmp_path.iterdir()) == []

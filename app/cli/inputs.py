@@ -19,16 +19,22 @@ if TYPE_CHECKING:
 
 
 def is_scene(name: str) -> bool:
-    """Whether a .toml argument is a scene file (it has [[creatures]]) rather than a creature."""
+    """Whether a .toml argument is a scene file (it has [[creatures]], or what only scenes
+    have, a terrain, paths or a misspelt [[creature]], and no creature's [body]) rather
+    than a creature."""
     from ..tomlfile import TomlProblem, read_toml
 
     path = Path(name)
     if path.suffix.lower() != ".toml" or not path.is_file():
         return False
     try:
-        return "creatures" in read_toml(path)
+        data = read_toml(path)
     except TomlProblem:
         return False  # the creature loader reports it
+    return "creatures" in data or ("body" not in data and bool(SCENE_ONLY_KEYS & data.keys()))
+
+
+SCENE_ONLY_KEYS = {"terrain", "paths", "creature"}  # top-level keys no creature file has
 
 
 def creature_changes(args: argparse.Namespace) -> dict[str, object]:
@@ -84,7 +90,11 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
         key, value = parse_override(text, spec)
         _not_the_model_s(name, key, f"--set {text}")
         overrides[key] = value
-    spec = spec.with_overrides(overrides) if overrides else spec
+    if overrides:  # a problem names the options given (and, in a scene, the creature)
+        given = [f"--gait {args.gait}"] if args.gait is not None else []
+        given += [f"--frames-per-cycle {args.frames_per_cycle:g}"] if args.frames_per_cycle is not None else []
+        given += ["--set"] if args.overrides else []
+        spec = spec.with_overrides(overrides, origin=" with ".join(given) + (f" ({spec.name})" if creature else ""))
     style = args.style
     if style is not None:
         from ..rigging import apply_style
