@@ -615,7 +615,10 @@ def test_a_rig_map_may_name_the_neck_and_tail() -> None:
     for table, expected in (({"neck": {"joints": ["b_Neck_04", "b_Snout"]}}, "neck.joints names 'b_Snout'"),
                             ({"tail": {"joints": ["b_Tail03_014", "b_Tail01_012"]}}, "does not hang below"),
                             ({"tail": ["b_Tail01_012"]}, "[tail] has one key, joints"),
-                            ({"tail": {"joints": ["b_Tail01_012"]}}, "tail.joints: give 2 or more joint names")):
+                            ({"tail": {"joints": ["b_Tail01_012"]}}, "tail.joints: give 2 or more joint names"),
+                            ({"tail": {"joints": ["b_LeftLeg02_016", "b_LeftFoot01_017"]}},
+                             "joint 'b_LeftLeg02_016' is in both legs.LH and tail.joints"),
+                            ({"legs": {**legs, "RF": legs["LF"]}}, "is in both legs.LF and legs.RF")):
         with pytest.raises(RigError) as caught:
             legs_from_map(fox, {"legs": legs, **table}, "fox.toml")
         assert expected in str(caught.value) and str(caught.value).startswith("fox.toml: ")

@@ -315,6 +315,16 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
         if [a.side for a in arms] != ["L", "R"]:
             raise RigError(f"{where}: [arms] lists the left arm (L) then the right (R)")
     neck, tail = (_mapped_appendage(model, mapping, part, where) for part in ("neck", "tail"))
+    owner: dict[int, str] = {}  # each joint in one chain only (a leg listed twice was a baffling body size)
+    labelled = [(f"legs.{key}", c.joints) for key, c in zip(table, chains)]
+    labelled += [(f"arms.{key}", c.joints) for key, c in zip(mapping.get("arms", {}), arms)]
+    labelled += [(f"{part}.joints", joints) for part, joints in (("neck", neck), ("tail", tail))]
+    for label, joints in labelled:
+        for j in joints:
+            if j in owner:
+                raise RigError(f"{where}: joint {model.names[j]!r} is in both {owner[j]} and {label}; each joint "
+                               "belongs to one leg, arm, neck or tail")
+            owner[j] = label
     return ModelLegs(pairs=pairs, arms_as_legs=False, arms=arms, neck=neck, tail=tail)
 
 
