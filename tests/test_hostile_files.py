@@ -161,3 +161,17 @@ def test_a_gait_that_does_not_fit_names_the_option_and_the_scene_s_creature(tmp_
     _one_line(gaitlab("render", "dog", "--gait", "tripod", *RENDER, "-o", tmp_path / "o.png"),
               "--gait tripod: gait.preset = 'tripod' is a gait for 3 pairs; this creature has 2 leg pairs")
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("table, expected", [
+    ('kind = "waypoints"\npoints = [[true, false], [0, 5]]', "expected [[x, z], [x, z], ...], pairs of numbers"),
+    ('kind = "waypoints"\npoints = [[0, 0, 5], [3, 4, 7]]', "expected [[x, z], [x, z], ...], pairs of numbers"),
+    ('kind = "circle"\nr = "2,dir=right"', "paths.p.r = '2,dir=right': expected a number, or a single word"),
+    ('kind = "circle:r=2"', "paths.p.kind = 'circle:r=2': expected a name alone"),
+])
+def test_a_scene_path_table_takes_numbers_and_words_not_spliced_text(tmp_path: Path, table: str,
+                                                                      expected: str) -> None:
+    """Booleans were read as 1 and 0, three-number points regrouped into other waypoints,
+    and text values spliced into the path's own text."""
+    (tmp_path / "scene.toml").write_text(f'[paths.p]\n{table}\n[[creatures]]\ncreature = "dog"\npath = "p"\n')
+    _one_line(gaitlab("render", tmp_path / "scene.toml", *RENDER, "-o", tmp_path / "o.png"), expected)

@@ -54,22 +54,36 @@ def _text_or_table(value: Any, key: str, where: str) -> str:
     if isinstance(value, Mapping):
         if "kind" not in value:
             raise WorldError(f"{where}: {key} needs kind = \"...\"")
+        if not isinstance(value["kind"], str) or not value["kind"] or any(c in value["kind"] for c in ":,="):
+            raise WorldError(f"{where}: {key}.kind = {shown(value['kind'])}: expected a name alone, e.g. \"circle\" "
+                             "(its settings are keys beside it)")
         parts = []
         for k, v in value.items():
             if k == "kind":
                 continue
-            if k == "points" and isinstance(v, list):
-                parts += [f"{c:g}" if isinstance(c, (int, float)) else str(c) for pt in v for c in
-                          (pt if isinstance(pt, list) else [pt])]
+            if k == "points":
+                pairs_ok = isinstance(v, list) and all(
+                    isinstance(pt, list) and len(pt) == 2 and all(_is_number(c) for c in pt) for pt in v)
+                if not pairs_ok:
+                    raise WorldError(f"{where}: {key}.points = {shown(v)}: expected [[x, z], [x, z], ...], pairs "
+                                     "of numbers (metres)")
+                parts += [f"{float(c):g}" for pt in v for c in pt]
             elif k == "closed":
                 if not isinstance(v, bool):
                     raise WorldError(f"{where}: {key}.closed = {shown(v)}: expected true or false")
                 if v:
                     parts.append("closed")
+            elif _is_number(v) or (isinstance(v, str) and v and not any(c in v for c in ":,=")):
+                parts.append(f"{k}={v:g}" if _is_number(v) else f"{k}={v}")
             else:
-                parts.append(f"{k}={v}")
+                raise WorldError(f"{where}: {key}.{k} = {shown(v)}: expected a number, or a single word")
         return f"{value['kind']}" + (":" + ",".join(parts) if parts else "")
     raise WorldError(f"{where}: {key} = {shown(value)}: expected a text like \"circle:r=3\" or a table with kind")
+
+
+def _is_number(value: Any) -> bool:
+    """An int or float from TOML (not a bool, which Python counts as an int)."""
+    return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 MAX_SCENE_CREATURES = 256
