@@ -175,3 +175,12 @@ def test_a_scene_path_table_takes_numbers_and_words_not_spliced_text(tmp_path: P
     and text values spliced into the path's own text."""
     (tmp_path / "scene.toml").write_text(f'[paths.p]\n{table}\n[[creatures]]\ncreature = "dog"\npath = "p"\n')
     _one_line(gaitlab("render", tmp_path / "scene.toml", *RENDER, "-o", tmp_path / "o.png"), expected)
+
+
+def test_two_settings_of_one_thing_on_a_command_line_are_refused(tmp_path: Path) -> None:
+    """The later one silently won."""
+    _one_line(gaitlab("render", "dog", "--set", "gait.bias=1", "--set", "gait.duty_factor=0.5", *RENDER, "-o",
+                      tmp_path / "o.png"), "gait.duty_factor and gait.bias both given: give one")
+    _one_line(gaitlab("render", "dog", "--set", "gait.frequency=2", "--frames-per-cycle", "30", *RENDER, "-o",
+                      tmp_path / "o.png"), "gait.frequency and gait.frames_per_cycle both given")
+    assert list(tmp_path.iterdir()) == []

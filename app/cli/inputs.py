@@ -90,6 +90,10 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
         key, value = parse_override(text, spec)
         _not_the_model_s(name, key, f"--set {text}")
         overrides[key] = value
+    for pair, what in ((("gait.duty_factor", "gait.bias"), "the duty factor, or the bias that sets it"),
+                       (("gait.frequency", "gait.frames_per_cycle"), "the timing as a frequency or in frames")):
+        if all(key in overrides for key in pair):
+            raise GaitlabError(f"{pair[0]} and {pair[1]} both given: give one ({what})")
     if overrides:  # a problem names the options given (and, in a scene, the creature)
         given = [f"--gait {args.gait}"] if args.gait is not None else []
         given += [f"--frames-per-cycle {args.frames_per_cycle:g}"] if args.frames_per_cycle is not None else []
