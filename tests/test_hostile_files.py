@@ -184,3 +184,11 @@ def test_two_settings_of_one_thing_on_a_command_line_are_refused(tmp_path: Path)
     _one_line(gaitlab("render", "dog", "--set", "gait.frequency=2", "--frames-per-cycle", "30", *RENDER, "-o",
                       tmp_path / "o.png"), "gait.frequency and gait.frames_per_cycle both given")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_headings_and_directions_are_bounded(tmp_path: Path) -> None:
+    """1e300 degrees was taken (a direction float rounding cannot tell apart)."""
+    _one_line(gaitlab("render", "dog", "--path", "straight:heading=1e300", *RENDER, "-o", tmp_path / "o.png"),
+              "heading=1e+300 must be <= 3600 deg")
+    _one_line(gaitlab("render", "dog", "--terrain", "stairs:dir=-1e300", *RENDER, "-o", tmp_path / "o.png"),
+              "dir=-1e+300 must be >= -3600 deg")

@@ -79,7 +79,7 @@ def _whole(name: str, help: str, default: int, lo: float, hi: float | None, slid
     return Key(name, help, default, Range(lo, hi, integer=True), slider, "%d")
 
 
-HEADING = _deg("heading", "the direction the path starts in, degrees from +Z", 0.0)
+HEADING = _deg("heading", "the direction the path starts in, degrees from +Z", 0.0, -3600.0, 3600.0)
 
 PATH_KINDS: dict[str, Kind] = {kind.name: kind for kind in (
     Kind("straight", "straight ahead", (HEADING,)),
@@ -104,7 +104,7 @@ TERRAIN_KINDS: dict[str, Kind] = {kind.name: kind for kind in (
     Kind("slope", "a plane", (
         _deg("angle", "rise of the plane (negative: downhill ahead)", 10.0, -80.0, 80.0, slider=(-35.0, 35.0),
              fmt="%.1f deg"),
-        _deg("dir", "the direction the slope rises, degrees from +Z", 0.0)), required=("angle",),
+        _deg("dir", "the direction the slope rises, degrees from +Z", 0.0, -3600.0, 3600.0)), required=("angle",),
          example="slope:angle=15"),
     Kind("hills", "rolling hills", (
         _m("amp", "how high and low the hills go", 0.2, 0.0, 100.0, (0.0, 1.0)),
@@ -116,7 +116,8 @@ TERRAIN_KINDS: dict[str, Kind] = {kind.name: kind for kind in (
         _m("run", "each step's depth", 0.35, 0.005, FAR, (0.02, 2.0)),
         _whole("steps", "how many steps", 12, 1.0, 1000.0, (1, 60)),
         _m("start", "distance from the start to the first riser", 1.0, -FAR, FAR, (-10.0, 20.0), fmt="%.2f m"),
-        _deg("dir", "the direction the flight climbs, degrees from +Z", 0.0)), example="stairs:rise=0.1,run=0.35"),
+        _deg("dir", "the direction the flight climbs, degrees from +Z", 0.0, -3600.0, 3600.0)),
+         example="stairs:rise=0.1,run=0.35"),
     Kind("heightmap", "a greyscale image (8- or 16-bit PNG)", (
         Key("file", "the image's path"),
         _m("size", "the image's width on the ground", 20.0, 0.0, None, (1.0, 200.0), lo_open=True, fmt="%.1f m"),
