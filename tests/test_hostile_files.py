@@ -192,3 +192,10 @@ def test_headings_and_directions_are_bounded(tmp_path: Path) -> None:
               "heading=1e+300 must be <= 3600 deg")
     _one_line(gaitlab("render", "dog", "--terrain", "stairs:dir=-1e300", *RENDER, "-o", tmp_path / "o.png"),
               "dir=-1e+300 must be >= -3600 deg")
+
+
+def test_a_list_value_is_bounded(tmp_path: Path) -> None:
+    """A radius profile of a million numbers was taken (10 s)."""
+    profile = "[" + ",".join(["0.1"] * 1000) + "]"
+    _one_line(gaitlab("render", "dog", "--set", f"body.radius={profile}", *RENDER, "-o", tmp_path / "o.png"),
+              "body.radius: a list of 1,000 numbers; at most 256 are read")

@@ -201,6 +201,7 @@ TABLES: dict[str, dict[str, Rule]] = {
     "overlap": OVERLAP_RULES,
 }
 COLOR_RE = re.compile(r"^#[0-9a-fA-F]{6}$")
+MAX_LIST = 256  # numbers in a list value (a body's radius profile: a handful give its shape)
 FOOT_RE = re.compile(r"^[LR]([FH]|[0-9]{1,2})?$")
 
 # (ankle lift in degrees, toe length as a fraction of the metatarsus) typical of each type.
@@ -234,6 +235,8 @@ def check_value(key: str, value: Any, rule: Rule, where: str) -> Any:
     if rule.kind == "numbers":
         if not isinstance(value, (list, tuple)) or not value:
             raise bad()
+        if len(value) > MAX_LIST:
+            raise SpecError(f"{prefix}{key}: a list of {len(value):,} numbers; at most {MAX_LIST} are read")
         return tuple(_number(v, rule, bad) for v in value)
     return _number(value, rule, bad)
 
