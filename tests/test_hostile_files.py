@@ -199,3 +199,19 @@ def test_a_list_value_is_bounded(tmp_path: Path) -> None:
     profile = "[" + ",".join(["0.1"] * 1000) + "]"
     _one_line(gaitlab("render", "dog", "--set", f"body.radius={profile}", *RENDER, "-o", tmp_path / "o.png"),
               "body.radius: a list of 1,000 numbers; at most 256 are read")
+
+
+def test_a_scene_s_name_and_description_are_text(tmp_path: Path) -> None:
+    (tmp_path / "scene.toml").write_text('name = {a = 1}\n[[creatures]]\ncreature = "dog"\n')
+    _one_line(gaitlab("render", tmp_path / "scene.toml", *RENDER, "-o", tmp_path / "o.png"),
+              "name = {'a': 1}: expected a text in quotes")
+    (tmp_path / "scene.toml").write_text('description = [1, 2]\n[[creatures]]\ncreature = "dog"\n')
+    _one_line(gaitlab("render", tmp_path / "scene.toml", *RENDER, "-o", tmp_path / "o.png"),
+              "description = [1, 2]: expected a text in quotes")
+
+
+def test_exporting_a_scene_s_herd_says_only_its_lead_is_written(tmp_path: Path) -> None:
+    herd = Path(__file__).parents[1] / "scenes" / "herd.toml"
+    result = gaitlab("export", herd, "--seconds", "0.3", "-o", tmp_path / "h.bvh")
+    assert result.returncode == 0, result.stderr
+    assert "note: the herd of 20 dogs is exported as its lead animal" in result.stderr

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 from ..choices import EXPORT_FORMATS
@@ -66,6 +67,10 @@ def run(args: argparse.Namespace) -> int:
     result = export_cast(cast, output, fps=fps, seconds=args.seconds, cycles=args.cycles, start=args.time,
                          loop=args.loop, ground=args.ground)
     if not args.quiet:
+        for actor in cast:
+            if actor.herd > 1:
+                print(f"note: the herd of {actor.herd} {actor.spec.name}s is exported as its lead animal (a herd's "
+                      "followers are drawn by render and view, not exported)", file=sys.stderr)
         frames = f"{result.frames} frame{'' if result.frames == 1 else 's'}"
         if len(cast) == 1:
             size = result.path.stat().st_size

@@ -165,6 +165,9 @@ def load_scene(file: str | os.PathLike[str]) -> Scene:
         creatures.append(SceneCreature(creature=name, world=World(path=body_path, terrain=terrain), gait=gait,
                                        speed=None if speed is None else float(speed), overrides=dict(overrides),
                                        herd=herd))
+    for key in ("name", "description"):
+        if not isinstance(data.get(key, ""), str):
+            raise WorldError(f"{where}: {key} = {shown(data[key])}: expected a text in quotes")
     name = data.get("name", path.stem)
     return Scene(name=str(name), terrain=terrain, creatures=tuple(creatures), source=str(path))
 
