@@ -215,3 +215,14 @@ def test_exporting_a_scene_s_herd_says_only_its_lead_is_written(tmp_path: Path) 
     result = gaitlab("export", herd, "--seconds", "0.3", "-o", tmp_path / "h.bvh")
     assert result.returncode == 0, result.stderr
     assert "note: the herd of 20 dogs is exported as its lead animal" in result.stderr
+
+
+@pytest.mark.parametrize("args, expected", [
+    (["--crf", "10", "-o", "o.png"], "--crf 10 sets a .mp4's quality, and o.png is a .png"),
+    (["--gif-quality", "small", "-o", "o.mp4"], "--gif-quality small sets a .gif's quality, and o.mp4 is a .mp4"),
+    (["--side-colors", "-o", "o.png"], "--side-colors colours the parts' legs and arms by side: give it with --body"),
+])
+def test_an_option_that_would_do_nothing_is_refused(tmp_path: Path, args: list[str], expected: str) -> None:
+    """They were ignored, while other conflicts (--msaa with --antialias off) are refused."""
+    _one_line(gaitlab("render", "dog", "--size", "160x120", "--seconds", "0.2", *args, cwd=tmp_path), expected)
+    assert list(tmp_path.iterdir()) == []

@@ -86,11 +86,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     look.add_argument("--msaa", metavar="N", type=samples, default=None,
                       help="multisampling with N samples: 2, 4 or 8; 0 turns antialiasing off "
                            "(the same as --antialias msaa or off; default: 4 with --antialias msaa)")
-    look.add_argument("--gif-quality", choices=GIF_QUALITIES, default=DEFAULT_GIF_QUALITY,
+    look.add_argument("--gif-quality", choices=GIF_QUALITIES, default=None,
                       help="GIF size against fidelity: best (255 colours, lossless), good (about half the size, "
                            "no visible loss), small (about a third, some grain); smaller GIFs need gifsicle "
                            f"installed (default: {DEFAULT_GIF_QUALITY})")
-    look.add_argument("--crf", metavar="N", type=crf, default=DEFAULT_CRF,
+    look.add_argument("--crf", metavar="N", type=crf, default=None,
                       help=f"MP4 quality: H.264 constant rate factor, 0 (lossless, large) to {MAX_CRF} "
                            f"(smallest); +6 roughly halves the file (default: {DEFAULT_CRF})")
     look.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
@@ -142,12 +142,19 @@ def run(args: argparse.Namespace) -> int:
 
     output = args.output or Path(f"{Path(args.creature).stem}.gif")
     fmt = output_format(output)
+    for option, value, wants in (("--crf", args.crf, "mp4"), ("--gif-quality", args.gif_quality, "gif")):
+        if value is not None and fmt != wants:
+            raise GaitlabError(f"{option} {value} sets a .{wants}'s quality, and {output} is a .{fmt}; drop it or "
+                               f"write a .{wants}")
+    if args.side_colors and args.body != "parts":
+        raise GaitlabError("--side-colors colours the parts' legs and arms by side: give it with --body parts")
     cast = load_cast(args)
     lead = cast[0]
     fps = choose_fps(args, lead.spec, lead.speed)
     turns = any(not isinstance(actor.world.path, StraightPath) for actor in cast)  # a straight line says little
     request = RecordRequest(cast=cast, output=output, fps=fps, seconds=args.seconds, cycles=args.cycles,
-                            start=args.time, view=_view(args, turns), gif_quality=args.gif_quality, crf=args.crf,
+                            start=args.time, view=_view(args, turns), gif_quality=args.gif_quality or DEFAULT_GIF_QUALITY,
+                            crf=DEFAULT_CRF if args.crf is None else args.crf,
                             arcs=_arcs(args))
     if fmt == "gif" and (warning := gif_fps_warning(fps)) and not args.quiet:
         print(warning, file=sys.stderr)
