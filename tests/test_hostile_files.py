@@ -226,3 +226,9 @@ def test_an_option_that_would_do_nothing_is_refused(tmp_path: Path, args: list[s
     """They were ignored, while other conflicts (--msaa with --antialias off) are refused."""
     _one_line(gaitlab("render", "dog", "--size", "160x120", "--seconds", "0.2", *args, cwd=tmp_path), expected)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_compare_refuses_a_scene_as_poses_does() -> None:
+    """It measured the scene's first creature off the scene's path and ground, unsaid."""
+    hillside = Path(__file__).parents[1] / "scenes" / "hillside.toml"
+    _one_line(gaitlab("compare", hillside), "hillside.toml: a scene file; compare measures one creature")

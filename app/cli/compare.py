@@ -82,8 +82,11 @@ def run(args: argparse.Namespace) -> int:
     from ..kinematics.clip import clip_motion
     from ..output import check_output_dir
     from ..rigging import build_rig
-    from .inputs import load_cast
+    from .inputs import is_scene, load_cast
 
+    if Path(args.creature).suffix.lower() == ".toml" and is_scene(args.creature):
+        raise GaitlabError(f"{args.creature}: a scene file; compare measures one creature (a preset name, creature "
+                           ".toml or rigged model)")
     if args.plot is not None:
         if args.plot.suffix.lower() != ".png":
             raise GaitlabError(f"{args.plot}: use a .png file name")
