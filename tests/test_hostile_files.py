@@ -232,3 +232,9 @@ def test_compare_refuses_a_scene_as_poses_does() -> None:
     """It measured the scene's first creature off the scene's path and ground, unsaid."""
     hillside = Path(__file__).parents[1] / "scenes" / "hillside.toml"
     _one_line(gaitlab("compare", hillside), "hillside.toml: a scene file; compare measures one creature")
+
+
+def test_empty_names_are_names_not_absent_options() -> None:
+    """``--leg ''`` and ``--keys ''`` were taken as not given."""
+    _one_line(gaitlab("compare", "human", "--leg", ""), "--leg '': the human has feet L, R")
+    _one_line(gaitlab("creatures", "--keys", ""), "unknown creature ''")

@@ -98,9 +98,10 @@ def run(args: argparse.Namespace) -> int:
         raise GaitlabError(f"{actor.spec.name}: the bundled reference is a person's walk, and the "
                            f"{actor.spec.name} has {rig.leg_count} legs; give --reference FILE (a clip or normative "
                            "curves of its kind)")
-    leg = args.leg or next(n for n in ("L", "LH", f"L{rig.leg_count // 2}") if n in rig.leg_names)
+    first_left = next(n for n in ("L", "LH", f"L{rig.leg_count // 2}") if n in rig.leg_names)
+    leg = first_left if args.leg is None else args.leg
     if leg not in rig.leg_names:
-        raise GaitlabError(f"--leg {leg}: {actor.spec.name} has feet {', '.join(rig.leg_names)}")
+        raise GaitlabError(f"--leg {leg!r}: the {actor.spec.name} has feet {', '.join(rig.leg_names)}")
     reference = _reference(args, leg)
     fps = float(max(120, math.ceil(200 * rig.gait.frequency)))
     # A cycle more than asked, to find whole strides in (at least 2.25: a strike at the very start is not seen).

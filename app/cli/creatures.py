@@ -28,7 +28,7 @@ def run(args: argparse.Namespace) -> int:
     from ..worlds import scene_description
 
     keyed = None
-    if args.keys:  # read before anything is printed: a bad name is one line, not a listing and then an error
+    if args.keys is not None:  # read before anything is printed: a bad name is one line, not a listing and then an error
         from ..rigged import is_model_path
         from ..rigged.creature import model_creature
 
