@@ -122,6 +122,12 @@ def test_a_scene_s_bvh_files_are_named_safely_and_written_all_or_none(tmp_path: 
     names = sorted(p.name for p in tmp_path.glob("*-*.bvh"))
     assert names == ["long-dog.bvh", f"long-{'x' * 60}.bvh", "slash-a_b.bvh", "slash-dog.bvh", "tab-dog.bvh",
                      "tab-one_two.bvh"]
+    (tmp_path / "dog2.toml").write_text(cat.replace('name = "cat"', 'name = "dog-2"'))
+    (tmp_path / "dogs.toml").write_text('[[creatures]]\ncreature = "dog"\n[[creatures]]\ncreature = "dog"\n'
+                                        '[[creatures]]\ncreature = "dog2.toml"\n')
+    out = gaitlab("export", "dogs.toml", "--seconds", "0.3", "-q", "-o", "d.bvh", cwd=tmp_path)
+    assert out.returncode == 0, out.stderr
+    assert sorted(p.name for p in tmp_path.glob("d-*.bvh")) == ["d-dog-2-2.bvh", "d-dog-2.bvh", "d-dog.bvh"]
     (tmp_path / "pair.toml").write_text('[[creatures]]\ncreature = "dog"\n[[creatures]]\ncreature = "cat"\n')
     (tmp_path / "s-dog.bvh").write_text("yesterday's dog\n")
     (tmp_path / "s-cat.bvh").mkdir()

@@ -166,7 +166,7 @@ def test_a_gait_that_does_not_fit_names_the_option_and_the_scene_s_creature(tmp_
 @pytest.mark.parametrize("table, expected", [
     ('kind = "waypoints"\npoints = [[true, false], [0, 5]]', "expected [[x, z], [x, z], ...], pairs of numbers"),
     ('kind = "waypoints"\npoints = [[0, 0, 5], [3, 4, 7]]', "expected [[x, z], [x, z], ...], pairs of numbers"),
-    ('kind = "circle"\nr = "2,dir=right"', "paths.p.r = '2,dir=right': expected a number, or a single word"),
+    ('kind = "circle"\nr = "2,dir=right"', "paths.p.r = '2,dir=right': expected a number, or a word or file name without commas"),
     ('kind = "circle:r=2"', "paths.p.kind = 'circle:r=2': expected a name alone"),
 ])
 def test_a_scene_path_table_takes_numbers_and_words_not_spliced_text(tmp_path: Path, table: str,
@@ -182,8 +182,12 @@ def test_two_settings_of_one_thing_on_a_command_line_are_refused(tmp_path: Path)
     _one_line(gaitlab("render", "dog", "--set", "gait.bias=1", "--set", "gait.duty_factor=0.5", *RENDER, "-o",
                       tmp_path / "o.png"), "gait.duty_factor and gait.bias both given: give one")
     _one_line(gaitlab("render", "dog", "--set", "gait.frequency=2", "--frames-per-cycle", "30", *RENDER, "-o",
-                      tmp_path / "o.png"), "gait.frequency and gait.frames_per_cycle both given")
-    assert list(tmp_path.iterdir()) == []
+                      tmp_path / "o.png"), "gait.frequency and --frames-per-cycle both given")
+    (tmp_path / "scene.toml").write_text('[[creatures]]\ncreature = "dog"\nset = { "gait.duty_factor" = 0.6, '
+                                         '"gait.bias" = 0.3 }\n')
+    _one_line(gaitlab("render", tmp_path / "scene.toml", *RENDER, "-o", tmp_path / "o.png"),
+              "scene.toml (dog): gait.duty_factor and gait.bias both given")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["scene.toml"]
 
 
 def test_headings_and_directions_are_bounded(tmp_path: Path) -> None:
@@ -238,3 +242,27 @@ def test_empty_names_are_names_not_absent_options() -> None:
     """``--leg ''`` and ``--keys ''`` were taken as not given."""
     _one_line(gaitlab("compare", "human", "--leg", ""), "--leg '': the human has feet L, R")
     _one_line(gaitlab("creatures", "--keys", ""), "unknown creature ''")
+
+
+def test_numbers_in_a_scene_table_are_read_exactly(tmp_path: Path) -> None:
+    """They were written into the terrain's text with six digits: seed 1234567 became 1234570."""
+    from app.worlds import load_scene
+
+    (tmp_path / "scene.toml").write_text('terrain = {kind = "hills", amp = 0.123456789, seed = 1234567}\n'
+                                         '[[creatures]]\ncreature = "dog"\n')
+    hills = load_scene(tmp_path / "scene.toml").terrain
+    assert (hills.amplitude, hills.seed) == (0.123456789, 1234567)
+
+
+def test_a_reference_csv_in_a_windows_code_page_loads_and_binary_is_refused(tmp_path: Path) -> None:
+    (tmp_path / "latin.csv").write_bytes(b"# Donn\xe9es (\xb0)\nphase,knee_mean,knee_sd\n0,5,2\n50,10,3\n100,5,2\n")
+    result = gaitlab("compare", "human", "--reference", tmp_path / "latin.csv")
+    assert result.returncode == 0, result.stderr
+    (tmp_path / "bin.csv").write_bytes(bytes(range(256)) * 4)
+    _one_line(gaitlab("compare", "human", "--reference", tmp_path / "bin.csv"),
+              "bin.csv: not a CSV text file (it holds NUL bytes)")
+
+
+def test_keys_of_a_scene_file_say_it_is_a_scene() -> None:
+    garden = Path(__file__).parents[1] / "scenes" / "garden.toml"
+    _one_line(gaitlab("creatures", "--keys", garden), "garden.toml: a scene file; give a creature")

@@ -90,14 +90,16 @@ def read_normative(path: str | os.PathLike[str]) -> Curves:
     if len(raw) > MAX_CSV_BYTES:
         raise InputError(f"{path}: over {MAX_CSV_BYTES // 2**20} MiB; a normative curve file is a few KiB")
     try:
-        text = raw.decode("utf-8-sig")  # -sig: a spreadsheet's byte-order mark
-        if "\x00" in text:
+        if b"\x00" in raw:
             raise ValueError("it holds NUL bytes")
+        try:
+            text = raw.decode("utf-8-sig")  # -sig: a spreadsheet's byte-order mark
+        except UnicodeDecodeError:
+            text = raw.decode("cp1252", errors="replace")  # as a spreadsheet on Windows saves it
         rows = [r for r in csv.reader(io.StringIO(text, newline="")) if r and not r[0].lstrip().startswith("#")]
-    except (UnicodeDecodeError, ValueError, csv.Error) as exc:
-        why = "bytes that are not UTF-8 text" if isinstance(exc, UnicodeDecodeError) else str(exc).split(" - ")[0]
-        raise InputError(f"{path}: not a CSV text file ({why[:80]}); a normative curve file is UTF-8 text: "
-                         "phase,JOINT_mean,JOINT_sd,...") from None
+    except (ValueError, csv.Error) as exc:
+        raise InputError(f"{path}: not a CSV text file ({str(exc).split(' - ')[0][:80]}); a normative curve file is "
+                         "text: phase,JOINT_mean,JOINT_sd,...") from None
     if len(rows) < 3:
         raise InputError(f"{path}: expected a header and rows: phase,JOINT_mean,JOINT_sd,... (JOINT: "
                          f"{', '.join(JOINTS)})")

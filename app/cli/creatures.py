@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import argparse
 
+from ..errors import GaitlabError
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     parser = sub.add_parser("creatures", help="list preset creatures and gaits",
@@ -31,7 +33,11 @@ def run(args: argparse.Namespace) -> int:
     if args.keys is not None:  # read before anything is printed: a bad name is one line, not a listing and then an error
         from ..rigged import is_model_path
         from ..rigged.creature import model_creature
+        from .inputs import is_scene
 
+        if is_scene(args.keys):
+            raise GaitlabError(f"--keys {args.keys}: a scene file; give a creature (a preset name, creature .toml or "
+                               "rigged model)")
         keyed = model_creature(args.keys) if is_model_path(args.keys) else load_creature(args.keys)
     print("Creatures (gaitlab render NAME):")
     found = []

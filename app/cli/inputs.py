@@ -84,16 +84,15 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
     if base_overrides:
         for key in base_overrides:
             _not_the_model_s(name, key, f"{origin} {key}")
+        _one_of_each_pair(base_overrides, f"{origin} ({spec.name}): ")
         spec = spec.with_overrides(base_overrides, origin=origin)
     overrides = creature_changes(args)
     for text in args.overrides:
         key, value = parse_override(text, spec)
         _not_the_model_s(name, key, f"--set {text}")
         overrides[key] = value
-    for pair, what in ((("gait.duty_factor", "gait.bias"), "the duty factor, or the bias that sets it"),
-                       (("gait.frequency", "gait.frames_per_cycle"), "the timing as a frequency or in frames")):
-        if all(key in overrides for key in pair):
-            raise GaitlabError(f"{pair[0]} and {pair[1]} both given: give one ({what})")
+    flags = {"gait.frames_per_cycle": "--frames-per-cycle"} if args.frames_per_cycle is not None else {}
+    _one_of_each_pair(overrides, "", flags)
     if overrides:  # a problem names the options given (and, in a scene, the creature)
         given = [f"--gait {args.gait}"] if args.gait is not None else []
         given += [f"--frames-per-cycle {args.frames_per_cycle:g}"] if args.frames_per_cycle is not None else []
@@ -117,6 +116,17 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
     if is_model_path(name) and not getattr(args, "quiet", False):
         _tell_model_notes(args, name)
     return spec
+
+
+def _one_of_each_pair(overrides: dict[str, object], where: str, flags: dict[str, str] | None = None) -> None:
+    """Refuse both keys of a pair that set one thing (the later would silently win);
+    ``flags`` names the command-line options some keys came from."""
+    said = flags or {}
+    for pair, what in ((("gait.duty_factor", "gait.bias"), "the duty factor, or the bias that sets it"),
+                       (("gait.frequency", "gait.frames_per_cycle"), "the timing as a frequency or in frames")):
+        if all(key in overrides for key in pair):
+            first, second = (said.get(key, key) for key in pair)
+            raise GaitlabError(f"{where}{first} and {second} both given: give one ({what})")
 
 
 def _tell_model_notes(args: argparse.Namespace, model: str) -> None:

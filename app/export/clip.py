@@ -51,6 +51,18 @@ def file_name_part(name: str) -> str:
     return safe[:FILE_NAME_PART]
 
 
+def _unique(names: list[str]) -> list[str]:
+    """``names`` with a second of a name made NAME-2 (a third NAME-3, ...)."""
+    out: list[str] = []
+    for name in names:
+        candidate, count = name, 1
+        while candidate in out:
+            count += 1
+            candidate = f"{name}-{count}"
+        out.append(candidate)
+    return out
+
+
 def bvh_paths(output: str | os.PathLike[str], cast: Cast) -> list[Path]:
     """Where each creature's BVH goes: ``output`` itself for one creature; for several,
     ``STEM-NAME.bvh`` beside it (``STEM-NAME-2.bvh`` for a second of the same name; the
@@ -58,13 +70,14 @@ def bvh_paths(output: str | os.PathLike[str], cast: Cast) -> list[Path]:
     output = Path(output)
     if len(cast) == 1:
         return [output]
-    seen: dict[str, int] = {}
-    paths = []
+    paths: list[Path] = []
     for actor in cast:
         name = file_name_part(actor.spec.name)
-        seen[name] = seen.get(name, 0) + 1
-        suffix = name + (f"-{seen[name]}" if seen[name] > 1 else "")
-        paths.append(output.with_name(f"{output.stem}-{suffix}{output.suffix}"))
+        suffix, count = name, 1
+        while (path := output.with_name(f"{output.stem}-{suffix}{output.suffix}")) in paths:
+            count += 1  # a second dog, or a dog after one named dog-2
+            suffix = f"{name}-{count}"
+        paths.append(path)
     return paths
 
 
@@ -119,7 +132,7 @@ def export_cast(cast: Cast, output: str | os.PathLike[str], fps: float = 30.0, s
     # A mesh-carrying file lays its skeletons out as their bodies are (so they skin as drawn).
     clips: list[SkeletonClip] = [skeleton_clip(m, None if fmt == "bvh" else export_layout(m)) for m in motions]
     seconds_out = (clips[0].frame_count - int(loop)) / fps  # a looped clip's closing frame adds no time
-    names = [p.stem.removeprefix(Path(output).stem + "-") for p in bvh_paths(output, cast)]
+    names = _unique([actor.spec.name for actor in cast])  # the skeletons' names in one .glb or USD stage
     if fmt == "bvh":
         paths = bvh_paths(output, cast)
         texts = [bvh_text(c) for c in clips]

@@ -67,16 +67,17 @@ def _text_or_table(value: Any, key: str, where: str) -> str:
                 if not pairs_ok:
                     raise WorldError(f"{where}: {key}.points = {shown(v)}: expected [[x, z], [x, z], ...], pairs "
                                      "of numbers (metres)")
-                parts += [f"{float(c):g}" for pt in v for c in pt]
+                parts += [_exact(c) for pt in v for c in pt]
             elif k == "closed":
                 if not isinstance(v, bool):
                     raise WorldError(f"{where}: {key}.closed = {shown(v)}: expected true or false")
                 if v:
                     parts.append("closed")
-            elif _is_number(v) or (isinstance(v, str) and v and not any(c in v for c in ":,=")):
-                parts.append(f"{k}={v:g}" if _is_number(v) else f"{k}={v}")
+            elif _is_number(v) or (isinstance(v, str) and v and "," not in v):  # (a comma would split the text)
+                parts.append(f"{k}={_exact(v)}" if _is_number(v) else f"{k}={v}")
             else:
-                raise WorldError(f"{where}: {key}.{k} = {shown(v)}: expected a number, or a single word")
+                raise WorldError(f"{where}: {key}.{k} = {shown(v)}: expected a number, or a word or file name "
+                                 "without commas")
         return f"{value['kind']}" + (":" + ",".join(parts) if parts else "")
     raise WorldError(f"{where}: {key} = {shown(value)}: expected a text like \"circle:r=3\" or a table with kind")
 
@@ -84,6 +85,11 @@ def _text_or_table(value: Any, key: str, where: str) -> str:
 def _is_number(value: Any) -> bool:
     """An int or float from TOML (not a bool, which Python counts as an int)."""
     return isinstance(value, (int, float)) and not isinstance(value, bool)
+
+
+def _exact(number: float) -> str:
+    """A number as text that reads back as the same number (an int as written)."""
+    return str(number) if isinstance(number, int) else repr(float(number))
 
 
 MAX_SCENE_CREATURES = 256
