@@ -228,6 +228,14 @@ def test_compare_json_against_the_bundled_norms(tmp_path) -> None:
     assert all(np.isfinite(v) for v in data["rms_deg"].values())
 
 
+def test_compare_averages_the_cycles_asked() -> None:
+    """--cycles 6 averaged 5, and --cycles 1 found no whole stride."""
+    for cycles, shown in (("1", "(1 cycle)"), ("6", "(6 cycles)")):
+        result = gaitlab("compare", "human", "--cycles", cycles)
+        assert result.returncode == 0, result.stderr
+        assert result.stdout.splitlines()[0].endswith(shown), result.stdout
+
+
 def test_compare_asks_for_a_reference_for_animals_that_are_not_bipeds() -> None:
     """The bundled curves are a person's walk: a spider against them read knee -142 degrees."""
     result = gaitlab("compare", "spider")

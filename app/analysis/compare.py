@@ -181,8 +181,11 @@ def format_comparison(c: Comparison) -> str:
     def show(v: float | None) -> str:
         return "-" if v is None else f"{v:7.1f}"
 
-    lines = [f"gait       {c.gait.name} ({c.gait.cycles} cycles)",
-             f"reference  {c.reference.name}" + (f" ({c.reference.cycles} cycles)" if c.reference.cycles else ""),
+    def count(n: int) -> str:
+        return f" ({n} cycle{'' if n == 1 else 's'})"
+
+    lines = [f"gait       {c.gait.name}{count(c.gait.cycles)}",
+             f"reference  {c.reference.name}" + (count(c.reference.cycles) if c.reference.cycles else ""),
              "",
              "joint     RMS difference (deg)"]
     lines += [f"{joint:<9} {value:6.1f}" for joint, value in c.rms.items()]

@@ -104,8 +104,9 @@ def run(args: argparse.Namespace) -> int:
         raise GaitlabError(f"--leg {leg!r}: the {actor.spec.name} has feet {', '.join(rig.leg_names)}")
     reference = _reference(args, leg)
     fps = float(max(120, math.ceil(200 * rig.gait.frequency)))
-    # A cycle more than asked, to find whole strides in (at least 2.25: a strike at the very start is not seen).
-    motion, _ = clip_motion(rig, fps, cycles=max(args.cycles + 1.0, 2.25), world=actor.world)
+    # A cycle and a half more than asked, so that many whole strides are found (a strike at the very start is not
+    # seen, and the last needs its next).
+    motion, _ = clip_motion(rig, fps, cycles=max(args.cycles + 1.5, 2.25), world=actor.world)
     gait = leg_curves(motion_legs(motion), leg, contact_fraction=rig.gait.duty_factor)
     gait = type(gait)(name=f"{actor.spec.name} {actor.spec.gait.preset}, {leg}", mean=gait.mean, sd=gait.sd,
                       cycles=gait.cycles, toe_off=gait.toe_off)
