@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 from .angles import JOINTS, SAMPLES, cycle_curves, rms
 from .bvh import InputError
 from .limbs import Legs
+from .sources import check_columns_once
 
 MAX_CSV_BYTES = 4 * 2**20
 GRID = np.linspace(0.0, 100.0, SAMPLES)
@@ -104,10 +105,7 @@ def read_normative(path: str | os.PathLike[str]) -> Curves:
         raise InputError(f"{path}: expected a header and rows: phase,JOINT_mean,JOINT_sd,... (JOINT: "
                          f"{', '.join(JOINTS)})")
     header = [h.strip() for h in rows[0]]
-    twice = [h for h in dict.fromkeys(header) if h and header.count(h) > 1]  # (unnamed columns are not read)
-    if twice:
-        raise InputError(f"{path}: column {twice[0][:40]!r} appears {header.count(twice[0])} times in the header; "
-                         "give each column once")
+    check_columns_once(header, path)
     joints = [j for j in JOINTS if f"{j}_mean" in header and f"{j}_sd" in header]
     if "phase" not in header or not joints:
         shown = ", ".join(repr(h[:20]) for h in header[:8])

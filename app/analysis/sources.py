@@ -42,6 +42,16 @@ def _shown(text: str, limit: int = 40) -> str:
     return repr(text if len(text) <= limit else text[:limit] + "...")
 
 
+def check_columns_once(header: list[str], where: str) -> None:
+    """Refuse a CSV header naming a column twice (one of them would be silently
+    ignored); unnamed columns are not read, so they may repeat. ``where``: the message's
+    file (and line) prefix."""
+    twice = [h for h in dict.fromkeys(header) if h and header.count(h) > 1]
+    if twice:
+        raise InputError(f"{where}: column {_shown(twice[0])} appears {header.count(twice[0])} times in the header; "
+                         "give each column once")
+
+
 @dataclass(frozen=True)
 class FootMap:
     """Which joints stand for each foot: name -> (heel/ankle joint, toe joint or None)."""
@@ -316,10 +326,7 @@ def tracks_from_csv(path: str, units: Units = "m", up: UpAxis = "y") -> tuple[Fo
     header = [h.strip() for h in rows[0]]
     if "time" not in header:
         raise InputError(f"{path}:1: missing column 'time' (seconds); the header is {','.join(header)}")
-    twice = [h for h in dict.fromkeys(header) if h and header.count(h) > 1]
-    if twice:
-        raise InputError(f"{path}:1: column {_shown(twice[0])} appears {header.count(twice[0])} times in the header; "
-                         "give each column once")
+    check_columns_once(header, f"{path}:1")
     feet = list(dict.fromkeys(h[:-2] for h in header if h.endswith(("_x", "_y", "_z"))
                               and not h[:-2].endswith("_toe") and h[:-2] != "body"))
     if not feet:

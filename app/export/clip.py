@@ -70,15 +70,8 @@ def bvh_paths(output: str | os.PathLike[str], cast: Cast) -> list[Path]:
     output = Path(output)
     if len(cast) == 1:
         return [output]
-    paths: list[Path] = []
-    for actor in cast:
-        name = file_name_part(actor.spec.name)
-        suffix, count = name, 1
-        while (path := output.with_name(f"{output.stem}-{suffix}{output.suffix}")) in paths:
-            count += 1  # a second dog, or a dog after one named dog-2
-            suffix = f"{name}-{count}"
-        paths.append(path)
-    return paths
+    names = _unique([file_name_part(actor.spec.name) for actor in cast])  # a second dog, a dog after one named dog-2
+    return [output.with_name(f"{output.stem}-{name}{output.suffix}") for name in names]
 
 
 def load_model_joints(path: str) -> tuple[str, ...]:
