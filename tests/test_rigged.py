@@ -670,10 +670,10 @@ def test_a_model_whose_texture_file_is_missing_loads_plain_and_says_so(tmp_path:
     assert np.ptp(loaded.colors, axis=0).max() == 0.0  # one plain colour (the fox's texture has many)
     (note,) = loaded.notes
     assert "its texture fur.png is missing" in note and str(tmp_path / "fur.png") in note
-    result = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120", "--seconds", "0.2")
+    result = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120")
     assert result.returncode == 0, result.stderr
     assert f"note: {model}: its texture fur.png is missing" in result.stderr
-    quiet = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120", "--seconds", "0.2", "-q")
+    quiet = gaitlab("render", model, "-o", tmp_path / "fox.png", "--size", "160x120", "-q")
     assert quiet.returncode == 0 and quiet.stderr == "", quiet.stderr
     state = ViewerState(load_creature("dog"))
     assert state.load(str(model)) and "note: its texture fur.png is missing" in state.status

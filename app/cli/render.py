@@ -146,6 +146,8 @@ def run(args: argparse.Namespace) -> int:
         if value is not None and fmt != wants:
             raise GaitlabError(f"{option} {value} sets a .{wants}'s quality, and {output} is a .{fmt}; drop it or "
                                f"write a .{wants}")
+    if fmt == "png":
+        _refuse_clip_options(args, output)
     if args.side_colors and args.body != "parts":
         raise GaitlabError("--side-colors colours the parts' legs and arms by side: give it with --body parts")
     cast = load_cast(args)
@@ -174,6 +176,18 @@ def run(args: argparse.Namespace) -> int:
             print(f"wrote {result.path}: {result.frames} frames, {result.seconds:.2f} s at {fps:g} fps "
                   f"({result.cycles:.2f} cycles of {what}), {w}x{h}, {size_kib:.0f} KiB")
     return 0
+
+
+def _refuse_clip_options(args: argparse.Namespace, output: Path) -> None:
+    """A PNG is one frame: a clip's length means nothing there, nor does its frame rate
+    (except as the sampling of --arcs, drawn over the cycle up to the frame)."""
+    given = [("--seconds", args.seconds, "length"), ("--cycles", args.cycles, "length")]
+    if not args.arcs:
+        given.append(("--fps", args.fps, "frame rate"))
+    for option, value, what in given:
+        if value is not None:
+            raise GaitlabError(f"{option} {value:g} sets a clip's {what}, and {output} is one frame: drop it "
+                               "(--time T picks the frame) or write a .gif or .mp4")
 
 
 def _and(names: list[str]) -> str:
