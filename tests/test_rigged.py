@@ -596,6 +596,22 @@ def test_a_model_s_neck_and_tail_turn_as_the_creature_s() -> None:
     assert np.ptp(tip, axis=0).max() > 0.02
 
 
+def test_creatures_keys_reads_a_model_through_its_rig_map(tmp_path) -> None:
+    """``creatures --keys MODEL.glb --rig MAP.toml`` reads the legs as render would (the map
+    was not an option there, so a model whose names do not say could not be listed)."""
+    from cli_runner import gaitlab
+
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[legs]\nLH = ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017"]\n')
+    result = gaitlab("creatures", "--keys", MODELS / "Fox.glb", "--rig", bad)
+    assert result.returncode == 2 and "bad.toml" in result.stderr and "in pairs" in result.stderr, result.stderr
+    assert result.stdout == ""  # nothing listed before the error
+    result = gaitlab("creatures", "--keys", MODELS / "Fox.glb")
+    assert result.returncode == 0 and "gait.phases.RH" in result.stdout, result.stderr
+    result = gaitlab("creatures", "--rig", bad)
+    assert result.returncode == 2 and "give --keys" in result.stderr
+
+
 def test_a_rig_map_may_name_the_neck_and_tail() -> None:
     """``[neck] joints = [...]`` and ``[tail] joints = [...]`` name them (a model whose
     names do not say); a map that names a joint the model has not, or gives them another

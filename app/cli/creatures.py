@@ -13,7 +13,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                             description="List the preset creatures, gaits and example scenes, one line each.")
     parser.add_argument("--keys", nargs="?", const="dog", metavar="CREATURE",
                         help="also list every key a creature file can set, with its legs and feet named as "
-                             "CREATURE's (a preset or .toml; default: dog)")
+                             "CREATURE's (a preset, .toml or rigged model .glb/.gltf; default: dog)")
+    parser.add_argument("--rig", metavar="MAP.toml",
+                        help="with --keys MODEL.glb: which of the model's joints are its legs, when their names do "
+                             "not say (as for render)")
 
 
 def rows(items: list[tuple[str, str]]) -> None:
@@ -30,15 +33,18 @@ def run(args: argparse.Namespace) -> int:
     from ..worlds import scene_description
 
     keyed = None
+    if args.rig is not None and args.keys is None:
+        raise GaitlabError(f"--rig {args.rig}: maps a rigged model's legs for --keys MODEL.glb; give --keys")
     if args.keys is not None:  # read before anything is printed: a bad name is one line, not a listing and then an error
         from ..rigged import is_model_path
-        from ..rigged.creature import model_creature
-        from .inputs import is_scene
+        from .inputs import is_scene, named_creature, tell_model_notes
 
         if is_scene(args.keys):
             raise GaitlabError(f"--keys {args.keys}: a scene file; give a creature (a preset name, creature .toml or "
                                "rigged model)")
-        keyed = model_creature(args.keys) if is_model_path(args.keys) else load_creature(args.keys)
+        keyed = named_creature(args, args.keys)
+        if is_model_path(args.keys):
+            tell_model_notes(args, args.keys)
     print("Creatures (gaitlab render NAME):")
     found = []
     for name in preset_creature_names():

@@ -69,18 +69,10 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
     """The creature named on the command line (or in a scene) with the scene's settings,
     then --gait, --frames-per-cycle, --set and --style applied."""
     from ..rigged import is_model_path
-    from ..rigged.creature import model_creature
-    from ..spec import load_creature, parse_override
+    from ..spec import parse_override
 
     name = creature or args.creature
-    rig_map = getattr(args, "rig", None)
-    if rig_map is not None and not is_model_path(name):
-        raise GaitlabError(f"--rig {rig_map}: names a rigged model's legs; give a .glb or .gltf, not {name!r}")
-    if is_model_path(name):
-        from ..rigged.loaded import use_rig_map
-
-        use_rig_map(name, rig_map or "")  # this command's map, or none (names decide)
-    spec = model_creature(name) if is_model_path(name) else load_creature(name)
+    spec = named_creature(args, name)
     if base_overrides:
         for key in base_overrides:
             _not_the_model_s(name, key, f"{origin} {key}")
@@ -114,8 +106,26 @@ def load_creature_args(args: argparse.Namespace, creature: str | None = None,
             print(f"note: --style {style} with --speed: the speed sets the stride; the style's key poses apply",
                   file=sys.stderr)
     if is_model_path(name) and not getattr(args, "quiet", False):
-        _tell_model_notes(args, name)
+        tell_model_notes(args, name)
     return spec
+
+
+def named_creature(args: argparse.Namespace, name: str) -> CreatureSpec:
+    """The creature ``name`` gives as it stands: a preset, a creature .toml, or a rigged
+    model driven through ``--rig``'s map (or its joints' names)."""
+    from ..rigged import is_model_path
+    from ..rigged.creature import model_creature
+    from ..spec import load_creature
+
+    rig_map = getattr(args, "rig", None)
+    if rig_map is not None and not is_model_path(name):
+        raise GaitlabError(f"--rig {rig_map}: names a rigged model's legs; give a .glb or .gltf, not {name!r}")
+    if not is_model_path(name):
+        return load_creature(name)
+    from ..rigged.loaded import use_rig_map
+
+    use_rig_map(name, rig_map or "")  # this command's map, or none (names decide)
+    return model_creature(name)
 
 
 def _one_of_each_pair(overrides: dict[str, object], where: str, flags: dict[str, str] | None = None) -> None:
@@ -129,7 +139,7 @@ def _one_of_each_pair(overrides: dict[str, object], where: str, flags: dict[str,
             raise GaitlabError(f"{where}{first} and {second} both given: give one ({what})")
 
 
-def _tell_model_notes(args: argparse.Namespace, model: str) -> None:
+def tell_model_notes(args: argparse.Namespace, model: str) -> None:
     """Print what the rigged model at ``model`` could be read only in part, once a command
     (a scene may hold the model several times)."""
     from ..rigged.loaded import model_notes
