@@ -379,6 +379,12 @@ def test_a_rig_map_names_the_legs_of_a_model_whose_names_do_not_say(tmp_path) ->
         'LH = ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017"]\n'
         'RH = ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021"]\n'
         '[arms]\nL = ["b_LeftUpperArm_09", "b_LeftForeArm_010", "b_LeftHand_011"]\n': "is for a biped",
+        # left and right swapped: driven, the legs crossed under the body
+        '[legs]\nLF = ["b_RightUpperArm_06", "b_RightForeArm_07", "b_RightHand_08"]\n'
+        'RF = ["b_LeftUpperArm_09", "b_LeftForeArm_010", "b_LeftHand_011"]\n'
+        'LH = ["b_LeftLeg01_015", "b_LeftLeg02_016", "b_LeftFoot01_017"]\n'
+        'RH = ["b_RightLeg01_019", "b_RightLeg02_020", "b_RightFoot01_021"]\n':
+            "legs.LF ('b_RightUpperArm_06') is on the model's right and legs.RF ('b_LeftUpperArm_09') on its left",
     }
     for text, expected in cases.items():
         bad = tmp_path / "bad.toml"
@@ -398,6 +404,8 @@ def test_a_rig_map_names_the_legs_of_a_model_whose_names_do_not_say(tmp_path) ->
     assert mapped.arms == named.arms and mapped.chains == named.chains
     with pytest.raises(RigError, match="man.toml: arms.L: give 3 joint names"):
         legs_from_map(man, {"legs": legs, "arms": {"L": arms["L"][:2], "R": arms["R"]}}, "man.toml")
+    with pytest.raises(RigError, match="man.toml: arms.L .* is on the model's right .* swap their joint lists"):
+        legs_from_map(man, {"legs": legs, "arms": {"L": arms["R"], "R": arms["L"]}}, "man.toml")
     # A later command without --rig goes by the joint names again.
     assert gaitlab("render", MODELS / "Fox.glb", "--time", "0.5", "-o", tmp_path / "again.png",
                    "--size", "160x120").returncode == 0

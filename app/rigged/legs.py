@@ -307,6 +307,9 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
     if len(chains) // 2 not in (1, 2):
         raise RigError(f"{where}: {len(chains)} legs; a biped (2) or a quadruped (4) is driven")
     pairs = tuple((chains[k], chains[k + 1]) for k in range(0, len(chains), 2))
+    keys = list(table)
+    for k, (left, right) in enumerate(pairs):
+        _left_is_left(model, left, right, f"legs.{keys[2 * k]}", f"legs.{keys[2 * k + 1]}", where)
     arms: tuple[LegChain, ...] = ()
     if "arms" in mapping:
         if not isinstance(mapping["arms"], dict) or len(pairs) != 1:
@@ -314,6 +317,7 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
         arms = tuple(_mapped_chains(model, mapping["arms"], "arms", 3, "upper arm, forearm and wrist", where, exact=True))
         if [a.side for a in arms] != ["L", "R"]:
             raise RigError(f"{where}: [arms] lists the left arm (L) then the right (R)")
+        _left_is_left(model, arms[0], arms[1], "arms.L", "arms.R", where)
     neck, tail = (_mapped_appendage(model, mapping, part, where) for part in ("neck", "tail"))
     owner: dict[int, str] = {}  # each joint in one chain only (a leg listed twice was a baffling body size)
     labelled = [(f"legs.{key}", c.joints) for key, c in zip(table, chains)]
@@ -326,6 +330,18 @@ def legs_from_map(model: RiggedModel, mapping: dict, where: str) -> ModelLegs:
                                "belongs to one leg, arm, neck or tail")
             owner[j] = label
     return ModelLegs(pairs=pairs, arms_as_legs=False, arms=arms, neck=neck, tail=tail)
+
+
+def _left_is_left(model: RiggedModel, left: LegChain, right: LegChain, left_key: str, right_key: str,
+                  where: str) -> None:
+    """Refuse a pair whose left chain stands on the model's right (+x is a model's left as
+    it faces +z at rest, as glTF models do): driven, the legs would cross under the body."""
+    x = model.rest_points[:, 0]
+    left_x, right_x = float(np.mean(x[list(left.joints)])), float(np.mean(x[list(right.joints)]))
+    if left_x < right_x:
+        raise RigError(f"{where}: {left_key} ({model.names[left.joints[0]]!r}) is on the model's right and "
+                       f"{right_key} ({model.names[right.joints[0]]!r}) on its left (+x is a model's left as it "
+                       f"faces +z); swap their joint lists")
 
 
 def _mapped_appendage(model: RiggedModel, mapping: dict, part: str, where: str) -> tuple[int, ...]:
