@@ -102,6 +102,19 @@ def test_a_wall_and_a_far_away_mesh_are_refused_as_terrain(tmp_path: Path) -> No
     assert result.returncode == 0 and not result.stderr, result.stderr  # the finest grid it allows
 
 
+def test_a_mesh_of_large_triangles_stacked_deep_is_refused_before_the_work(tmp_path: Path) -> None:
+    """6,000 triangles each over the whole ground: ~390 million point tests (half an hour);
+    refused at once, naming the count and the limit. Two layers (a bridge) are fine."""
+    layers = 6000
+    lines = [f"v {x} {h} {z}" for h in range(layers) for x, z in ((0, 0), (20, 0), (0, 20))]
+    lines += [f"f {3 * k + 1} {3 * k + 2} {3 * k + 3}" for k in range(layers)]
+    (tmp_path / "deep.obj").write_text("\n".join(lines) + "\n")
+    _one_line(gaitlab("render", "dog", "--terrain", f"mesh:file={tmp_path / 'deep.obj'}", *RENDER, "-o",
+                      tmp_path / "o.png"), "deep.obj: laying its triangles on the grid takes",
+              "at most 268,435,456", "give a coarser cell=")
+    assert not (tmp_path / "o.png").exists()
+
+
 @pytest.mark.parametrize("text", ["ply\nend_header\n", "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
                                   "property float x\nend_header\n"])
 def test_a_damaged_mesh_says_so_in_words_not_an_exception_name(tmp_path: Path, text: str) -> None:
