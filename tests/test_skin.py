@@ -176,33 +176,44 @@ def test_a_body_depends_on_its_shape_not_on_the_gait_it_walks() -> None:
     assert np.array_equal(a.positions, b.positions) and np.array_equal(a.bind, b.bind)
 
 
-def test_an_arm_joins_the_trunk_without_a_web() -> None:
-    """Parts of one group blend by the blend width; an arm (its own group) meets the trunk
-    by a narrower one: two capsules 1.5 cm apart merge into one surface between them in one
-    group, and leave the gap open in two (a hanging arm used to be webbed to the trunk,
-    and the web folded, lit as a silhouette, as the arm swung)."""
+def test_limbs_join_the_trunk_but_not_each_other() -> None:
+    """Parts of one limb or of the trunk blend by the blend width, and so does a leg with
+    the trunk (a hip's fillet); a leg meets another leg, and an arm anything, by a narrower
+    one. A capsule 1.5 cm from another merges with it across the gap when both are the
+    trunk's or a leg joins the trunk, and leaves the gap open between two legs or an arm
+    and the trunk (a spider's neighbouring legs were joined by a web that stretched into
+    an H as they moved apart; a hanging arm's web folded as it swung)."""
     from app.skin.sdf import union_on_grid
 
     trunk = np.array([[0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.1, 0.1]])
-    arm = np.array([[0.135, 0.0, 0.0, 0.135, 1.0, 0.0, 0.02, 0.02]])  # 1.5 cm from the trunk's surface
-    capsules = np.concatenate([trunk, arm])
+    limb = np.array([[0.135, 0.0, 0.0, 0.135, 1.0, 0.0, 0.02, 0.02]])  # 1.5 cm from the trunk's surface
+    capsules = np.concatenate([trunk, limb])
     axes = (np.array([0.1075]), np.array([0.5]), np.array([0.0]))  # the gap's middle
     no_ellipsoids = np.zeros((0, 15))
-    one = union_on_grid(axes, capsules, no_ellipsoids, 0.03)
-    two = union_on_grid(axes, capsules, no_ellipsoids, 0.03, groups=np.array([0, 1]), group_blend=0.009)
-    assert one[0, 0, 0] < 0.0 < two[0, 0, 0]
+
+    def gap(legs: list[int], arms: list[int]) -> float:
+        return float(union_on_grid(axes, capsules, no_ellipsoids, 0.03, np.array(legs), np.array(arms), 0.009)[0, 0, 0])
+
+    assert float(union_on_grid(axes, capsules, no_ellipsoids, 0.03)[0, 0, 0]) < 0.0  # one body
+    assert gap([0, 1], [0, 0]) < 0.0  # a leg joins the trunk
+    assert gap([1, 2], [0, 0]) > 0.0  # two legs stay apart
+    assert gap([0, 0], [0, 1]) > 0.0  # an arm stays off the trunk
+    assert gap([1, 1], [0, 0]) < 0.0  # a leg's own parts blend
 
 
-def test_a_person_s_arms_are_their_own_groups_and_a_dog_has_none() -> None:
-    from app.skin.body import _arm_groups
+def test_each_leg_and_arm_is_its_own_limb() -> None:
+    from app.skin.body import _limbs, bind_joints
 
-    for name, expected in (("human", {0, 1, 2}), ("dog", None)):
+    for name, legs, arms in (("human", {0, 1, 2}, {0, 1, 2}), ("dog", {0, 1, 2, 3, 4}, {0}),
+                             ("spider", set(range(9)), {0})):
         motion, _ = clip_motion(build_rig(load_creature(name)), 30.0, cycles=0.5)
         clip = skeleton_clip(motion)
         capsules, ellipsoids = _parts(motion)
-        from app.skin.body import bind_joints
-
         part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
                                      bind_joints(ellipsoids[:, 0:3], None, clip)])
-        groups = _arm_groups(part_joint, clip)
-        assert (None if groups is None else set(groups.tolist())) == expected
+        leg, arm = _limbs(part_joint, clip)
+        assert set(leg.tolist()) == legs and set(arm.tolist()) == arms
+        assert not np.any((leg > 0) & (arm > 0))
+        names = clip.skeleton.names
+        for k in set(legs) - {0}:  # one leg's parts all move with one leg's joints
+            assert len({names[j].split("_")[0] for j in part_joint[leg == k]}) == 1

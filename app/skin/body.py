@@ -35,7 +35,7 @@ SHADOW_FACES = 2500  # the full body's stand-in for the (soft, low-resolution) s
 FAR_FACES = 400  # ... and for an animal far from the camera (a herd's)
 SPECK_FACES = 160  # ... and for its shadow when it is a few shadow-map texels long (a big herd's)
 INFLUENCES = 4  # joints per vertex
-ARM_BLEND = 0.3  # of the blend width: how softly an arm joins the trunk (no web where it hangs close)
+LIMB_BLEND = 0.3  # of the blend width: how softly a leg joins another leg, and an arm the body (no webs)
 
 
 @dataclass(frozen=True)
@@ -117,13 +117,13 @@ def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
 
 
 def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail,
-             groups: NDArray[np.int64] | None = None
+             limbs: tuple[NDArray[np.int64], NDArray[np.int64]] | None = None
              ) -> tuple[NDArray[np.float64], NDArray[np.int64], float, Callable[[NDArray[np.float64]], NDArray]]:
     """The union's zero surface: vertices (V, 3), faces (F, 3), the blend width (m) and
     the surface's own normal at any points (N, 3) -> (N, 3) (the field's gradient,
     trilinear between grid nodes: smooth, where a simplified mesh's own normals are as
-    faceted as its triangles). ``groups`` (P,): see :func:`app.skin.sdf.union_on_grid`
-    (each arm its own)."""
+    faceted as its triangles). ``limbs``: each part's leg and arm (P,) each, see
+    :func:`app.skin.sdf.union_on_grid`."""
     from skimage.measure import marching_cubes
 
     lo = np.minimum(capsules[:, 0:3].min(axis=0) if len(capsules) else np.inf,
@@ -145,8 +145,8 @@ def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], det
     ellipsoids[:, 12:15] = np.maximum(ellipsoids[:, 12:15], 1.1 * cell)
     lo, hi = lo - 3.0 * cell - blend, hi + 3.0 * cell + blend  # a closed surface: the grid's edge is outside
     axes = tuple(np.arange(lo[k], hi[k] + cell, cell) for k in range(3))
-    volume = union_on_grid(axes, capsules, ellipsoids, blend, groups,  # type: ignore[arg-type]
-                           None if groups is None else ARM_BLEND * blend)
+    legs, arms = limbs if limbs is not None else (None, None)
+    volume = union_on_grid(axes, capsules, ellipsoids, blend, legs, arms, LIMB_BLEND * blend)  # type: ignore[arg-type]
     verts, faces, _normals, _values = marching_cubes(volume, level=0.0, spacing=(cell, cell, cell),
                                                      gradient_direction="ascent")
     gradient = np.stack(list(np.gradient(volume.astype(np.float32))), axis=0)  # (3, X, Y, Z), per cell
@@ -185,14 +185,18 @@ def _simplify(verts: NDArray[np.float64], faces: NDArray[np.int64], target: int
     return verts, faces
 
 
-def _arm_groups(part_joint: NDArray[np.int64], clip: SkeletonClip) -> NDArray[np.int64] | None:
-    """Each part's group (P,): 0 the trunk, legs and head; 1 and 2 the left and right arm
-    (shoulder to hand); None for a creature without arms."""
+def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Each part's leg and arm (P,) each: 1, 2, ... for the limb it moves with (a leg's
+    joints from the hip to the toe; an arm's from the shoulder to the hand), 0 for the
+    trunk, head and tail."""
     names = clip.skeleton.names
-    side = np.array([1 if n.startswith("L_") and n[2:] in ARM_JOINTS else 2 if n.startswith("R_") and n[2:] in ARM_JOINTS
-                     else 0 for n in names])
-    groups = side[part_joint]
-    return groups if groups.any() else None
+    foot = ("hip", "knee", "ankle", "ball", "toe")
+    sides = [n.split("_", 1) if "_" in n else (n, "") for n in names]
+    leg_names = sorted({side for side, part in sides if part in foot and side[:1] in "LR"})
+    leg = np.array([leg_names.index(side) + 1 if part in foot and side in leg_names else 0 for side, part in sides])
+    arm = np.array([1 if side == "L" and part in ARM_JOINTS else 2 if side == "R" and part in ARM_JOINTS else 0
+                    for side, part in sides])
+    return leg[part_joint], arm[part_joint]
 
 
 def _weights(verts: NDArray[np.float64], capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64],
@@ -229,7 +233,7 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     capsules, ellipsoids = _parts(motion)
     part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
                                  bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
-    verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, _arm_groups(part_joint, clip))
+    verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, _limbs(part_joint, clip))
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
                 shadow: SkinnedBody | None = None, far: SkinnedBody | None = None) -> SkinnedBody:

@@ -53,21 +53,69 @@ def smooth_union(distances: NDArray[np.float64], blend: float) -> NDArray[np.flo
 
 def union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
                   capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float,
-                  groups: NDArray[np.int64] | None = None, group_blend: float | None = None) -> NDArray[np.float32]:
+                  legs: NDArray[np.int64] | None = None, arms: NDArray[np.int64] | None = None,
+                  narrow: float | None = None) -> NDArray[np.float32]:
     """The smooth union sampled on the grid ``axes`` (x (X,), y (Y,), z (Z,) coordinates):
     (X, Y, Z) float32. Each part is evaluated only in its bounding box widened by four
     blend widths (beyond, its share of the soft minimum is under 2 % of ``blend``), and the
     soft minimum is accumulated part by part (a running minimum and rescaled sum), so
     memory stays one grid a group whatever the number of parts.
 
-    ``groups`` (P,): parts of one group (a person's arm) blend with each other by
-    ``blend`` and with other groups' by the narrower ``group_blend``: an arm hanging by
-    the trunk in the bind pose joins it at the shoulder, not by a web along its length."""
-    if groups is None or group_blend is None or len(np.unique(groups)) < 2:
+    ``legs`` and ``arms`` (P,): each part's leg or arm (1, 2, ...; 0: the trunk, head and
+    tail). A limb's own parts blend by ``blend``; a leg joins the trunk by ``blend`` too (a
+    hip's fillet) but other legs only by the ``narrow`` width, and an arm everything by
+    ``narrow``: limbs close together in the bind pose (a person's thighs, a spider's
+    neighbouring legs, an arm hanging by the trunk) stay apart instead of joined by a web
+    that skinning then stretches."""
+    count = len(capsules) + len(ellipsoids)
+    legs = np.zeros(count, np.int64) if legs is None else legs
+    arms = np.zeros(count, np.int64) if arms is None else arms
+    if narrow is None or not (legs.any() or arms.any()):
         return _union_on_grid(axes, capsules, ellipsoids, blend)
-    unions = [_union_on_grid(axes, capsules[groups[:len(capsules)] == g], ellipsoids[groups[len(capsules):] == g],
-                             blend) for g in np.unique(groups)]
-    return smooth_union(np.stack(unions), group_blend).astype(np.float32)
+
+    def parts(mask: NDArray[np.bool_]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        return capsules[mask[:len(capsules)]], ellipsoids[mask[len(capsules):]]
+
+    body = _union_on_grid(axes, *parts((legs == 0) & (arms == 0)), blend)
+    if legs.any():
+        limbs = _narrow_union(axes, [parts(legs == k) for k in np.unique(legs[legs > 0])], blend, narrow)
+        body = smooth_union(np.stack([body, limbs]), blend).astype(np.float32)
+    if arms.any():
+        unions = [body] + [_union_on_grid(axes, *parts(arms == k), blend) for k in np.unique(arms[arms > 0])]
+        body = smooth_union(np.stack(unions), narrow).astype(np.float32)
+    return body
+
+
+def _narrow_union(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+                  groups: list[tuple[NDArray[np.float64], NDArray[np.float64]]], blend: float,
+                  narrow: float) -> NDArray[np.float32]:
+    """The soft minimum by ``narrow`` of the groups' own unions (each its parts' by
+    ``blend``, worked out over the groups' own boxes only: a centipede's thirty legs cost
+    thirty small boxes, not thirty grids)."""
+    shape = tuple(len(a) for a in axes)
+    nearest = np.full(shape, np.inf, dtype=np.float32)
+    total = np.zeros(shape, dtype=np.float32)
+    for capsules, ellipsoids in groups:
+        lo = np.min([*capsules[:, 0:3] - capsules[:, 6:8].max(axis=1, keepdims=True),
+                     *capsules[:, 3:6] - capsules[:, 6:8].max(axis=1, keepdims=True),
+                     *ellipsoids[:, 0:3] - ellipsoids[:, 12:15].max(axis=1, keepdims=True)], axis=0) - 8.0 * blend
+        hi = np.max([*capsules[:, 0:3] + capsules[:, 6:8].max(axis=1, keepdims=True),
+                     *capsules[:, 3:6] + capsules[:, 6:8].max(axis=1, keepdims=True),
+                     *ellipsoids[:, 0:3] + ellipsoids[:, 12:15].max(axis=1, keepdims=True)], axis=0) + 8.0 * blend
+        box = tuple(slice(int(np.searchsorted(a, lo[k])), int(np.searchsorted(a, hi[k], side="right")))
+                    for k, a in enumerate(axes))
+        if any(b.stop <= b.start for b in box):
+            continue
+        own = _union_on_grid(tuple(a[b] for a, b in zip(axes, box)), capsules, ellipsoids, blend)  # type: ignore[arg-type]
+        m_old = nearest[box]
+        m_new = np.minimum(m_old, own)
+        scale = np.where(np.isfinite(m_old), np.exp(-(m_old - m_new) / narrow), 0.0)
+        total[box] = total[box] * scale + np.exp(-(own - m_new) / narrow)
+        nearest[box] = m_new
+    union = np.full(shape, 4.0 * blend + 1.0, dtype=np.float32)
+    inside = np.isfinite(nearest)
+    union[inside] = nearest[inside] - narrow * np.log(np.maximum(total[inside], 1e-30))
+    return union
 
 
 def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
