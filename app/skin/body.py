@@ -35,6 +35,8 @@ SHADOW_FACES = 2500  # the full body's stand-in for the (soft, low-resolution) s
 FAR_FACES = 400  # ... and for an animal far from the camera (a herd's)
 SPECK_FACES = 160  # ... and for its shadow when it is a few shadow-map texels long (a big herd's)
 INFLUENCES = 4  # joints per vertex
+ROOT_SPREAD = 3.0  # weights this much softer where a leg meets the trunk ...
+ROOT_REACH = 4.0  # ... within this many of the leg's thickest part's radii of its hip
 LIMB_BLEND = 0.3  # of the blend width: how softly a leg joins another leg, and an arm the body (no webs)
 
 
@@ -200,17 +202,48 @@ def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip) -> tuple[NDArray[n
 
 
 def _weights(verts: NDArray[np.float64], capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64],
-             part_joint: NDArray[np.int64], joint_count: int, spread: float
+             part_joint: NDArray[np.int64], joint_count: int, spread: float,
+             roots: NDArray[np.float64] | None = None, root_reach: NDArray[np.float64] | None = None
              ) -> tuple[NDArray[np.int32], NDArray[np.float32]]:
-    """Each vertex's four joints and weights (see the module docstring)."""
+    """Each vertex's four joints and weights (see the module docstring). About the limbs'
+    roots (``roots`` (H, 3): hips and shoulders; ``root_reach`` (H,) m) the weights are
+    spread ROOT_SPREAD times wider, fading out over the reach: the trunk and the top of
+    the leg share the vertices where they meet, which bend there as one (with the narrow
+    spread the thigh's vertices swung through the trunk's as a hind leg reached far back
+    on stairs, a jagged crease on the rump)."""
     d = part_distances(verts, capsules, ellipsoids)  # (P, V)
-    soft = np.exp(-(d - d.min(axis=0)) / spread)  # (P, V)
-    per_joint = np.zeros((joint_count, len(verts)))
-    np.add.at(per_joint, part_joint, soft)
-    order = np.argsort(-per_joint, axis=0)[:INFLUENCES]  # (4, V)
-    top = np.take_along_axis(per_joint, order, axis=0)
+    nearest = d.min(axis=0)
+
+    def per_joint(width: NDArray[np.float64] | float) -> NDArray[np.float64]:
+        soft = np.exp(-(d - nearest) / width)  # (P, V)
+        out = np.zeros((joint_count, len(verts)))
+        np.add.at(out, part_joint, soft)
+        return out / out.sum(axis=0, keepdims=True)
+
+    shares = per_joint(spread)
+    if roots is not None and root_reach is not None and len(roots):
+        gap = np.linalg.norm(verts[:, None, :] - roots[None, :, :], axis=-1) / np.maximum(root_reach, 1e-9)  # (V, H)
+        near_root = np.clip(1.0 - gap.min(axis=1), 0.0, 1.0) ** 2  # 1 at a root, 0 beyond its reach (V,)
+        if near_root.any():
+            shares = shares * (1.0 - near_root) + per_joint(ROOT_SPREAD * spread) * near_root
+    order = np.argsort(-shares, axis=0)[:INFLUENCES]  # (4, V)
+    top = np.take_along_axis(shares, order, axis=0)
     top /= top.sum(axis=0, keepdims=True)
     return order.T.astype(np.int32), top.T.astype(np.float32)
+
+
+def _limb_roots(capsules: NDArray[np.float64], part_joint: NDArray[np.int64], clip: SkeletonClip
+                ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Where each leg meets the trunk: its hip (or shoulder) joint in the bind pose (H, 3),
+    and how far about it the weights are shared (H,): ROOT_REACH times the thickest part
+    that moves with that joint."""
+    names = clip.skeleton.names
+    hips = [j for j, n in enumerate(names) if n.endswith("_hip")]
+    radius = np.zeros(len(names))
+    caps = part_joint[:len(capsules)]
+    np.maximum.at(radius, caps, capsules[:, 6:8].max(axis=1))
+    points = clip.world_position[0][hips]
+    return points, ROOT_REACH * radius[hips]
 
 
 def _colors(normals: NDArray[np.float64], body_color: str, countershade: float) -> NDArray[np.float32]:
@@ -234,6 +267,7 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
                                  bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
     verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, _limbs(part_joint, clip))
+    roots = _limb_roots(capsules, part_joint, clip)
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
                 shadow: SkinnedBody | None = None, far: SkinnedBody | None = None) -> SkinnedBody:
@@ -247,7 +281,7 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
         smooth = normal_at(verts)
         normals = np.where((np.sum(smooth * normals, axis=1) > 0.2)[:, None], smooth, normals)
         joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1],
-                                   0.45 * blend)
+                                   0.45 * blend, *roots)
         return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),
                            colors=_colors(normals, motion.rig.look.body_color, motion.rig.look.countershade),
                            faces=faces.astype(np.int32),
