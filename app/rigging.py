@@ -186,7 +186,8 @@ def build_rig(spec: CreatureSpec) -> Rig:
                       head_length=body.head_length, head_radius=body.head_radius,
                       head_angle=math.radians(body.head_angle), ear_length=body.ear_length,
                       tail_length=body.tail_length, tail_angle=math.radians(body.tail_angle),
-                      tail_segments=body.tail_segments, upright=body.posture == "upright")
+                      tail_segments=body.tail_segments, upright=body.posture == "upright",
+                      tail_radius=body.tail_radius)
     hip_height = float(rest_height.mean())
     rig = Rig(
         name=spec.name,

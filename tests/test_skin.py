@@ -71,13 +71,19 @@ def test_the_body_s_normals_are_its_smooth_surface_s(built) -> None:
     presets) and the large ones are smaller too."""
     import trimesh
 
-    name, motion, _, body = built
+    from app.skin.body import LIMB_BLEND, _limbs, bind_joints
+    from app.skin.sdf import limb_union
+
+    name, motion, clip, body = built
     capsules, ellipsoids = _parts(motion.frames(0))
     blend = 0.12 * float(np.median(np.concatenate([capsules[:, 6:8].ravel(), ellipsoids[:, 12:15].ravel()])))
     points, h = body.positions.astype(np.float64), 1e-4
+    part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
+                                 bind_joints(ellipsoids[:, 0:3], None, clip)])
+    legs, arms, tail = _limbs(part_joint, clip)
 
     def field(q: np.ndarray) -> np.ndarray:
-        return smooth_union(part_distances(q, capsules, ellipsoids), blend)
+        return limb_union(part_distances(q, capsules, ellipsoids), blend, legs, arms, tail, LIMB_BLEND * blend)
 
     gradient = np.stack([(field(points + h * e) - field(points - h * e)) / (2 * h) for e in np.eye(3)], axis=1)
     gradient /= np.maximum(np.linalg.norm(gradient, axis=1, keepdims=True), 1e-12)
@@ -211,12 +217,14 @@ def test_each_leg_and_arm_is_its_own_limb() -> None:
         capsules, ellipsoids = _parts(motion)
         part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
                                      bind_joints(ellipsoids[:, 0:3], None, clip)])
-        leg, arm = _limbs(part_joint, clip)
+        leg, arm, tail = _limbs(part_joint, clip)
         assert set(leg.tolist()) == legs and set(arm.tolist()) == arms
         assert not np.any((leg > 0) & (arm > 0))
         names = clip.skeleton.names
         for k in set(legs) - {0}:  # one leg's parts all move with one leg's joints
             assert len({names[j].split("_")[0] for j in part_joint[leg == k]}) == 1
+        assert all(names[j].startswith("tail") for j in part_joint[tail])
+        assert tail.sum() >= (7 if name == "dog" else 0)  # the dog's seven tail segments
 
 
 def _folds_near_hips(monkeypatch, root_spread: float) -> float:
@@ -258,3 +266,30 @@ def test_the_trunk_and_the_top_of_a_leg_share_their_vertices(monkeypatch) -> Non
     shared = _folds_near_hips(monkeypatch, skin_body.ROOT_SPREAD)
     narrow = _folds_near_hips(monkeypatch, 1.0)
     assert shared < 0.9 * narrow, (shared, narrow)
+
+
+def test_the_grid_union_is_the_limb_union_sampled() -> None:
+    """:func:`union_on_grid` (accumulated part by part, each leg over its own box) agrees
+    with :func:`limb_union` worked out at the points, near the surface (the tail's own
+    union, by the narrow blend, once left out the tail 8 cm from the trunk)."""
+    from app.skin.sdf import limb_union, union_on_grid
+
+    capsules = np.array([
+        [0.0, 0.3, -0.2, 0.0, 0.3, 0.2, 0.10, 0.12],  # trunk
+        [0.06, 0.3, 0.15, 0.07, 0.0, 0.15, 0.03, 0.02],  # left leg
+        [-0.06, 0.3, 0.15, -0.07, 0.0, 0.15, 0.03, 0.02],  # right leg, close beside it
+        [0.0, 0.3, -0.2, 0.0, 0.32, -0.35, 0.03, 0.025],  # tail, two segments
+        [0.0, 0.32, -0.35, 0.0, 0.34, -0.5, 0.025, 0.02],
+        [0.14, 0.4, 0.0, 0.15, 0.2, 0.0, 0.02, 0.02],  # an arm hanging by the trunk
+    ])
+    ellipsoids = np.zeros((0, 15))
+    legs, arms = np.array([0, 1, 2, 0, 0, 0]), np.array([0, 0, 0, 0, 0, 1])
+    tail = np.array([False, False, False, True, True, False])
+    axes = tuple(np.linspace(-0.3, 0.6, 31) for _ in range(3))
+    blend, narrow = 0.03, 0.009
+    grid = union_on_grid(axes, capsules, ellipsoids, blend, legs, arms, narrow, tail)  # type: ignore[arg-type]
+    points = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+    exact = limb_union(part_distances(points, capsules, ellipsoids), blend, legs, arms, tail, narrow)
+    near = np.abs(exact) < 0.5 * blend  # where the surface is (each part is left out beyond four blends of its box)
+    assert near.sum() > 100
+    assert np.abs(grid.ravel()[near] - exact[near]).max() < 0.05 * blend

@@ -70,6 +70,7 @@ class BodyShape:
     tail_angle: float
     tail_segments: int
     upright: bool = False  # the trunk rises from its one girdle (a human) instead of running between girdles
+    tail_radius: float | None = None  # m at the base (None: a third of the rump's radius)
 
 
 @dataclass(frozen=True)

@@ -354,7 +354,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     long_head = float(np.clip((rig.body.head_length / max(head_radius, 1e-9) - 3.5) / 1.5, 0.0, 1.0))
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
                        (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius, body_color)
-    tail_r = np.linspace(0.32 * r[0], 0.08 * r[0], tail.shape[1])
+    tail_base = 0.32 * r[0] if rig.body.tail_radius is None else rig.body.tail_radius
+    tail_r = np.linspace(tail_base, 0.25 * tail_base, tail.shape[1])
     tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], body_color)
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right

@@ -119,13 +119,13 @@ def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
 
 
 def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail,
-             limbs: tuple[NDArray[np.int64], NDArray[np.int64]] | None = None
+             limbs: tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]] | None = None
              ) -> tuple[NDArray[np.float64], NDArray[np.int64], float, Callable[[NDArray[np.float64]], NDArray]]:
     """The union's zero surface: vertices (V, 3), faces (F, 3), the blend width (m) and
     the surface's own normal at any points (N, 3) -> (N, 3) (the field's gradient,
     trilinear between grid nodes: smooth, where a simplified mesh's own normals are as
-    faceted as its triangles). ``limbs``: each part's leg and arm (P,) each, see
-    :func:`app.skin.sdf.union_on_grid`."""
+    faceted as its triangles). ``limbs``: each part's leg and arm (P,) and whether it is
+    the tail's, see :func:`app.skin.sdf.union_on_grid`."""
     from skimage.measure import marching_cubes
 
     lo = np.minimum(capsules[:, 0:3].min(axis=0) if len(capsules) else np.inf,
@@ -147,8 +147,9 @@ def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], det
     ellipsoids[:, 12:15] = np.maximum(ellipsoids[:, 12:15], 1.1 * cell)
     lo, hi = lo - 3.0 * cell - blend, hi + 3.0 * cell + blend  # a closed surface: the grid's edge is outside
     axes = tuple(np.arange(lo[k], hi[k] + cell, cell) for k in range(3))
-    legs, arms = limbs if limbs is not None else (None, None)
-    volume = union_on_grid(axes, capsules, ellipsoids, blend, legs, arms, LIMB_BLEND * blend)  # type: ignore[arg-type]
+    legs, arms, tail = limbs if limbs is not None else (None, None, None)
+    volume = union_on_grid(axes, capsules, ellipsoids, blend, legs, arms, LIMB_BLEND * blend,  # type: ignore[arg-type]
+                           tail)
     verts, faces, _normals, _values = marching_cubes(volume, level=0.0, spacing=(cell, cell, cell),
                                                      gradient_direction="ascent")
     gradient = np.stack(list(np.gradient(volume.astype(np.float32))), axis=0)  # (3, X, Y, Z), per cell
@@ -187,10 +188,11 @@ def _simplify(verts: NDArray[np.float64], faces: NDArray[np.int64], target: int
     return verts, faces
 
 
-def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip
+           ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:
     """Each part's leg and arm (P,) each: 1, 2, ... for the limb it moves with (a leg's
     joints from the hip to the toe; an arm's from the shoulder to the hand), 0 for the
-    trunk, head and tail."""
+    trunk, head and tail; and whether it is the tail's (P,)."""
     names = clip.skeleton.names
     foot = ("hip", "knee", "ankle", "ball", "toe")
     sides = [n.split("_", 1) if "_" in n else (n, "") for n in names]
@@ -198,7 +200,8 @@ def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip) -> tuple[NDArray[n
     leg = np.array([leg_names.index(side) + 1 if part in foot and side in leg_names else 0 for side, part in sides])
     arm = np.array([1 if side == "L" and part in ARM_JOINTS else 2 if side == "R" and part in ARM_JOINTS else 0
                     for side, part in sides])
-    return leg[part_joint], arm[part_joint]
+    tail = np.array([n.startswith("tail") for n in names])
+    return leg[part_joint], arm[part_joint], tail[part_joint]
 
 
 def _weights(verts: NDArray[np.float64], capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64],

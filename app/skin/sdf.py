@@ -51,10 +51,27 @@ def smooth_union(distances: NDArray[np.float64], blend: float) -> NDArray[np.flo
     return nearest - blend * np.log(np.sum(np.exp(-(distances - nearest) / blend), axis=0))
 
 
+def limb_union(distances: NDArray[np.float64], blend: float, legs: NDArray[np.int64], arms: NDArray[np.int64],
+               tail: NDArray[np.bool_], narrow: float) -> NDArray[np.float64]:
+    """The union :func:`union_on_grid` samples, at any points: (N,) from the parts'
+    distances (P, N) there, joined limb by limb as it describes."""
+    def union(mask: NDArray[np.bool_], width: float) -> NDArray[np.float64]:
+        return smooth_union(distances[mask], width) if mask.any() else np.full(distances.shape[1], np.inf)
+
+    trunk = (legs == 0) & (arms == 0)
+    joined = [union(trunk & ~tail, blend), union(trunk & tail, narrow)]
+    if legs.any():
+        joined.append(smooth_union(np.stack([union(legs == k, blend) for k in np.unique(legs[legs > 0])]), narrow))
+    body = smooth_union(np.stack([j for j in joined if np.isfinite(j).any()]), blend)
+    if arms.any():
+        body = smooth_union(np.stack([body] + [union(arms == k, blend) for k in np.unique(arms[arms > 0])]), narrow)
+    return body
+
+
 def union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
                   capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float,
                   legs: NDArray[np.int64] | None = None, arms: NDArray[np.int64] | None = None,
-                  narrow: float | None = None) -> NDArray[np.float32]:
+                  narrow: float | None = None, tail: NDArray[np.bool_] | None = None) -> NDArray[np.float32]:
     """The smooth union sampled on the grid ``axes`` (x (X,), y (Y,), z (Z,) coordinates):
     (X, Y, Z) float32. Each part is evaluated only in its bounding box widened by four
     blend widths (beyond, its share of the soft minimum is under 2 % of ``blend``), and the
@@ -66,17 +83,23 @@ def union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[
     hip's fillet) but other legs only by the ``narrow`` width, and an arm everything by
     ``narrow``: limbs close together in the bind pose (a person's thighs, a spider's
     neighbouring legs, an arm hanging by the trunk) stay apart instead of joined by a web
-    that skinning then stretches."""
+    that skinning then stretches. ``tail`` (P,): the tail's parts, which join each other
+    by ``narrow`` (a thin tail's segments, overlapping at each joint, bulged there by
+    the full blend into a string of beads) and the trunk by ``blend``."""
     count = len(capsules) + len(ellipsoids)
     legs = np.zeros(count, np.int64) if legs is None else legs
     arms = np.zeros(count, np.int64) if arms is None else arms
-    if narrow is None or not (legs.any() or arms.any()):
+    tail = np.zeros(count, bool) if tail is None else tail
+    if narrow is None or not (legs.any() or arms.any() or tail.any()):
         return _union_on_grid(axes, capsules, ellipsoids, blend)
 
     def parts(mask: NDArray[np.bool_]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         return capsules[mask[:len(capsules)]], ellipsoids[mask[len(capsules):]]
 
-    body = _union_on_grid(axes, *parts((legs == 0) & (arms == 0)), blend)
+    body = _union_on_grid(axes, *parts((legs == 0) & (arms == 0) & ~tail), blend)
+    if tail.any():
+        tail_union = _union_on_grid(axes, *parts(tail & (legs == 0) & (arms == 0)), narrow, reach=4.0 * blend)
+        body = smooth_union(np.stack([body, tail_union]), blend).astype(np.float32)
     if legs.any():
         limbs = _narrow_union(axes, [parts(legs == k) for k in np.unique(legs[legs > 0])], blend, narrow)
         body = smooth_union(np.stack([body, limbs]), blend).astype(np.float32)
@@ -119,7 +142,12 @@ def _narrow_union(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[
 
 
 def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
-                   capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float) -> NDArray[np.float32]:
+                   capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], blend: float,
+                   reach: float | None = None) -> NDArray[np.float32]:
+    """The parts' soft minimum by ``blend``, each part evaluated within ``reach`` (m;
+    default four blends) of its box: a group joined to others by a wider blend than its
+    own needs their reach; beyond every part's, a value past every reach."""
+    reach = 4.0 * blend if reach is None else reach
     xs, ys, zs = axes
     shape = (len(xs), len(ys), len(zs))
     nearest = np.full(shape, np.inf, dtype=np.float32)
@@ -129,7 +157,7 @@ def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray
     boxes += [(e[0:3] - e[12:15].max(), e[0:3] + e[12:15].max()) for e in ellipsoids]
     parts = [("c", c) for c in capsules] + [("e", e) for e in ellipsoids]
     for (lo, hi), (kind, p) in zip(boxes, parts):
-        lo, hi = lo - 4.0 * blend, hi + 4.0 * blend
+        lo, hi = lo - reach, hi + reach
         ix = slice(int(np.searchsorted(xs, lo[0])), int(np.searchsorted(xs, hi[0], side="right")))
         iy = slice(int(np.searchsorted(ys, lo[1])), int(np.searchsorted(ys, hi[1], side="right")))
         iz = slice(int(np.searchsorted(zs, lo[2])), int(np.searchsorted(zs, hi[2], side="right")))
@@ -148,6 +176,6 @@ def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray
         total[ix, iy, iz] = total[ix, iy, iz] * scale + np.exp(-(d - m_new) / blend)
         nearest[ix, iy, iz] = m_new
     inside = np.isfinite(nearest)
-    union = np.full(shape, 4.0 * blend + 1.0, dtype=np.float32)
+    union = np.full(shape, reach + 1.0, dtype=np.float32)
     union[inside] = nearest[inside] - blend * np.log(np.maximum(total[inside], 1e-30))
     return union

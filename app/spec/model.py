@@ -40,6 +40,7 @@ class BodySpec:
     tail_length: float = 0.0
     tail_angle: float = 30.0
     tail_segments: int = 6
+    tail_radius: float | None = None
     posture: Posture = "horizontal"
 
 

@@ -79,6 +79,8 @@ BODY_RULES: dict[str, Rule] = {
     "tail_length": _length("tail length (0 for none)", zero_ok=True),
     "tail_angle": _num(-90, 90, unit="deg", doc="tail droop below the body axis"),
     "tail_segments": Rule("integer", 1, 32, doc="number of tail segments"),
+    "tail_radius": _length("the tail's radius at its base, tapering to a quarter at the tip (default: a third "
+                           "of the rump's radius; a lizard's or theropod's thick muscular tail: about two thirds)"),
     "posture": Rule("choice", choices=POSTURES, doc="horizontal: the trunk runs from the hind to the fore legs; "
                     "upright: it rises from the hips (a human; one leg pair)"),
 }
