@@ -11,6 +11,10 @@ out vec4 frag_color;
 
 void main() {
     vec3 n = normalize(v_normal);
-    float lit = light_visibility(v_shadow);
+#ifdef SOFT_SELF_SHADOW
+    float lit = light_visibility_soft(v_shadow);  // offline: four taps, no stepped edges
+#else
+    float lit = light_visibility(v_shadow);  // the window: one tap (each costs there)
+#endif
     frag_color = vec4(to_display(shade(v_color, n, v_world, lit)), 1.0);
 }

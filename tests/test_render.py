@@ -275,3 +275,16 @@ def test_no_sky_band_when_the_top_of_the_view_looks_below_the_horizon() -> None:
     assert band[-1, 0] == pytest.approx(1.0) and np.all(np.diff(band[:, 0]) > 0)
     assert band[0, 1] == 0.0 and band[-1, 1] == pytest.approx(np.sin(np.radians(5.0)), abs=1e-3)
     assert band[-1, 1] < SKY_FADE
+
+
+def test_offline_renders_soften_the_creature_s_shadow_on_itself() -> None:
+    """The clip renderer compiles its shaders with SOFT_SELF_SHADOW (four taps, as the
+    ground's shadow: one stepped the edge of a head's shadow on the shoulder into a comb);
+    the window's renderer does not (each tap costs a software rasteriser)."""
+    from app.render.shaders import shader_source, with_defines
+
+    source = with_defines(shader_source("lit.frag"), ("SOFT_SELF_SHADOW",))
+    assert source.splitlines()[:2] == ["#version 330 core", "#define SOFT_SELF_SHADOW"]
+    assert "light_visibility_soft(v_shadow)" in source.split("#else")[0]
+    clip = ClipRenderer((64, 48))
+    assert clip.scene.shaders.defines == ("SOFT_SELF_SHADOW",)

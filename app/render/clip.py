@@ -34,7 +34,7 @@ class ClipRenderer:
         if antialias not in ANTIALIAS_MODES:
             raise ValueError(f"antialias {antialias!r}: choose one of {', '.join(ANTIALIAS_MODES)}")
         self.ctx = ctx or shared_headless_context()
-        self.scene = SceneRenderer(self.ctx)
+        self.scene = SceneRenderer(self.ctx, soft_self_shadow=True)
         self.target = OffscreenTarget(self.ctx, size, samples=samples if antialias == "msaa" else 0,
                                       fxaa=antialias == "fxaa", shaders=self.scene.shaders)
         self._cache: dict[int, tuple[Motion, tuple, SceneInstances]] = {}

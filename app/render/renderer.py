@@ -244,9 +244,14 @@ class SceneRenderer:
     FOG_START = 2.2  # x the creatures' bounding radius
     FOG_END = 5.0
 
-    def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary | None = None) -> None:
+    def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary | None = None,
+                 soft_self_shadow: bool = False) -> None:
+        """``soft_self_shadow``: the creatures' shadows on themselves from four taps of the
+        shadow map, as the ground's (offline rendering), not one (the window: a stepped
+        edge where the head's shadow crosses the shoulder, but each tap costs a software
+        rasteriser)."""
         self.ctx = ctx
-        self.shaders = shaders or ShaderLibrary(ctx)
+        self.shaders = shaders or ShaderLibrary(ctx, ("SOFT_SELF_SHADOW",) if soft_self_shadow else ())
         self.uniforms = Uniforms()
         self.creatures = CreaturePass(ctx, self.shaders)
         self.bodies = BodyPass(ctx, self.shaders)
