@@ -159,6 +159,7 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 
 
 _HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
+THIGH_OUT = 0.5  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
 
 
 def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Rig,
@@ -181,7 +182,13 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
     # Thigh (hind) or upper arm (fore): from just above the hip to past the femur's middle.
     # (It starts a little down the bone, so it never shows above the back.)
     top = np.where(hind, 1.85, 1.55) * r[:, 0]
-    muscle = _capsules(hip + 0.12 * (knee - hip), hip + 0.6 * (knee - hip), top, 1.1 * r[:, 0], color)
+    upper = hip + 0.12 * (knee - hip)
+    if rig.body.upright:  # a person's thigh: its flesh lies out over the femur's neck, the hip joint inside it
+        partner = joints[:, legs ^ 1, 0]  # the other hip of each pair (legs are stored left, right)
+        out = hip - partner
+        out = out / np.maximum(np.linalg.norm(out, axis=-1, keepdims=True), 1e-9)
+        upper = upper + THIGH_OUT * top[None, :, None] * out
+    muscle = _capsules(upper, hip + 0.6 * (knee - hip), top, 1.1 * r[:, 0], color)
     kinds = [leg_type(float(np.degrees(a))) for a in rig.ankle_lift[legs]]
     capsules, ellipsoids = [muscle], []
     for kind in ("plantigrade", "digitigrade", "unguligrade"):
