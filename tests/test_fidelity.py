@@ -267,3 +267,27 @@ def test_compare_refuses_bad_references_in_one_line(tmp_path, case: str, text: s
     assert result.returncode == 2
     assert expect in result.stderr and len(result.stderr.strip().splitlines()) == 1
     assert "Traceback" not in result.stderr
+
+
+def test_a_runner_leans_in_and_drives_the_elbows_back() -> None:
+    """Runners lean 5-10 degrees forward and swing their arms more back than forward, the
+    hands coming forward to about the chest (the run's forearm once pointed up ahead at
+    shoulder height, on an upright trunk)."""
+    from app.kinematics.body import RUN_LEAN
+
+    walk_rig = build_rig(load_creature("human"))
+    run_rig = build_rig(load_creature("human").with_overrides({"gait.preset": "run"}))
+    lean = {}
+    for name, rig in (("walk", walk_rig), ("run", run_rig)):
+        motion, _ = clip_motion(rig, 120.0, cycles=2.0)
+        axis = motion.spine[:, -1] - motion.spine[:, 0]
+        forward = motion.root[:, :3, 2]
+        lean[name] = float(np.degrees(np.mean(np.arctan2(np.sum(axis * forward, axis=-1), axis[:, 1]))))
+        if name == "run":
+            shoulder, elbow, hand = motion.arms[:, 0, 0], motion.arms[:, 0, 1], motion.arms[:, 0, 3]
+            upper = elbow - shoulder
+            swing = np.degrees(np.arctan2(np.sum(upper * forward, axis=-1), -upper[:, 1]))
+            assert swing.max() < 12.0 and swing.min() < -30.0  # more back than forward
+            assert np.max(hand[:, 1] - shoulder[:, 1]) < -0.2  # the hand never above the lower chest
+    assert 5.0 <= lean["run"] <= 10.0
+    assert lean["run"] - lean["walk"] == pytest.approx(np.degrees(RUN_LEAN), abs=0.5)

@@ -16,6 +16,7 @@ from .frames import UP
 from .rig import ArmShape
 
 RUN_ELBOW = np.radians(80.0)  # a runner's elbows at rest in the swing (held near 80-100 degrees)
+RUN_ARM_BACK = np.radians(15.0)  # a runner's arms swing about a line this far behind the vertical (more back than forward)
 FORWARD_BEND = 0.6  # extra elbow bend per radian of forward swing
 WRIST_FLEX = 0.15  # rad the hand turns further than the forearm
 ARM_SPREAD = 0.06  # rad the arms hang out from the body
@@ -33,7 +34,8 @@ def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.
     """Arm joints (T, 2, 4, 3): shoulder, elbow, wrist and hand tip of the left and right
     arm. centre (T, 3) the point between the shoulders; lateral (T, 3) the unit axis to
     the body's left through them; angle (T, 2) each arm's swing (rad, forward); running
-    (T,) in [0, 1]: how far the elbows bend towards a runner's :data:`RUN_ELBOW`."""
+    (T,) in [0, 1]: how far the elbows bend towards a runner's :data:`RUN_ELBOW` and the
+    swing moves back by :data:`RUN_ARM_BACK`."""
     lateral = lateral - np.sum(lateral * UP, axis=-1, keepdims=True) * UP
     lateral = lateral / np.maximum(np.linalg.norm(lateral, axis=-1, keepdims=True), 1e-12)
     forward = np.cross(lateral, UP)  # (T, 3): left x up = forward
@@ -45,8 +47,10 @@ def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.
     def direction(theta):
         return np.sin(theta)[..., None] * f - np.cos(theta)[..., None] * u + out
 
-    rest = arms.elbow + (max(RUN_ELBOW, arms.elbow) - arms.elbow) * np.asarray(running, dtype=np.float64)
-    bend = np.reshape(rest, (-1, 1)) + FORWARD_BEND * np.maximum(angle, 0.0)
+    run = np.reshape(np.asarray(running, dtype=np.float64), (-1, 1))
+    rest = arms.elbow + (max(RUN_ELBOW, arms.elbow) - arms.elbow) * run
+    angle = angle - RUN_ARM_BACK * run  # driving the elbows back, the hands coming forward only to the chest
+    bend = rest + FORWARD_BEND * np.maximum(angle, 0.0)
     elbow = shoulder + arms.upper * _unit(direction(angle))
     wrist = elbow + arms.fore * _unit(direction(angle + bend))
     hand = wrist + arms.hand * _unit(direction(angle + bend + WRIST_FLEX))

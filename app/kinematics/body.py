@@ -38,6 +38,7 @@ NOD = 0.06  # rad: a walking quadruped's neck and head bow, either way, for a ne
 NOD_DELAY = 0.15  # of a cycle after a fore foot lands: the head is lowest
 SWING = 0.12  # rad: a galloping quadruped's neck swing, either way, for a neck as long as its legs
 SWING_DELAY = 0.1  # of a cycle after the fore feet's mean touchdown: the galloping head is lowest
+RUN_LEAN = np.radians(5.0)  # rad: a runner's trunk leans this much further forward than its walk (5-10 degrees all told)
 ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
 MAX_END_SLOPE = 0.35  # the trunk's ends beyond the girdles pitch at most this much (rise over run)
 
@@ -341,12 +342,13 @@ def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float6
 
 
 def _upright_spine(rig: Rig, girdles: Girdles, clock: NDArray[np.float64],
-                   lag: Mapping[str, NDArray[np.float64]] | None) -> Spine:
+                   lag: Mapping[str, NDArray[np.float64]] | None, running: NDArray[np.float64] | None = None) -> Spine:
     """An upright trunk (a human's): straight up from its one girdle, leaning forward by
-    the key poses' torso lean; the shoulders turn against the hips (by the girdle's yaw)."""
+    the key poses' torso lean (and a runner's :data:`RUN_LEAN` more, by ``running`` (T,));
+    the shoulders turn against the hips (by the girdle's yaw)."""
     body = rig.body
     pelvis, heading, yaw = girdles.centre[:, 0], girdles.heading[:, 0], girdles.yaw[:, 0]
-    lean = rig.poses.torso_lean
+    lean = rig.poses.torso_lean + (0.0 if running is None else RUN_LEAN * running[:, None])
     axis = np.cos(lean) * UP + np.sin(lean) * heading  # (T, 3)
     fractions = (np.arange(body.segments) + 0.5) / body.segments
     segments = pelvis[:, None] + axis[:, None] * (fractions * body.length)[None, :, None]
@@ -424,13 +426,14 @@ def _equal_arc_segments(ctrl: NDArray[np.float64], ext_rear: float, ext_front: f
 
 def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64],
                   clock: NDArray[np.float64], lag: Mapping[str, NDArray[np.float64]] | None = None,
-                  flex: NDArray[np.float64] | None = None) -> Spine:
+                  flex: NDArray[np.float64] | None = None, running: NDArray[np.float64] | None = None) -> Spine:
     """The trunk, neck, head and tail for girdles placed by :func:`place_girdles` (``lag``:
     see :func:`_appendages`). ``flex`` (T,) rad arches the spine up (+) or hollows it (-):
     the tangents at its knots turn by ``flex * (0.5 - position)``, so the rear end's and
-    the front end's directions differ by ``flex``."""
+    the front end's directions differ by ``flex``. ``running`` (T,) in [0, 1]: how far an
+    upright trunk takes a runner's extra lean (:data:`RUN_LEAN`)."""
     if rig.body.upright:
-        return _upright_spine(rig, girdles, clock, lag)
+        return _upright_spine(rig, girdles, clock, lag, running)
     body = rig.body
     frames = s.shape[0]
     pos, knots, heading, yaw = _knots(rig, world, girdles, s)
