@@ -288,3 +288,27 @@ def test_offline_renders_soften_the_creature_s_shadow_on_itself() -> None:
     assert "light_visibility_soft(v_shadow)" in source.split("#else")[0]
     clip = ClipRenderer((64, 48))
     assert clip.scene.shaders.defines == ("SOFT_SELF_SHADOW",)
+
+
+def test_an_arthropod_s_antennae_reach_forward_from_an_elbow() -> None:
+    """An ant's antennae (``body.ear_length``) rise from the head, bend at an elbow and
+    reach forward, as an insect's do (they stood straight up like a mammal's ears); a
+    dog's ears still stand up."""
+    from app.render.scene import ANTENNA_SCAPE, Cap, motion_instances
+
+    for name, forward_at_least in (("ant", 0.6), ("dog", None)):
+        rig = build_rig(load_creature(name))
+        motion, _ = clip_motion(rig, 30.0, cycles=0.25)
+        caps = np.asarray(motion_instances(motion, show_joints=False).frame(0).capsules, np.float64)
+        head_dir = motion.head[0, 1] - motion.head[0, 0]
+        head_dir /= np.linalg.norm(head_dir)
+        length = rig.body.ear_length
+        segment = np.linalg.norm(caps[:, Cap.B] - caps[:, Cap.A], axis=1)
+        if forward_at_least is None:  # a mammal's ear: one piece, mostly up
+            ears = caps[np.abs(segment - length) < 1e-6]
+            assert len(ears) == 2 and np.all((ears[:, Cap.B] - ears[:, Cap.A])[:, 1] > 0.5 * length)
+            continue
+        flagella = caps[np.abs(segment - (1.0 - ANTENNA_SCAPE) * length) < 1e-6]
+        assert len(flagella) == 2
+        reach = (flagella[:, Cap.B] - flagella[:, Cap.A]) @ head_dir / ((1.0 - ANTENNA_SCAPE) * length)
+        assert np.all(reach > forward_at_least)

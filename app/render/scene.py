@@ -159,6 +159,7 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 
 
 _HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
+ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segment, rising before the elbow
 THIGH_OUT = 0.5  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
 
 
@@ -368,11 +369,20 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
     arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, arm_color)
     capsule_parts = [*leg_caps, *arm_caps, trunk, neck_c, muzzle, tail_c]
-    if ear_length > 0:
+    lag = np.zeros(frames) if ear_lag is None else np.asarray(ear_lag, dtype=np.float64)
+    c, s_ = np.cos(lag)[:, None], np.sin(lag)[:, None]  # turned back (+) or up (-) by the follow-through
+    if ear_length > 0 and rig.knee_out.all():  # an arthropod's antennae: elbowed, reaching forward
+        base = (skull + head_dir * 0.45 * head_radius + hy * 0.55 * head_radius)[:, None] \
+            + sides * hx[:, None] * 0.35 * head_radius
+        scape = _unit((0.75 * hy + 0.6 * head_dir)[:, None] + sides * hx[:, None] * 0.35)
+        elbow = base + ANTENNA_SCAPE * ear_length * scape
+        flagellum = _unit((c * (head_dir + 0.15 * hy) + s_ * (hy - 0.3 * head_dir))[:, None] + sides * hx[:, None] * 0.4)
+        tip = elbow + (1.0 - ANTENNA_SCAPE) * ear_length * flagellum
+        capsule_parts.append(_capsules(base, elbow, 0.14 * head_radius, 0.1 * head_radius, body_color))
+        capsule_parts.append(_capsules(elbow, tip, 0.1 * head_radius, 0.06 * head_radius, body_color))
+    elif ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
             + sides * hx[:, None] * 0.55 * head_radius
-        lag = np.zeros(frames) if ear_lag is None else np.asarray(ear_lag, dtype=np.float64)
-        c, s_ = np.cos(lag)[:, None], np.sin(lag)[:, None]  # turned back (+) or up (-) by the follow-through
         ear_dir = c * (hy - head_dir * 0.35) + s_ * (-head_dir - 0.35 * hy)
         ear_tip = ear_base + ear_length * _unit(ear_dir[:, None] + sides * hx[:, None] * 0.25)
         capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))

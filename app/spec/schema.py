@@ -75,7 +75,7 @@ BODY_RULES: dict[str, Rule] = {
     "head_length": _length("head length, back of the skull to the nose"),
     "head_radius": _length("head radius"),
     "head_angle": _num(-90, 90, unit="deg", doc="head pitch below the body axis"),
-    "ear_length": _length("ear length (0 for none)", zero_ok=True),
+    "ear_length": _length("ear length (0 for none; an arthropod's antennae: elbowed, reaching forward)", zero_ok=True),
     "tail_length": _length("tail length (0 for none)", zero_ok=True),
     "tail_angle": _num(-90, 90, unit="deg", doc="tail droop below the body axis"),
     "tail_segments": Rule("integer", 1, 32, doc="number of tail segments"),
