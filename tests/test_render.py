@@ -312,3 +312,22 @@ def test_an_arthropod_s_antennae_reach_forward_from_an_elbow() -> None:
         assert len(flagella) == 2
         reach = (flagella[:, Cap.B] - flagella[:, Cap.A]) @ head_dir / ((1.0 - ANTENNA_SCAPE) * length)
         assert np.all(reach > forward_at_least)
+
+
+def test_a_mammal_s_lower_leg_has_its_muscle() -> None:
+    """Below the knee a forearm (gaskin, calf) muscle, thicker than the bone, tapering into
+    the tendons over the first SHANK_MUSCLE of the lower leg (the bare bone was a stick);
+    sprawled arthropod legs have none."""
+    from app.render.scene import SHANK_MUSCLE, leg_instances
+
+    for name, expected in (("horse", 4), ("human", 2), ("spider", 0)):
+        rig = build_rig(load_creature(name))
+        motion, _ = clip_motion(rig, 30.0, cycles=0.25)
+        caps = np.asarray(leg_instances(motion.joints[:1], rig, show_joints=False).capsules[0], np.float64)
+        knee, ankle = motion.joints[0, :, 1], motion.joints[0, :, 2]
+        ends = knee + SHANK_MUSCLE * (ankle - knee)
+        found = [np.flatnonzero(np.linalg.norm(caps[:, 3:6] - end, axis=1) < 1e-5) for end in ends]
+        assert sum(len(f) for f in found) == expected, name
+        for rows in found:
+            for row in rows:
+                assert caps[row, 6] > caps[row, 7] > 0.0  # thick at the top, tapering

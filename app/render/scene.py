@@ -160,6 +160,7 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 
 _HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
 ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segment, rising before the elbow
+SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches before the tendons
 THIGH_OUT = 0.5  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
 
 
@@ -190,8 +191,13 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
         out = out / np.maximum(np.linalg.norm(out, axis=-1, keepdims=True), 1e-9)
         upper = upper + THIGH_OUT * top[None, :, None] * out
     muscle = _capsules(upper, hip + 0.6 * (knee - hip), top, 1.1 * r[:, 0], color)
+    # Forearm or gaskin (a person's calf): the lower leg's muscle, thick below the knee and
+    # tapering into the tendons above the ankle (the bare bone was a stick).
+    ankle = j[:, :, 2]
+    shank = _capsules(knee + 0.08 * (ankle - knee), knee + SHANK_MUSCLE * (ankle - knee), 1.35 * r[:, 1],
+                      r[:, 1], color)
     kinds = [leg_type(float(np.degrees(a))) for a in rig.ankle_lift[legs]]
-    capsules, ellipsoids = [muscle], []
+    capsules, ellipsoids = [muscle, shank], []
     for kind in ("plantigrade", "digitigrade", "unguligrade"):
         pick = np.array([k == kind for k in kinds])
         if not pick.any():
