@@ -331,3 +331,31 @@ def test_a_mammal_s_lower_leg_has_its_muscle() -> None:
         for rows in found:
             for row in rows:
                 assert caps[row, 6] > caps[row, 7] > 0.0  # thick at the top, tapering
+
+
+def test_a_person_s_trunk_is_wider_than_deep_with_a_shoulder_line() -> None:
+    """A person's trunk: ellipsoids along the spine, wider (across the hips, then the
+    shoulders) than deep, and a line from shoulder to shoulder (a tube of round capsules
+    read as a pill, as deep as wide, with domed shoulders); a dog keeps its round trunk."""
+    from app.render.scene import TORSO_DEPTH, TORSO_WIDTH, Cap, Ell, motion_instances
+
+    rig = build_rig(load_creature("human"))
+    motion, _ = clip_motion(rig, 30.0, cycles=0.25)
+    frame = motion_instances(motion, show_joints=False).frame(0)
+    ells = np.asarray(frame.ellipsoids, np.float64)
+    torso = ells[np.linalg.norm(ells[:, Ell.CENTRE][:, None] - motion.spine[0][None], axis=-1).min(axis=1) < 1e-6]
+    assert len(torso) == rig.body.segments
+    radii = torso[:, Ell.RADII]
+    assert np.allclose(radii[:, 0] / radii[:, 1], TORSO_WIDTH / TORSO_DEPTH)
+    across = torso[:, Ell.AXES[0]]
+    hips = motion.joints[0, 0, 0] - motion.joints[0, 1, 0]
+    assert abs(across[0] @ hips) / np.linalg.norm(hips) > 0.99  # the lowest turned with the hips
+    caps = np.asarray(frame.capsules, np.float64)
+    shoulders = motion.arms[0, :, 0]
+    line = np.flatnonzero((np.linalg.norm(caps[:, Cap.A] - shoulders[0], axis=1) < 1e-6)
+                          & (np.linalg.norm(caps[:, Cap.B] - shoulders[1], axis=1) < 1e-6))
+    assert len(line) == 1
+    dog = build_rig(load_creature("dog"))
+    dog_motion, _ = clip_motion(dog, 30.0, cycles=0.25)
+    dog_ells = np.asarray(motion_instances(dog_motion, show_joints=False).frame(0).ellipsoids, np.float64)
+    assert not np.any(np.linalg.norm(dog_ells[:, Ell.CENTRE][:, None] - dog_motion.spine[0][None], axis=-1) < 1e-6)

@@ -161,6 +161,8 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 _HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
 ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segment, rising before the elbow
 SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches before the tendons
+TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half its width and half its depth
+SHOULDER_LINE = 0.42  # of the chest's radius: the thickness of the line from shoulder to shoulder
 THIGH_OUT = 0.5  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
 
 
@@ -326,6 +328,30 @@ def leg_instances(joints: NDArray[np.float64], rig: Rig, show_joints: bool = Tru
     return SceneInstances(capsules=caps.astype(np.float32), ellipsoids=ells.astype(np.float32))
 
 
+def _upright_torso(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64],
+                   hips_across: NDArray[np.float64], left_shoulder: NDArray[np.float64],
+                   right_shoulder: NDArray[np.float64], rig: Rig, color: NDArray[np.float64]) -> list:
+    """A person's trunk: flattened ellipsoids along the spine (T, S, 3), wider than deep
+    (TORSO_WIDTH and TORSO_DEPTH of each segment's radius (S,)), each turned from the hips'
+    line (``hips_across`` (T, 3), right hip to left) to the shoulders' as it rises, and a
+    shoulder line from shoulder to shoulder (T, 3) each; ellipsoid and capsule rows. (A
+    round tube of capsules read as a pill, as deep as it was wide, with domed shoulders.)"""
+    count = spine.shape[1]
+    rise = (np.arange(count) + 0.5) / count
+    shoulders_across = left_shoulder - right_shoulder
+    across = (1.0 - rise)[None, :, None] * _unit(hips_across)[:, None] + rise[None, :, None] * _unit(shoulders_across)[:, None]
+    across = across - np.sum(across * tangent, axis=-1, keepdims=True) * tangent
+    x = _unit(across)
+    y = cross(tangent, x)
+    step = rig.body.length / count
+    radii = np.stack([TORSO_WIDTH * radius, TORSO_DEPTH * radius, np.full(count, 0.85 * step + 0.25 * radius)], axis=-1)
+    ells = np.concatenate([spine, x, y, tangent, np.broadcast_to(radii, spine.shape),
+                           np.broadcast_to(color, spine.shape)], axis=-1)
+    line = _capsules(left_shoulder[:, None], right_shoulder[:, None], SHOULDER_LINE * radius[-1],
+                     SHOULDER_LINE * radius[-1], color)
+    return [ells, line]
+
+
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
                show_joints: bool, arms: NDArray[np.float64] | None = None,
                ear_lag: NDArray[np.float64] | None = None, parts: bool = True, by_side: bool = True,
@@ -356,8 +382,12 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
                                 spine[:, -1:] + spine_tangent[:, -1:] * 0.2 * r[-1]], axis=1)
     trunk_r = np.concatenate([r[:1] * 0.8, r, r[-1:] * 0.9])
     trunk = _capsules(trunk_pts[:, :-1], trunk_pts[:, 1:], trunk_r[:-1], trunk_r[1:], body_color)
-    # A deep neck rising from the chest, narrowing to the head.
     upright = rig.body.upright  # a human: a slim neck, the skull sitting on it
+    torso: list[NDArray[np.float64]] = []
+    if upright and arms is not None and arms.shape[1] == 2 and joints.shape[1] >= 2:
+        trunk, torso = trunk[:, :0], _upright_torso(spine, spine_tangent, r, joints[:, 0, 0] - joints[:, 1, 0],
+                                                    arms[:, 0, 0], arms[:, 1, 0], rig, body_color)
+    # A deep neck rising from the chest, narrowing to the head.
     neck_r = (0.45 * head_radius, 0.4 * head_radius) if upright else (0.68 * r[-1], 0.85 * head_radius)
     neck_c = _capsules(neck[:, :1], neck[:, 1:], neck_r[0], neck_r[1], body_color)
 
@@ -395,6 +425,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
 
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
     ellipsoid_parts = [skull_e, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells, *markers]
+    capsule_parts += [part for part in torso if part.shape[-1] == CAPSULE_FLOATS]
+    ellipsoid_parts += [part for part in torso if part.shape[-1] == ELLIPSOID_FLOATS]
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),
                           ellipsoids=np.concatenate(ellipsoid_parts, axis=1).astype(np.float32))
 
