@@ -46,7 +46,7 @@ from .gaits import GAIT_PRESETS
 from .kinematics.clip import clip_motion
 from .kinematics.walker import SWING_KNEE, SWING_KNEE_RANGE, WALK_DUTY
 from .rigging import build_rig
-from .spec import CreatureSpec, creature_from_dict, load_creature
+from .spec import SCALED_BODY_KEYS, CreatureSpec, creature_from_dict, load_creature
 
 BASE = {2: "human", 4: "dog"}  # the preset a clip with this many feet starts from
 FEET = {2: ("L", "R"), 4: ("LF", "RF", "LH", "RH")}
@@ -199,7 +199,7 @@ def _body_from_skeleton(doc: dict[str, Any], skeleton: dict[str, Any]) -> float:
         table["femur"], table["tibia"], table["metatarsus"] = round(femur, 4), round(tibia, 4), round(metatarsus, 4)
     ratio = float(np.mean(ratios)) if ratios else 1.0
     body = doc["body"]
-    for key in ("length", "neck_length", "head_length", "head_radius", "tail_length", "ear_length"):
+    for key in SCALED_BODY_KEYS:
         if key in body and isinstance(body[key], (int, float)):
             body[key] = round(body[key] * ratio, 4)
     body["radius"] = [round(r * ratio, 4) for r in body["radius"]]

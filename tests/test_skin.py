@@ -71,16 +71,13 @@ def test_the_body_s_normals_are_its_smooth_surface_s(built) -> None:
     presets) and the large ones are smaller too."""
     import trimesh
 
-    from app.skin.body import LIMB_BLEND, _limbs, bind_joints
+    from app.skin.body import LIMB_BLEND, bound_parts
     from app.skin.sdf import limb_union
 
     name, motion, clip, body = built
-    capsules, ellipsoids = _parts(motion.frames(0))
+    capsules, ellipsoids, _, (legs, arms, tail) = bound_parts(motion, clip)
     blend = 0.12 * float(np.median(np.concatenate([capsules[:, 6:8].ravel(), ellipsoids[:, 12:15].ravel()])))
     points, h = body.positions.astype(np.float64), 1e-4
-    part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
-                                 bind_joints(ellipsoids[:, 0:3], None, clip)])
-    legs, arms, tail = _limbs(part_joint, clip)
 
     def field(q: np.ndarray) -> np.ndarray:
         return limb_union(part_distances(q, capsules, ellipsoids), blend, legs, arms, tail, LIMB_BLEND * blend)
@@ -208,23 +205,28 @@ def test_limbs_join_the_trunk_but_not_each_other() -> None:
 
 
 def test_each_leg_and_arm_is_its_own_limb() -> None:
-    from app.skin.body import _limbs, bind_joints
+    """Each leg's and arm's parts are labelled with their limb; the tail's segments (not
+    the rump's cap, which starts at the tail's base) with the tail; a person's shoulder
+    line moves with the chest, not with one arm."""
+    from app.skin.body import bound_parts
 
     for name, legs, arms in (("human", {0, 1, 2}, {0, 1, 2}), ("dog", {0, 1, 2, 3, 4}, {0}),
                              ("spider", set(range(9)), {0})):
         motion, _ = clip_motion(build_rig(load_creature(name)), 30.0, cycles=0.5)
         clip = skeleton_clip(motion)
-        capsules, ellipsoids = _parts(motion)
-        part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
-                                     bind_joints(ellipsoids[:, 0:3], None, clip)])
-        leg, arm, tail = _limbs(part_joint, clip)
+        capsules, _, part_joint, (leg, arm, tail) = bound_parts(motion, clip)
         assert set(leg.tolist()) == legs and set(arm.tolist()) == arms
         assert not np.any((leg > 0) & (arm > 0))
         names = clip.skeleton.names
         for k in set(legs) - {0}:  # one leg's parts all move with one leg's joints
             assert len({names[j].split("_")[0] for j in part_joint[leg == k]}) == 1
         assert all(names[j].startswith("tail") for j in part_joint[tail])
-        assert tail.sum() >= (7 if name == "dog" else 0)  # the dog's seven tail segments
+        assert tail.sum() == motion.rig.body.tail_segments, name  # the dog's seven; not the rump's cap
+        if name == "human":
+            shoulders = motion.arms[0, :, 0]
+            line = np.flatnonzero(np.linalg.norm(capsules[:, 0:3] - shoulders[0], axis=1)
+                                  + np.linalg.norm(capsules[:, 3:6] - shoulders[1], axis=1) < 1e-6)
+            assert len(line) == 1 and arm[line[0]] == 0 and names[part_joint[line[0]]].startswith("spine")
 
 
 def _folds_near_hips(monkeypatch, root_spread: float) -> float:

@@ -276,9 +276,9 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
 
     # 3. Spine, neck, head, tail (following through by their overlap).
     lag = _overlap(rig, inputs, inputs.wave, bob)
-    running = 1.0 - walking_weight(plan.duty[:, reference_foot(rig)]) if rig.body.upright else None
+    running = 1.0 - walking_weight(plan.duty[:, reference_foot(rig)])  # a biped's run: lean in, elbows bent
     spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, lag, flex=None if trunk is None else trunk[0],
-                          running=running)
+                          running=running if rig.body.upright else None)
     ear_lag = np.arctan2(lag["ears"], max(rig.body.ear_length, 1e-3)) if "ears" in lag else np.zeros(frames)
 
     # 4. Hips beside the girdle centres, then the legs in their own frames.
@@ -323,7 +323,6 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
         ref = reference_foot(rig)
         angle = arm_swing(rig.poses.arm_swing, rig.overlap.arms, plan.phase[:, [ref + 1, ref]])
         assert spine.shoulder is not None and spine.shoulder_lateral is not None  # a trunk with arms has shoulders
-        running = 1.0 - walking_weight(plan.duty[:, ref])  # the elbows bend, the swing moves back
         arms = arm_chains(rig.arms, spine.shoulder, spine.shoulder_lateral, angle, running)
     else:
         arms = np.zeros((frames, 0, 4, 3))

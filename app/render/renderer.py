@@ -251,7 +251,10 @@ class SceneRenderer:
         edge where the head's shadow crosses the shoulder, but each tap costs a software
         rasteriser)."""
         self.ctx = ctx
-        self.shaders = shaders or ShaderLibrary(ctx, ("SOFT_SELF_SHADOW",) if soft_self_shadow else ())
+        defines = ("SOFT_SELF_SHADOW",) if soft_self_shadow else ()
+        if shaders is not None and set(defines) - set(shaders.defines):
+            raise ValueError("soft_self_shadow needs a ShaderLibrary compiled with SOFT_SELF_SHADOW")
+        self.shaders = shaders or ShaderLibrary(ctx, defines)
         self.uniforms = Uniforms()
         self.creatures = CreaturePass(ctx, self.shaders)
         self.bodies = BodyPass(ctx, self.shaders)

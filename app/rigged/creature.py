@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from ..spec import LEG_TYPE_SHAPES, CreatureSpec, LegType, creature_from_dict, leg_type, load_creature
+from ..spec import LEG_TYPE_SHAPES, SCALED_BODY_KEYS, CreatureSpec, LegType, creature_from_dict, leg_type, load_creature
 from .gltf import RigError, RiggedModel
 from .legs import ARM_WORDS, ModelLegs, chain_lengths, limbs, model_scale
 from .loaded import load_model
@@ -65,7 +65,7 @@ def creature_from_model(model: RiggedModel, legs: ModelLegs) -> tuple[CreatureSp
         table["hip_offset"] = round(0.5 * float(np.linalg.norm(points[left.joints[0]] - points[right.joints[0]])), 4)
     ratio = float(np.mean(ratios))
     body = doc["body"]
-    for key in ("length", "neck_length", "head_length", "head_radius", "tail_length", "ear_length"):
+    for key in SCALED_BODY_KEYS:
         if isinstance(body.get(key), (int, float)):
             body[key] = round(body[key] * ratio, 4)
     body["radius"] = [round(r * ratio, 4) for r in body["radius"]]

@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..kinematics.motion import Motion
-from ..kinematics.skeleton import ARM_JOINTS, SkeletonClip, SkeletonLayout
+from ..kinematics.skeleton import ARM_JOINTS, LEG_JOINTS, SkeletonClip, SkeletonLayout
 from .sdf import part_distances, union_on_grid
 
 Detail = Literal["full", "coarse"]
@@ -36,7 +36,8 @@ FAR_FACES = 400  # ... and for an animal far from the camera (a herd's)
 SPECK_FACES = 160  # ... and for its shadow when it is a few shadow-map texels long (a big herd's)
 INFLUENCES = 4  # joints per vertex
 ROOT_SPREAD = 3.0  # weights this much softer where a leg meets the trunk ...
-ROOT_REACH = 4.0  # ... within this many of the leg's thickest part's radii of its hip
+ROOT_REACH = 4.0  # ... within this many of the leg's thickest part's radii of its hip ...
+ROOT_BONE = 1.0  # ... and no farther than the next joint down (a horse's thick thigh: four radii reached past the stifle)
 LIMB_BLEND = 0.3  # of the blend width: how softly a leg joins another leg, and an arm the body (no webs)
 
 
@@ -188,20 +189,68 @@ def _simplify(verts: NDArray[np.float64], faces: NDArray[np.int64], target: int
     return verts, faces
 
 
-def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip
+def bound_parts(motion: Motion, clip: SkeletonClip) -> tuple[NDArray[np.float64], NDArray[np.float64],
+                                                             NDArray[np.int64], tuple[NDArray, NDArray, NDArray]]:
+    """The first frame's parts (:func:`_parts`), the joint each moves with (P,) and their
+    limbs (:func:`_limbs`): what the body's surface and weights are built from."""
+    capsules, ellipsoids = _parts(motion)
+    part_joint = np.concatenate([_between_limbs(capsules, bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip), clip),
+                                 bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
+    return capsules, ellipsoids, part_joint, _limbs(part_joint, clip, _tail_parts(capsules, ellipsoids, motion.tail[0]))
+
+
+def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip, tail_parts: NDArray[np.bool_]
            ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:
     """Each part's leg and arm (P,) each: 1, 2, ... for the limb it moves with (a leg's
     joints from the hip to the toe; an arm's from the shoulder to the hand), 0 for the
-    trunk, head and tail; and whether it is the tail's (P,)."""
+    trunk, head and tail; and whether it is one of the tail's segments (``tail_parts``
+    (P,), :func:`_tail_parts`, among the trunk's)."""
     names = clip.skeleton.names
-    foot = ("hip", "knee", "ankle", "ball", "toe")
     sides = [n.split("_", 1) if "_" in n else (n, "") for n in names]
-    leg_names = sorted({side for side, part in sides if part in foot and side[:1] in "LR"})
-    leg = np.array([leg_names.index(side) + 1 if part in foot and side in leg_names else 0 for side, part in sides])
+    leg_names = sorted({side for side, part in sides if part in LEG_JOINTS and side[:1] in "LR"})
+    leg = np.array([leg_names.index(side) + 1 if part in LEG_JOINTS and side in leg_names else 0
+                    for side, part in sides])
     arm = np.array([1 if side == "L" and part in ARM_JOINTS else 2 if side == "R" and part in ARM_JOINTS else 0
                     for side, part in sides])
-    tail = np.array([n.startswith("tail") for n in names])
-    return leg[part_joint], arm[part_joint], tail[part_joint]
+    legs, arms = leg[part_joint], arm[part_joint]
+    return legs, arms, tail_parts & (legs == 0) & (arms == 0)
+
+
+def _tail_parts(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], tail: NDArray[np.float64]
+                ) -> NDArray[np.bool_]:
+    """Which parts (P,) are the tail's segments: capsules with both ends on the tail's
+    points (K + 1, 3) in the bind pose (the trunk's rear cap starts at the tail's base
+    and is bound to its first joint, but is the rump's)."""
+    def on_tail(points: NDArray[np.float64]) -> NDArray[np.bool_]:
+        return np.linalg.norm(points[:, None] - tail[None], axis=-1).min(axis=1) < 1e-6 if len(tail) \
+            else np.zeros(len(points), bool)
+
+    segments = on_tail(capsules[:, 0:3]) & on_tail(capsules[:, 3:6])
+    return np.concatenate([segments, np.zeros(len(ellipsoids), bool)])
+
+
+def _between_limbs(capsules: NDArray[np.float64], part_joint: NDArray[np.int64], clip: SkeletonClip
+                   ) -> NDArray[np.int64]:
+    """``part_joint`` with each capsule that runs from one limb's top joint to another's
+    (a person's line from shoulder to shoulder) bound to the trunk joint nearest its
+    middle instead: it is the trunk's, and moved with one arm it bent as the arm swung."""
+    names = clip.skeleton.names
+    points = clip.world_position[0]
+    tops = np.array([n.endswith(("_hip", "_shoulder")) for n in names])
+    trunk = np.array(["_" not in n or n.split("_", 1)[1] not in LEG_JOINTS + ARM_JOINTS for n in names])
+    if not tops.any() or not trunk.any():
+        return part_joint
+    out = part_joint.copy()
+    top_points = points[tops]
+    at_a = np.linalg.norm(capsules[:, None, 0:3] - top_points[None], axis=-1).min(axis=1) < 1e-6
+    at_b = np.linalg.norm(capsules[:, None, 3:6] - top_points[None], axis=-1).min(axis=1) < 1e-6
+    across = np.flatnonzero(at_a & at_b)
+    if len(across):
+        middle = 0.5 * (capsules[across, 0:3] + capsules[across, 3:6])
+        candidates = np.flatnonzero(trunk)
+        nearest = np.linalg.norm(middle[:, None] - points[candidates][None], axis=-1).argmin(axis=1)
+        out[across] = candidates[nearest]
+    return out
 
 
 def _weights(verts: NDArray[np.float64], capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64],
@@ -237,16 +286,24 @@ def _weights(verts: NDArray[np.float64], capsules: NDArray[np.float64], ellipsoi
 
 def _limb_roots(capsules: NDArray[np.float64], part_joint: NDArray[np.int64], clip: SkeletonClip
                 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Where each leg meets the trunk: its hip (or shoulder) joint in the bind pose (H, 3),
-    and how far about it the weights are shared (H,): ROOT_REACH times the thickest part
-    that moves with that joint."""
+    """Where each limb meets the trunk: its hip (a leg's, fore or hind) or a person's
+    shoulder joint in the bind pose (H, 3), and how far about it the weights are shared
+    (H,): ROOT_REACH times the thickest part that moves with that joint, at most
+    ROOT_BONE of the bone below it (a horse's thigh muscle is so thick that four of its
+    radii reached past the stifle)."""
     names = clip.skeleton.names
-    hips = [j for j, n in enumerate(names) if n.endswith("_hip")]
+    points = clip.world_position[0]
+    below = {"_hip": "_knee", "_shoulder": "_elbow"}
+    roots, reach = [], []
     radius = np.zeros(len(names))
-    caps = part_joint[:len(capsules)]
-    np.maximum.at(radius, caps, capsules[:, 6:8].max(axis=1))
-    points = clip.world_position[0][hips]
-    return points, ROOT_REACH * radius[hips]
+    np.maximum.at(radius, part_joint[:len(capsules)], capsules[:, 6:8].max(axis=1))
+    for j, name in enumerate(names):
+        for top, next_joint in below.items():
+            if name.endswith(top) and name[:-len(top)] + next_joint in names:
+                bone = float(np.linalg.norm(points[names.index(name[:-len(top)] + next_joint)] - points[j]))
+                roots.append(points[j])
+                reach.append(min(ROOT_REACH * radius[j], ROOT_BONE * bone))
+    return np.array(roots).reshape(-1, 3), np.array(reach)
 
 
 def _colors(normals: NDArray[np.float64], body_color: str, countershade: float) -> NDArray[np.float32]:
@@ -266,10 +323,8 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     import trimesh
 
     start = time.perf_counter()
-    capsules, ellipsoids = _parts(motion)
-    part_joint = np.concatenate([bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip),
-                                 bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
-    verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, _limbs(part_joint, clip))
+    capsules, ellipsoids, part_joint, limbs = bound_parts(motion, clip)
+    verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, limbs)
     roots = _limb_roots(capsules, part_joint, clip)
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,

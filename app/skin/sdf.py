@@ -62,10 +62,11 @@ def limb_union(distances: NDArray[np.float64], blend: float, legs: NDArray[np.in
     joined = [union(trunk & ~tail, blend), union(trunk & tail, narrow)]
     if legs.any():
         joined.append(smooth_union(np.stack([union(legs == k, blend) for k in np.unique(legs[legs > 0])]), narrow))
-    body = smooth_union(np.stack([j for j in joined if np.isfinite(j).any()]), blend)
+    present = [j for j in joined if np.isfinite(j).any()]
+    bodies = [smooth_union(np.stack(present), blend)] if present else []  # none: only arms
     if arms.any():
-        body = smooth_union(np.stack([body] + [union(arms == k, blend) for k in np.unique(arms[arms > 0])]), narrow)
-    return body
+        bodies += [union(arms == k, blend) for k in np.unique(arms[arms > 0])]
+    return smooth_union(np.stack(bodies), narrow)
 
 
 def union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
@@ -109,15 +110,37 @@ def union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[
     return body
 
 
+class _SoftMin:
+    """A soft minimum by ``width`` over a grid of ``shape``, accumulated one term at a time
+    over any box of it (a running minimum and a rescaled sum of exponentials: one grid's
+    memory whatever the number of terms); where no term came, ``outside``."""
+
+    def __init__(self, shape: tuple[int, ...], width: float, outside: float) -> None:
+        self.nearest = np.full(shape, np.inf, dtype=np.float32)
+        self.total = np.zeros(shape, dtype=np.float32)
+        self.width, self.outside = width, outside
+
+    def add(self, box: tuple[slice, ...], values: NDArray[np.float32]) -> None:
+        m_old = self.nearest[box]
+        m_new = np.minimum(m_old, values)
+        scale = np.where(np.isfinite(m_old), np.exp(-(m_old - m_new) / self.width), 0.0)
+        self.total[box] = self.total[box] * scale + np.exp(-(values - m_new) / self.width)
+        self.nearest[box] = m_new
+
+    def result(self) -> NDArray[np.float32]:
+        union = np.full(self.nearest.shape, self.outside, dtype=np.float32)
+        inside = np.isfinite(self.nearest)
+        union[inside] = self.nearest[inside] - self.width * np.log(np.maximum(self.total[inside], 1e-30))
+        return union
+
+
 def _narrow_union(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
                   groups: list[tuple[NDArray[np.float64], NDArray[np.float64]]], blend: float,
                   narrow: float) -> NDArray[np.float32]:
     """The soft minimum by ``narrow`` of the groups' own unions (each its parts' by
     ``blend``, worked out over the groups' own boxes only: a centipede's thirty legs cost
     thirty small boxes, not thirty grids)."""
-    shape = tuple(len(a) for a in axes)
-    nearest = np.full(shape, np.inf, dtype=np.float32)
-    total = np.zeros(shape, dtype=np.float32)
+    union = _SoftMin(tuple(len(a) for a in axes), narrow, 4.0 * blend + 1.0)
     for capsules, ellipsoids in groups:
         lo = np.min([*capsules[:, 0:3] - capsules[:, 6:8].max(axis=1, keepdims=True),
                      *capsules[:, 3:6] - capsules[:, 6:8].max(axis=1, keepdims=True),
@@ -129,16 +152,9 @@ def _narrow_union(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[
                     for k, a in enumerate(axes))
         if any(b.stop <= b.start for b in box):
             continue
-        own = _union_on_grid(tuple(a[b] for a, b in zip(axes, box)), capsules, ellipsoids, blend)  # type: ignore[arg-type]
-        m_old = nearest[box]
-        m_new = np.minimum(m_old, own)
-        scale = np.where(np.isfinite(m_old), np.exp(-(m_old - m_new) / narrow), 0.0)
-        total[box] = total[box] * scale + np.exp(-(own - m_new) / narrow)
-        nearest[box] = m_new
-    union = np.full(shape, 4.0 * blend + 1.0, dtype=np.float32)
-    inside = np.isfinite(nearest)
-    union[inside] = nearest[inside] - narrow * np.log(np.maximum(total[inside], 1e-30))
-    return union
+        union.add(box, _union_on_grid(tuple(a[b] for a, b in zip(axes, box)), capsules, ellipsoids,  # type: ignore[arg-type]
+                                      blend))
+    return union.result()
 
 
 def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
@@ -149,9 +165,7 @@ def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray
     own needs their reach; beyond every part's, a value past every reach."""
     reach = 4.0 * blend if reach is None else reach
     xs, ys, zs = axes
-    shape = (len(xs), len(ys), len(zs))
-    nearest = np.full(shape, np.inf, dtype=np.float32)
-    total = np.zeros(shape, dtype=np.float32)
+    union = _SoftMin((len(xs), len(ys), len(zs)), blend, reach + 1.0)
     boxes = [(np.minimum(c[0:3], c[3:6]) - max(c[6], c[7]), np.maximum(c[0:3], c[3:6]) + max(c[6], c[7]))
              for c in capsules]
     boxes += [(e[0:3] - e[12:15].max(), e[0:3] + e[12:15].max()) for e in ellipsoids]
@@ -169,13 +183,5 @@ def _union_on_grid(axes: tuple[NDArray[np.float64], NDArray[np.float64], NDArray
             d = capsule_distance(points, p[0:3], p[3:6], float(p[6]), float(p[7]))
         else:
             d = ellipsoid_distance(points, p[0:3], np.stack([p[3:6], p[6:9], p[9:12]]), p[12:15])
-        d = d.reshape(gx.shape).astype(np.float32)
-        m_old = nearest[ix, iy, iz]
-        m_new = np.minimum(m_old, d)
-        scale = np.where(np.isfinite(m_old), np.exp(-(m_old - m_new) / blend), 0.0)
-        total[ix, iy, iz] = total[ix, iy, iz] * scale + np.exp(-(d - m_new) / blend)
-        nearest[ix, iy, iz] = m_new
-    inside = np.isfinite(nearest)
-    union = np.full(shape, reach + 1.0, dtype=np.float32)
-    union[inside] = nearest[inside] - blend * np.log(np.maximum(total[inside], 1e-30))
-    return union
+        union.add((ix, iy, iz), d.reshape(gx.shape).astype(np.float32))
+    return union.result()

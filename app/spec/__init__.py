@@ -29,9 +29,10 @@ from .model import (
                     SpeedSpec,
 )
 from .overrides import override_keys, parse_override, resolve_phases, rule_for, spec_value, without_adjustment
-from .schema import LEG_TYPE_SHAPES, TABLES, Rule, check_value
+from .schema import LEG_TYPE_SHAPES, SCALED_BODY_KEYS, TABLES, Rule, check_value
 
-__all__ = ["LEG_TYPE_SHAPES", "TABLES", "ArmsSpec", "BodySpec", "CreatureSpec", "GaitSpec", "LegSpec", "LegType",
+__all__ = ["LEG_TYPE_SHAPES", "SCALED_BODY_KEYS", "TABLES", "ArmsSpec", "BodySpec", "CreatureSpec", "GaitSpec",
+           "LegSpec", "LegType",
            "LookSpec", "MotionSpec", "OverlapSpec", "PosesSpec", "Rule", "SpecError", "SpeedSpec", "check_value",
            "creature_from_dict", "did_you_mean", "leg_type", "load_creature", "override_keys", "parse_override",
            "resolve_phases", "rule_for", "spec_value", "without_adjustment"]

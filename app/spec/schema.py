@@ -64,6 +64,9 @@ def _length(doc: str, *, zero_ok: bool = False, hi: float = 50.0) -> Rule:
     return _num(0.0, hi, lo_open=not zero_ok, unit="m", doc=doc)
 
 
+# Body keys that are lengths (m): a fitted or model-driven creature scales them with its legs.
+SCALED_BODY_KEYS = ("length", "neck_length", "head_length", "head_radius", "tail_length", "tail_radius", "ear_length")
+
 BODY_RULES: dict[str, Rule] = {
     "length": _length("distance from the hind hips to the fore shoulders along the spine"),
     "width": _length("distance between the left and right hips (and shoulders)"),

@@ -78,6 +78,11 @@ SURFACE_CHUNK = 1 << 20  # grid points tested against triangles at a time (memor
 MAX_SURFACE_TESTS = 1 << 28  # point-in-triangle tests a mesh may ask for (~20 s here; an honest terrain: a few per point)
 
 
+class TooManySurfaceTests(ValueError):
+    """A mesh whose triangles' boxes hold more grid points than :func:`highest_surface` was
+    allowed to test."""
+
+
 def highest_surface(vertices: NDArray[np.float64], faces: NDArray[np.int64], xs: NDArray[np.float64],
                     zs: NDArray[np.float64], floor: float, max_tests: int | None = None) -> NDArray[np.float64]:
     """The height (m) of the highest triangle over each point of a grid: (len(zs), len(xs)),
@@ -87,7 +92,7 @@ def highest_surface(vertices: NDArray[np.float64], faces: NDArray[np.int64], xs:
     each way (the barycentric test decides, so rounding far from the origin loses no
     edge), vectorised over triangles in chunks; triangles standing on edge (no extent seen
     from above) are skipped. More than ``max_tests`` grid points in the triangles' boxes
-    (large triangles stacked deep) raise ValueError before any is tested."""
+    (large triangles stacked deep) raise :class:`TooManySurfaceTests` before any is tested."""
     tri = vertices[faces]  # (F, 3, 3)
     x, y, z = tri[..., 0], tri[..., 1], tri[..., 2]
     det = (z[:, 1] - z[:, 2]) * (x[:, 0] - x[:, 2]) + (x[:, 2] - x[:, 1]) * (z[:, 0] - z[:, 2])
@@ -100,7 +105,7 @@ def highest_surface(vertices: NDArray[np.float64], faces: NDArray[np.int64], xs:
     keep = np.flatnonzero((across * down > 0) & (np.abs(det) > 1e-300))
     counts = (across * down)[keep]
     if max_tests is not None and int(counts.sum()) > max_tests:
-        raise ValueError(f"laying its triangles on the grid takes {int(counts.sum()):,} point tests, at most "
+        raise TooManySurfaceTests(f"laying its triangles on the grid takes {int(counts.sum()):,} point tests, at most "
                          f"{max_tests:,}")
     best = np.full(len(zs) * len(xs), -np.inf)
     ends = np.cumsum(counts)
@@ -174,7 +179,7 @@ def load_mesh_terrain(file: FilePath, cell: float = 0.0, max_slope: float = DEFA
     zs = np.linspace(lo[2], hi[2], max(rows, 2))
     try:  # no surface above a point: the lowest
         heights = highest_surface(vertices, faces, xs, zs, floor=float(lo[1]), max_tests=MAX_SURFACE_TESTS)
-    except ValueError as exc:
+    except TooManySurfaceTests as exc:
         raise WorldError(f"{file}: {exc}: its triangles are large and lie many deep (layers hidden under the "
                          "surface?); simplify the mesh or give a coarser cell=") from None
     return HeightGrid(heights, (float(lo[0]), float(lo[2])), (width, depth), label=f"mesh:file={file}", max_slope=max_slope)
