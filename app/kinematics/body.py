@@ -38,6 +38,7 @@ NOD = 0.06  # rad: a walking quadruped's neck and head bow, either way, for a ne
 NOD_DELAY = 0.15  # of a cycle after a fore foot lands: the head is lowest
 SWING = 0.12  # rad: a galloping quadruped's neck swing, either way, for a neck as long as its legs
 SWING_DELAY = 0.1  # of a cycle after the fore feet's mean touchdown: the galloping head is lowest
+OBLIQUITY_PEAK = 0.18  # of a cycle after a foot's touchdown: the other side of the pelvis lowest
 RUN_LEAN = np.radians(5.0)  # rad: a runner's trunk leans this much further forward than its walk (5-10 degrees all told)
 ROLL_FOLLOW = 0.8  # how much of the slope between its feet a girdle rolls with
 MAX_END_SLOPE = 0.35  # the trunk's ends beyond the girdles pitch at most this much (rise over run)
@@ -107,7 +108,7 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
                   bob: NDArray[np.float64], bob_lift: NDArray[np.float64],
                   forward: NDArray[np.float64], pose_height: NDArray[np.float64] | None = None,
                   reach: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
-                  pitch: NDArray[np.float64] | None = None) -> Girdles:
+                  pitch: NDArray[np.float64] | None = None, phase: NDArray[np.float64] | None = None) -> Girdles:
     """Girdle frames for body arc lengths s (T,).
 
     support, ball (T, L, 3): each foot's ground support and ball target; planted (T, L) in
@@ -118,7 +119,8 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     hip may be from which point of its foot (default: the ball, REACH_LIMIT of L_max; a
     rolling plantigrade foot's ankle, femur and tibia all but straight, and no nearer
     than they fold); pitch (T,) rad: the trunk pitches nose up by it (each girdle
-    raised or lowered by its distance from the trunk's middle).
+    raised or lowered by its distance from the trunk's middle); phase (T, L): each foot's
+    cycle phase (0 at its touchdown), which times the pelvis's tilt (else the feet's lift).
     """
     s_g = s[:, None] + (rig.girdle_position[None, :] - 0.5) * rig.body_length  # (T, G)
     point, tangent = world.path.sample(s_g)
@@ -143,7 +145,11 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
     # Roll towards the higher foot; yaw with the feet; sway towards the stance side.
     across = np.linalg.norm(support[:, 0::2, [0, 2]] - support[:, 1::2, [0, 2]], axis=-1)
     roll = np.clip(ROLL_FOLLOW * np.arctan2(y_left - y_right, np.maximum(across, 1e-6)), -MAX_ROLL, MAX_ROLL)
-    roll = roll - rig.motion.pelvis_tilt * (bob_lift[:, 0::2] - bob_lift[:, 1::2])  # the swinging side drops
+    if phase is None:
+        roll = roll - rig.motion.pelvis_tilt * (bob_lift[:, 0::2] - bob_lift[:, 1::2])  # the swinging side drops
+    else:  # ... most early in the other foot's stance, as a walker's pelvis does (Perry: ~15-20 % of the cycle)
+        wave = np.cos(2.0 * np.pi * (phase - OBLIQUITY_PEAK))
+        roll = roll + rig.motion.pelvis_tilt * 0.5 * (wave[:, 0::2] - wave[:, 1::2])
     yaw = -rig.motion.yaw * (forward[:, 0::2] - forward[:, 1::2])
     lateral = rotate_y(np.cos(roll)[..., None] * left + np.sin(roll)[..., None] * UP, yaw)
     sway = rig.motion.sway * (bob_lift[:, 1::2] - bob_lift[:, 0::2])  # (T, G) m to the left

@@ -272,7 +272,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     girdles = place_girdles(rig, world, inputs.travel, feet.support, ball, planted, inputs.stride,
                             bob, bob_wave.lift, wave.forward, pose_height=height,
                             reach=None if roll is None else (roll.ankle, roll.reach),
-                            pitch=None if trunk is None else trunk[1])
+                            pitch=None if trunk is None else trunk[1], phase=plan.phase)
 
     # 3. Spine, neck, head, tail (following through by their overlap).
     lag = _overlap(rig, inputs, inputs.wave, bob)
