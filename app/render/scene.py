@@ -408,8 +408,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     lag = np.zeros(frames) if ear_lag is None else np.asarray(ear_lag, dtype=np.float64)
     c, s_ = np.cos(lag)[:, None], np.sin(lag)[:, None]  # turned back (+) or up (-) by the follow-through
     if ear_length > 0 and rig.knee_out.all():  # an arthropod's antennae: elbowed, reaching forward
-        base = (skull + head_dir * 0.45 * head_radius + hy * 0.55 * head_radius)[:, None] \
-            + sides * hx[:, None] * 0.35 * head_radius
+        base = (skull + head_dir * 0.72 * head_radius + hy * 0.15 * head_radius)[:, None] \
+            + sides * hx[:, None] * 0.2 * head_radius  # on the face, inside and below the eyes
         scape = _unit((0.75 * hy + 0.6 * head_dir)[:, None] + sides * hx[:, None] * 0.35)
         elbow = base + ANTENNA_SCAPE * ear_length * scape
         flagellum = _unit((c * (head_dir + 0.15 * hy) + s_ * (hy - 0.3 * head_dir))[:, None] + sides * hx[:, None] * 0.4)
