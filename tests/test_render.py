@@ -359,3 +359,20 @@ def test_a_person_s_trunk_is_wider_than_deep_with_a_shoulder_line() -> None:
     dog_motion, _ = clip_motion(dog, 30.0, cycles=0.25)
     dog_ells = np.asarray(motion_instances(dog_motion, show_joints=False).frame(0).ellipsoids, np.float64)
     assert not np.any(np.linalg.norm(dog_ells[:, Ell.CENTRE][:, None] - dog_motion.spine[0][None], axis=-1) < 1e-6)
+
+
+def test_a_person_s_eyes_look_out_of_the_face() -> None:
+    """A person's eyes sit at the front of the head near mid-height; an animal's high on
+    the skull (the human's sat on top of its head)."""
+    from app.render.scene import EYE_COLOR, Ell, motion_instances
+
+    for name, lowest, highest in (("human", -0.1, 0.3), ("dog", 0.3, 0.6)):
+        rig = build_rig(load_creature(name))
+        motion, _ = clip_motion(rig, 30.0, cycles=0.25)
+        ells = np.asarray(motion_instances(motion, show_joints=False).frame(0).ellipsoids, np.float64)
+        eyes = ells[np.all(np.abs(ells[:, Ell.COLOR] - EYE_COLOR) < 1e-3, axis=1)]
+        skulls = ells[np.isclose(ells[:, 12], 0.9 * rig.body.head_radius) & np.isclose(ells[:, 14], rig.body.head_radius)]
+        assert len(eyes) == 2 and len(skulls) == 1
+        up = skulls[0, Ell.AXES[1]]
+        height = (eyes[:, Ell.CENTRE] - skulls[0, Ell.CENTRE]) @ up / rig.body.head_radius
+        assert np.all((lowest < height) & (height < highest)), (name, height)

@@ -279,8 +279,10 @@ def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -
     head_radius = rig.body.head_radius
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
-    centres = (skull + head_dir * 0.55 * head_radius + hy * 0.42 * head_radius)[:, None] \
-        + sides * hx[:, None] * 0.5 * head_radius
+    # A person's eyes look out of the face at mid-height; an animal's sit high on the skull.
+    ahead, up, apart = (0.8, 0.08, 0.36) if rig.body.upright else (0.55, 0.42, 0.5)
+    centres = (skull + head_dir * ahead * head_radius + hy * up * head_radius)[:, None] \
+        + sides * hx[:, None] * apart * head_radius
     shape = centres.shape[:-1]  # spheres: any orthonormal axes will do
     return np.concatenate([centres, np.broadcast_to(np.eye(3).reshape(9), shape + (9,)),
                            np.full(shape + (3,), 0.17 * head_radius), np.broadcast_to(EYE_COLOR, shape + (3,))],
