@@ -199,20 +199,49 @@ def bound_parts(motion: Motion, clip: SkeletonClip) -> tuple[NDArray[np.float64]
     return capsules, ellipsoids, part_joint, _limbs(part_joint, clip, _tail_parts(capsules, ellipsoids, motion.tail[0]))
 
 
-def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip, tail_parts: NDArray[np.bool_]
-           ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:
-    """Each part's leg and arm (P,) each: 1, 2, ... for the limb it moves with (a leg's
-    joints from the hip to the toe; an arm's from the shoulder to the hand), 0 for the
-    trunk, head and tail; and whether it is one of the tail's segments (``tail_parts``
-    (P,), :func:`_tail_parts`, among the trunk's)."""
-    names = clip.skeleton.names
+@dataclass(frozen=True)
+class _JointRoles:
+    """What each joint (J,) of a skeleton is, from its name (``LF_hip``, ``L1_knee``,
+    ``L_shoulder``): ``leg`` and ``arm`` the limb it belongs to (1, 2, ...; 0 none),
+    ``below`` the joint under a limb's top joint (its knee or elbow; -1 for other
+    joints)."""
+
+    leg: NDArray[np.int64]
+    arm: NDArray[np.int64]
+    below: NDArray[np.int64]
+
+    @property
+    def top(self) -> NDArray[np.bool_]:
+        """Each limb's first joint: a hip (fore or hind) or a shoulder."""
+        return self.below >= 0
+
+    @property
+    def trunk(self) -> NDArray[np.bool_]:
+        return (self.leg == 0) & (self.arm == 0)
+
+
+def _joint_roles(names: tuple[str, ...]) -> _JointRoles:
     sides = [n.split("_", 1) if "_" in n else (n, "") for n in names]
     leg_names = sorted({side for side, part in sides if part in LEG_JOINTS and side[:1] in "LR"})
     leg = np.array([leg_names.index(side) + 1 if part in LEG_JOINTS and side in leg_names else 0
                     for side, part in sides])
     arm = np.array([1 if side == "L" and part in ARM_JOINTS else 2 if side == "R" and part in ARM_JOINTS else 0
                     for side, part in sides])
-    legs, arms = leg[part_joint], arm[part_joint]
+    index = {name: j for j, name in enumerate(names)}
+    below = np.array([index.get(f"{side}_{chain[1]}", -1) if (leg[j] or arm[j]) and part == chain[0] else -1
+                      for j, (side, part) in enumerate(sides)
+                      for chain in [LEG_JOINTS if leg[j] else ARM_JOINTS]])
+    return _JointRoles(leg=leg, arm=arm, below=below)
+
+
+def _limbs(part_joint: NDArray[np.int64], clip: SkeletonClip, tail_parts: NDArray[np.bool_]
+           ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]]:
+    """Each part's leg and arm (P,) each: 1, 2, ... for the limb it moves with (a leg's
+    joints from the hip to the toe; an arm's from the shoulder to the hand), 0 for the
+    trunk, head and tail; and whether it is one of the tail's segments (``tail_parts``
+    (P,), :func:`_tail_parts`, among the trunk's)."""
+    roles = _joint_roles(clip.skeleton.names)
+    legs, arms = roles.leg[part_joint], roles.arm[part_joint]
     return legs, arms, tail_parts & (legs == 0) & (arms == 0)
 
 
@@ -234,10 +263,9 @@ def _between_limbs(capsules: NDArray[np.float64], part_joint: NDArray[np.int64],
     """``part_joint`` with each capsule that runs from one limb's top joint to another's
     (a person's line from shoulder to shoulder) bound to the trunk joint nearest its
     middle instead: it is the trunk's, and moved with one arm it bent as the arm swung."""
-    names = clip.skeleton.names
+    roles = _joint_roles(clip.skeleton.names)
     points = clip.world_position[0]
-    tops = np.array([n.endswith(("_hip", "_shoulder")) for n in names])
-    trunk = np.array(["_" not in n or n.split("_", 1)[1] not in LEG_JOINTS + ARM_JOINTS for n in names])
+    tops, trunk = roles.top, roles.trunk
     if not tops.any() or not trunk.any():
         return part_joint
     out = part_joint.copy()
@@ -291,19 +319,13 @@ def _limb_roots(capsules: NDArray[np.float64], part_joint: NDArray[np.int64], cl
     (H,): ROOT_REACH times the thickest part that moves with that joint, at most
     ROOT_BONE of the bone below it (a horse's thigh muscle is so thick that four of its
     radii reached past the stifle)."""
-    names = clip.skeleton.names
+    roles = _joint_roles(clip.skeleton.names)
     points = clip.world_position[0]
-    below = {"_hip": "_knee", "_shoulder": "_elbow"}
-    roots, reach = [], []
-    radius = np.zeros(len(names))
+    radius = np.zeros(len(points))
     np.maximum.at(radius, part_joint[:len(capsules)], capsules[:, 6:8].max(axis=1))
-    for j, name in enumerate(names):
-        for top, next_joint in below.items():
-            if name.endswith(top) and name[:-len(top)] + next_joint in names:
-                bone = float(np.linalg.norm(points[names.index(name[:-len(top)] + next_joint)] - points[j]))
-                roots.append(points[j])
-                reach.append(min(ROOT_REACH * radius[j], ROOT_BONE * bone))
-    return np.array(roots).reshape(-1, 3), np.array(reach)
+    tops = np.flatnonzero(roles.top)
+    bone = np.linalg.norm(points[roles.below[tops]] - points[tops], axis=-1)
+    return points[tops], np.minimum(ROOT_REACH * radius[tops], ROOT_BONE * bone)
 
 
 def _colors(normals: NDArray[np.float64], body_color: str, countershade: float) -> NDArray[np.float32]:
