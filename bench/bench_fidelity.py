@@ -6,8 +6,9 @@ biomechanics (../shared/reference/fidelity.md) and real clips.
 Prints, for the human walk (default creature, default speed) every row of the human-walk
 table with its typical range, the RMS difference of the hip, knee and ankle curves from
 the bundled normative mean (Schwartz et al. 2008) and of the knee from the CMU walk
-12_01; for the human run, the flight's acceleration, the largest jolt, elbows, duty and
-knee; for the horse's walk and trot and the dog's rotary gallop and bound, duty, stride,
+12_01; for the human run, every row of fidelity.md's run table (knee at strike, stance
+and swing peaks, hip and ankle at toe-off, vertical excursion) with the flight's
+acceleration, the largest jolt, elbows, duty and cadence; for the horse's walk and trot and the dog's rotary gallop and bound, duty, stride,
 speed, head nod and back flexion.
 """
 

@@ -138,6 +138,61 @@ def test_the_run_flies_at_g_and_lands_without_a_jolt(run) -> None:
     assert abs(run["largest vertical jolt g"]) <= 3.0
 
 
+@pytest.mark.parametrize("speed", [2.5, 4.0, 5.5])
+def test_a_run_at_any_speed_flies_without_a_jolt(speed: float) -> None:
+    """The run's heights are worked out from where its feet land and leave: at 4 m/s and
+    over, a toe-off height set by the thigh's angle alone asked the trailing leg to reach
+    further back than it can, and the hips were pulled down at every toe-off (27-40 g)."""
+    from app.kinematics.speed import simulate_speed
+
+    motion, gaits = simulate_speed(build_rig(load_creature("human")), np.full(240 * 3, speed), 240.0)
+    assert set(gaits) == {"run"}
+    pelvis = motion.joints[:, -2:, 0, 1].mean(axis=1)
+    accel = np.gradient(np.gradient(pelvis, 1 / 240), 1 / 240) / 9.81
+    assert np.abs(accel[10:]).max() < 3.0
+
+
+def test_a_runner_slowing_to_a_walk_keeps_its_height_and_speed_through_the_switch() -> None:
+    """A foot takes the walk's duty factor at its touchdown, and the body's height follows
+    the duty at once: from the run's last flight to the walk's contact pose it dropped 2.4 cm
+    in one 240 fps frame (41 g). The jump is now eased away (inertialization): within 0.1 s
+    of every change of duty the hips' vertical acceleration stays under 3 g."""
+    from app.kinematics.live import LiveMotion, stack_inputs
+    from app.kinematics.motion import solve_motion
+    from app.kinematics.speed import gait_at_speed
+
+    rig = build_rig(load_creature("human"))
+    speeds = np.linspace(4.0, 1.0, 240 * 8)
+    current = gait_at_speed(rig, float(speeds[0]))
+    live, gait, frames = LiveMotion(current), current.gait.preset, []
+    for i, v in enumerate(speeds):
+        if i:
+            target = gait_at_speed(rig, float(v), gait)
+            gait = target.gait.preset
+            live.set_rig(target)
+            live.step(1 / 240)
+        frames.append(live.frame_inputs())
+    inputs = stack_inputs(frames)
+    motion = solve_motion(live.rig, live.world, inputs, fps=240.0)
+    duty = inputs.plan.duty[:, -2]
+    switches = np.nonzero((duty[1:] >= 0.5) & (duty[:-1] < 0.5))[0] + 1
+    assert len(switches) == 1
+    pelvis = motion.joints[:, -2:, 0, 1].mean(axis=1)
+    accel = np.gradient(np.gradient(pelvis, 1 / 240), 1 / 240) / 9.81
+    near = slice(int(switches[0]) - 24, int(switches[0]) + 24)
+    assert np.abs(accel[near]).max() < 3.0
+
+
+def test_a_height_jump_settles_from_its_height_and_speed_to_rest() -> None:
+    from app.kinematics.poses import HEIGHT_SETTLE, settle
+
+    t = np.array([0.0, 1e-5, HEIGHT_SETTLE - 1e-5, HEIGHT_SETTLE, 1.0])
+    left = settle(0.02, -0.5, t)
+    assert left[0] == pytest.approx(0.02)
+    assert (left[1] - left[0]) / 1e-5 == pytest.approx(-0.5, rel=1e-3)
+    assert left[2] == pytest.approx(0.0, abs=1e-9) and left[3] == 0.0 and left[4] == 0.0
+
+
 def test_the_horse_walks_at_a_horse_s_duty_stride_and_nod() -> None:
     rig = build_rig(load_creature("horse"))
     motion, _ = clip_motion(rig, 240.0, cycles=6.0)

@@ -61,6 +61,12 @@ HUMAN_RUN: dict[str, tuple[float, float]] = {
     "duty factor": (0.30, 0.40),
     "knee at toe-off": (0.0, 35.0),
     "cadence steps/min": (150.0, 190.0),
+    "knee at strike": (15.0, 25.0),
+    "knee stance peak": (40.0, 50.0),
+    "knee swing peak": (90.0, 130.0),
+    "hip at toe-off": (-20.0, -10.0),
+    "ankle at toe-off": (-30.0, -20.0),
+    "pelvis vertical cm": (6.0, 10.0),
 }
 
 
@@ -208,8 +214,9 @@ def _running_mean(points: NDArray[np.float64], window: int) -> NDArray[np.float6
 
 def run_measures(motion) -> dict[str, float]:
     """A biped's run (see :data:`HUMAN_RUN`): the pelvis's vertical acceleration in flight
-    (in g, mean over the middle of every flight) and its largest jolt in any frame, the
-    elbow, duty factor, cadence and the knee at toe-off."""
+    (in g, mean over the middle of every flight) and its largest jolt in any frame, its
+    vertical excursion, the elbow, duty factor, cadence and the sagittal angles at the
+    strike and toe-off and their peaks (the hip is the thigh against the vertical)."""
     rig = motion.rig
     ref, strikes, cycle = _cycles(motion)
     other = ref + 1
@@ -227,8 +234,17 @@ def run_measures(motion) -> dict[str, float]:
     forward = motion.root[:, :3, 2]
     j = motion.joints[:, ref]
     angles = leg_angles(j[:, 0], j[:, 1], j[:, 2], j[:, 3], forward, ankle_zero=-float(np.degrees(rig.ankle_lift[ref])))
-    knee = _mean_cycle(angles.knee, strikes)
-    out["knee at toe-off"] = float(np.interp(100.0 * out["duty factor"], np.linspace(0, 100, SAMPLES), knee))
+    knee, hip, ankle = (_mean_cycle(a, strikes) for a in (angles.knee, angles.hip, angles.ankle))
+    grid = np.linspace(0.0, 100.0, SAMPLES)
+    toe_off = 100.0 * out["duty factor"]
+    stance = grid <= toe_off
+    out["knee at toe-off"] = float(np.interp(toe_off, grid, knee))
+    out["knee at strike"] = float(knee[0])
+    out["knee stance peak"] = float(knee[stance].max())
+    out["knee swing peak"] = float(knee[~stance].max())
+    out["hip at toe-off"] = float(np.interp(toe_off, grid, hip))
+    out["ankle at toe-off"] = float(np.interp(toe_off, grid, ankle))
+    out["pelvis vertical cm"] = 100.0 * float(np.ptp(_mean_cycle(pelvis, strikes)))
     if motion.arms.shape[1] == 2:
         arm = motion.arms[:, 0]
         upper, fore = arm[:, 1] - arm[:, 0], arm[:, 2] - arm[:, 1]

@@ -12,6 +12,7 @@ from numpy.typing import NDArray
 from ..choices import WaveShape
 
 G = 9.81  # m/s^2
+WALK_DUTY = (0.45, 0.55)  # duty factors over which a walk turns into a run (a walker's swing, stance, heights)
 
 
 @dataclass(frozen=True)
@@ -58,3 +59,11 @@ def ground_speed(stride_m: float | NDArray, duty: float | NDArray, frequency: fl
     """Speed (m/s, or m per cycle with the default frequency) at which planted feet move
     relative to the body: a foot covers ``stride_m`` in ``duty`` of a cycle."""
     return stride_m / duty * frequency
+
+
+def walking_weight(duty: float | NDArray[np.float64]) -> NDArray[np.float64]:
+    """1 for a walk (duty factor 0.55 and over), 0 for a run (0.45 and under), smooth
+    (smoothstep) between; the shape of ``duty``."""
+    low, high = WALK_DUTY
+    x = np.clip((np.asarray(duty, dtype=np.float64) - low) / (high - low), 0.0, 1.0)
+    return x * x * (3.0 - 2.0 * x)

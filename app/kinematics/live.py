@@ -44,6 +44,7 @@ from .footfalls import (
 from .gait import ground_speed
 from .motion import MotionInputs, Pose, check_world, oscillators, solve_motion
 from .oscillator import FootWave
+from .poses import height_jump, reference_foot, settle
 from .rig import Rig
 from .world import World, WorldError
 
@@ -125,6 +126,10 @@ class LiveMotion:
         self._trunk = np.array([g.flex, g.pitch])  # spine flex and trunk pitch amplitudes (rad), eased to the gait's
         self._wave_from = self._wave_to = g.wave
         self._blend = 1.0  # progress of the frequency / bob / wave blend, 0..1
+        # A posed body's height jump being eased away: (m, m/s, when (s)), and the feet's
+        # duty factors at the time they were last seen (see _height_shift).
+        self._height_jump: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self._height_seen: tuple[NDArray[np.float64], float] | None = None
         self._feet_settled = True
         self._speed_cap = self._steady_swing_speed()  # m/s no swinging foot may exceed
         self._guard = False  # a gait switch is under way: the speed cap applies
@@ -497,9 +502,35 @@ class LiveMotion:
         swing = plan.swing[0]
         ease = smoothstep(swing)
         stride = np.where(plan.contact[0], self.stride, self.stride_lift + (self.stride - self.stride_lift) * ease)
+        stride = stride * self.rig.leg_scale
         return {"clock": self.clock, "time": self.time, "travel": self.travel, "bob": self.bob,
-                "stride": stride * self.rig.leg_scale, "plan": plan, "wave": self._wave_now(),
-                "trunk": self._trunk.copy(), "frequency": self.frequency}
+                "stride": stride, "plan": plan, "wave": self._wave_now(),
+                "trunk": self._trunk.copy(), "frequency": self.frequency,
+                "height_shift": self._height_shift(plan, stride)}
+
+    def _height_shift(self, plan: FootPlan, stride: NDArray[np.float64]) -> float:
+        """What is left now (m) of the jumps changes of duty factor have made in a posed
+        body's height: a foot takes a new gait's duty at its touchdown or lift-off, and the
+        body's height (a run's flights, a walk's key poses) follows the duty at once; the
+        jump is eased away over :data:`~app.kinematics.poses.HEIGHT_SETTLE` instead, the
+        body keeping its height and speed (inertialization)."""
+        if self.rig.poses.heights is None:
+            return 0.0
+        ref = reference_foot(self.rig)
+        duty = plan.duty[0]
+        seen = self._height_seen
+        if seen is not None and self.time < seen[1]:
+            seen = None  # time went back: start afresh
+        if seen is not None and self.time > seen[1] and duty[ref] != seen[0][ref]:
+            dt = self.time - seen[1]
+            jump, speed, start = self._height_jump
+            left = float(settle(jump, speed, self.time - start))
+            rate = (left - float(settle(jump, speed, self.time - start - 1e-4))) / 1e-4
+            more, faster = height_jump(self.rig, plan.phase[0], seen[0], duty, self.frequency, float(stride[ref]), dt)
+            self._height_jump = (left + more, rate + faster, self.time)
+        self._height_seen = (duty.copy(), self.time)
+        jump, speed, start = self._height_jump
+        return float(settle(jump, speed, self.time - start))
 
     @property
     def cross_fading(self) -> bool:
@@ -520,7 +551,7 @@ class LiveMotion:
         inputs = MotionInputs(clock=np.array([self.clock]), times=np.array([self.time]), plan=f["plan"],
                               travel=np.array([self.travel]), stride=f["stride"][None], bob=np.array([self.bob]),
                               wave=f["wave"], waves=self._waves(f["plan"]), trunk=f["trunk"][None],
-                              frequency=np.array([f["frequency"]]))
+                              frequency=np.array([f["frequency"]]), height_shift=np.array([f["height_shift"]]))
         return solve_motion(self.rig, self.world, inputs).pose(0)
 
 
@@ -535,4 +566,5 @@ def stack_inputs(frames: list[dict]) -> MotionInputs:
                         stride=np.array([f["stride"] for f in frames]), bob=np.array([f["bob"] for f in frames]),
                         trunk=np.array([f["trunk"] for f in frames]),
                         frequency=np.array([f["frequency"] for f in frames]),
+                        height_shift=np.array([f.get("height_shift", 0.0) for f in frames]),
                         wave=waves.pop() if len(waves) == 1 else frames[-1]["wave"])

@@ -30,7 +30,7 @@ from .leg import solve_legs
 from .oscillator import FootWave, foot_wave
 from .path import Path
 from .poses import body_height, reference_foot
-from .rig import STANCE_BACK, Rig
+from .rig import Rig
 from .roll import foot_roll, heel_points
 from .terrain import Terrain
 from .walker import walking_weight
@@ -164,7 +164,9 @@ class MotionInputs:
     relative to their hips (m, for the standing height); bob (T,) leg rest lengths; wave:
     the oscillator shape; ``waves`` optionally replaces the oscillators (a cross-fade of
     two shapes: foot wave and bob wave); trunk (T, 2) the spine's flexion and pitch
-    amplitudes (default: the gait's); frequency (T,) cycles/s (default: the gait's).
+    amplitudes (default: the gait's); frequency (T,) cycles/s (default: the gait's);
+    height_shift (T,) m added to a posed body's height (what is left of a jump a change of
+    duty factor made, :func:`app.kinematics.poses.settle`).
     """
 
     clock: NDArray[np.float64]
@@ -177,6 +179,7 @@ class MotionInputs:
     waves: tuple[FootWave, FootWave] | None = None
     trunk: NDArray[np.float64] | None = None
     frequency: NDArray[np.float64] | None = None
+    height_shift: NDArray[np.float64] | None = None
 
 
 def trunk_motion(rig: Rig, phase: NDArray[np.float64], wave: FootWave, trunk: NDArray[np.float64] | None
@@ -231,8 +234,7 @@ def _body_height(rig: Rig, inputs: MotionInputs, wave: str, bob: NDArray[np.floa
     if rig.poses.heights is not None:
         ref = reference_foot(rig)
         frequency = inputs.frequency if inputs.frequency is not None else np.full(plan.phase.shape[0], rig.gait.frequency)
-        ahead = 0.5 * (1.0 - STANCE_BACK) * inputs.stride[:, ref]  # where the foot lands, ahead of its hip
-        height = body_height(rig, plan.phase - delay, plan.duty, frequency, ahead)
+        height = body_height(rig, plan.phase - delay, plan.duty, frequency, inputs.stride[:, ref])
         return np.broadcast_to(height[:, None], (height.shape[0], rig.girdle_rest_height.size))
     lift = foot_wave(plan.phase - rig.motion.bob_phase - delay, plan.duty, wave).lift  # type: ignore[arg-type]
     girdle_lift = np.maximum(lift[:, 0::2], lift[:, 1::2])
@@ -268,6 +270,8 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     posed = rig.poses.heights is not None
     bob = np.zeros_like(inputs.bob) if posed else inputs.bob
     height = _body_height(rig, inputs, inputs.wave, bob)[:, 0] if posed else None
+    if height is not None and inputs.height_shift is not None:
+        height = height + inputs.height_shift
     trunk = trunk_motion(rig, plan.phase, wave, inputs.trunk)
     girdles = place_girdles(rig, world, inputs.travel, feet.support, ball, planted, inputs.stride,
                             bob, bob_wave.lift, wave.forward, pose_height=height,

@@ -28,7 +28,8 @@ from scipy.interpolate import PchipInterpolator
 
 from ..styles import KEY_POSE_TIMES
 from .gait import G
-from .rig import Rig
+from .rig import Rig, stance_back
+from .roll import TOE_OFF
 
 
 def reference_foot(rig: Rig) -> int:
@@ -84,8 +85,13 @@ def key_pose_phases(first_step: bool = True) -> NDArray[np.float64]:
     return start + 0.5 * np.append(np.asarray(KEY_POSE_TIMES), 1.0)
 
 
-RUN_KNEE = np.radians(40.0)  # a runner's stance knee at mid-stance, its lowest point
-STRIKE_KNEE = np.radians(15.0)  # ... and never straighter than this at touchdown and lift-off
+RUN_KNEE = np.radians(48.0)  # a runner's stance knee at mid-stance, its lowest point (40-50)
+STRIKE_KNEE = np.radians(20.0)  # ... at touchdown (15-25)
+TOE_OFF_THIGH = np.radians(-15.0)  # ... the thigh against the vertical at toe-off (-10 to -20: behind the hip)
+TOE_OFF_KNEE = np.radians(22.0)  # ... the knee at toe-off (~20)
+TOE_OFF_ANKLE = np.radians(-26.0)  # ... the ankle at toe-off, plantarflexed (-20 to -30)
+TAKE_OFF_SPEED = 0.1  # m/s: the least a runner's body still rises at toe-off
+LOWEST_AT = 0.45  # of the stance: where a runner's body is lowest (a little before mid-stance)
 RUN_BLEND = 0.06  # of duty factor below one half: how far the run's flights fade in
 
 
@@ -98,48 +104,125 @@ def _step_times(duty: NDArray[np.float64], frequency: NDArray[np.float64]
     return contact, 0.5 * period - contact
 
 
+def _quintic(h: NDArray[np.float64], start: tuple[NDArray[np.float64], ...], end: tuple[NDArray[np.float64], ...],
+             t: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The quintic through (height, speed, acceleration) ``start`` at time 0 and ``end`` at
+    ``h`` (s), at times ``t`` (all broadcastable)."""
+    y0, v0, a0 = start
+    y1, v1, a1 = end
+    s = np.clip(t / h, 0.0, 1.0)
+    s2, s3 = s * s, s * s * s
+    h0 = 1.0 - 10.0 * s3 + 15.0 * s3 * s - 6.0 * s3 * s2
+    h1 = s - 6.0 * s3 + 8.0 * s3 * s - 3.0 * s3 * s2
+    h2 = 0.5 * (s2 - 3.0 * s3 + 3.0 * s3 * s - s3 * s2)
+    h3 = 0.5 * (s3 - 2.0 * s3 * s + s3 * s2)
+    h4 = -4.0 * s3 + 7.0 * s3 * s - 3.0 * s3 * s2
+    h5 = 10.0 * s3 - 15.0 * s3 * s + 6.0 * s3 * s2
+    return y0 * h0 + v0 * h * h1 + a0 * h * h * h2 + a1 * h * h * h3 + v1 * h * h4 + y1 * h5
+
+
+def _lowest_acceleration(first: NDArray[np.float64], second: NDArray[np.float64], drop: NDArray[np.float64],
+                         rise: NDArray[np.float64], land: NDArray[np.float64], lift: NDArray[np.float64]
+                         ) -> NDArray[np.float64]:
+    """The body's upward acceleration (m/s^2) at its lowest point that makes the stance's two
+    quintics (``first`` s falling ``drop`` m from landing at ``land`` m/s, ``second`` s
+    rising ``rise`` m to lift off at ``lift`` m/s, -g at both ends) as smooth as they can
+    be: the least squared jerk over the whole stance (a quadratic in it, solved exactly)."""
+    t = np.linspace(0.0, 1.0, 33)[:, None]
+    # Jerk of each quintic at the samples, as a + b * acceleration (the jerk is linear in it).
+    def jerk(h, y0, v0, a0, y1, v1, a1):
+        return np.gradient(np.gradient(np.gradient(_quintic(h, (y0, v0, a0), (y1, v1, a1), t * h), axis=0),
+                                       axis=0), axis=0) / (h / 32.0) ** 3
+    zero = np.zeros_like(first)
+    parts = []
+    for h, ends in ((first, lambda a: (zero, -land, -G + zero, -drop, zero, a)),
+                    (second, lambda a: (zero, zero, a, rise, lift, -G + zero))):
+        base = jerk(h, *ends(zero))
+        slope = jerk(h, *ends(zero + 1.0)) - base
+        parts.append((base, slope, h))
+    num = sum(np.sum(b * s, axis=0) * h for b, s, h in parts)
+    den = sum(np.sum(s * s, axis=0) * h for _, s, h in parts)
+    return -num / np.maximum(den, 1e-12)
+
+
 def flight_height(u: NDArray[np.float64], duty: NDArray[np.float64], frequency: NDArray[np.float64],
-                  low: NDArray[np.float64]) -> NDArray[np.float64]:
+                  heights: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+                  ) -> NDArray[np.float64]:
     """A biped's body height offset (m) through a running step, (T,): ballistic in flight
-    (falling at g), a half sine in stance whose slopes meet the flight's at touchdown and
-    lift-off, lowest (``low``, m) at mid-stance. u (T,) step phase (0 at a touchdown);
-    duty (T,) each foot's duty factor (below 0.5: the step's stance is 2 duty of it);
-    frequency (T,) cycles/s."""
+    (falling at g) from toe-off to touchdown, and in stance two quintics falling from the
+    touchdown to the lowest point (at :data:`LOWEST_AT` of the stance) and rising to the
+    toe-off, whose heights, speeds and accelerations meet the flight's at both ends (no
+    jolt). u (T,) step phase (0 at a touchdown); duty (T,) each foot's duty factor (below
+    0.5: the step's stance is 2 duty of it); frequency (T,) cycles/s; heights: the
+    touchdown's, the lowest point's and the toe-off's (m, (T,) each, from
+    :func:`running_heights`)."""
+    touchdown, low, toe_off = heights
     contact, flight = _step_times(duty, frequency)
+    air = np.maximum(flight, 1e-6)
+    lift = (touchdown - toe_off) / air + 0.5 * G * flight  # m/s up at toe-off
+    land = G * flight - lift  # m/s down at touchdown
     t = np.mod(u, 1.0) * (contact + flight)
-    v0 = 0.5 * G * flight  # the take-off (and landing) speed, m/s
-    dip = v0 * contact / np.pi  # how far the stance sinks below touchdown
+    first, second = LOWEST_AT * contact, (1.0 - LOWEST_AT) * contact
+    a = _lowest_acceleration(first, second, touchdown - low, toe_off - low, land, lift)
+    falling = _quintic(first, (touchdown, -land, -G + 0.0 * a), (low, 0.0 * a, a), t)
+    rising = _quintic(second, (low, 0.0 * a, a), (toe_off, lift, -G + 0.0 * a), t - first)
     in_air = t - contact
-    stance = low + dip * (1.0 - np.sin(np.pi * np.clip(t / contact, 0.0, 1.0)))
-    air = low + dip + v0 * in_air - 0.5 * G * in_air ** 2
-    return np.where(in_air > 0.0, air, stance)
+    ballistic = toe_off + lift * in_air - 0.5 * G * in_air ** 2
+    return np.where(in_air > 0.0, ballistic, np.where(t < first, falling, rising))
 
 
-def running_low(rig: Rig, leg: int, ahead: NDArray[np.float64], duty: NDArray[np.float64],
-                frequency: NDArray[np.float64]) -> NDArray[np.float64]:
-    """The height offset (m from the girdle's rest height), (T,), of a runner's mid-stance:
-    its knee flexed :data:`RUN_KNEE` over a flat foot, lowered if need be so that a foot
-    landing ``ahead`` m in front of the hip (T,) reaches with its knee bent at least
-    :data:`STRIKE_KNEE`."""
-    f, t = rig.femur[leg], rig.tibia[leg]
-    ankle = rig.metatarsus[leg] * np.sin(rig.ankle_lift[leg])  # a flat foot's ankle above the ground
+def running_heights(rig: Rig, leg: int, stride: NDArray[np.float64], duty: NDArray[np.float64],
+                    frequency: NDArray[np.float64]
+                    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """A runner's body height offsets (m from the girdle's rest height), (T,) each, for a
+    planted foot travelling ``stride`` m (T,) under its hip: at touchdown, the heel striking
+    ahead of the hip (:func:`~app.kinematics.rig.stance_back`) with the knee at
+    :data:`STRIKE_KNEE`; at its lowest, the knee :data:`RUN_KNEE` over a flat foot; at
+    toe-off, the leg behind the hip (:data:`TOE_OFF_THIGH`, :data:`TOE_OFF_KNEE`) on a
+    plantarflexed foot (:data:`TOE_OFF_ANKLE`), no higher than that leg reaches its ball
+    and than lets the body still rise (:data:`TAKE_OFF_SPEED`) and fall back to the
+    touchdown in the flight between."""
+    f, t, m = rig.femur[leg], rig.tibia[leg], rig.metatarsus[leg]
+    lift = rig.ankle_lift[leg]
+    ankle = m * np.sin(lift)  # a flat foot's ankle above the ground
+    back_of_stance = stance_back(duty)
+    ahead = 0.5 * (1.0 - back_of_stance) * stride  # the ankle at touchdown, ahead of the hip
+    # The foot strikes on its heel, toes up by the roll's contact angle: the ankle higher
+    # and further back than over a flat foot.
+    toes_up = rig.roll_amount[leg] * rig.poses.foot_angle
+    heel = rig.heel_length[leg] - m * np.cos(lift)  # the heel behind the ankle
+    strike = heel * np.sin(toes_up) + ankle * np.cos(toes_up)
+    ahead = ahead - heel * (1.0 - np.cos(toes_up)) - ankle * np.sin(toes_up)
 
     def span(knee: float) -> float:
         return float(np.sqrt(f * f + t * t + 2.0 * f * t * np.cos(knee)))
 
     rest = float(rig.girdle_rest_height[rig.girdle[leg]])
-    low = ankle + span(RUN_KNEE) - rest
-    touchdown = ankle + np.sqrt(np.maximum(span(STRIKE_KNEE) ** 2 - ahead ** 2, 0.0)) - rest
-    contact, flight = _step_times(duty, frequency)
-    dip = 0.5 * G * flight * contact / np.pi
-    return np.minimum(low, touchdown - dip)
+    touchdown = strike + np.sqrt(np.maximum(span(STRIKE_KNEE) ** 2 - ahead ** 2, 0.0)) - rest
+    low = np.minimum(ankle + span(RUN_KNEE) - rest, touchdown)
+    # Toe-off: the leg's shape (knee and ankle) set, the thigh's angle or the ball's place
+    # behind the hip decides the height, whichever is lower.
+    shank = TOE_OFF_THIGH - TOE_OFF_KNEE  # from the vertical, + ahead
+    foot = min(lift - shank - TOE_OFF_ANKLE, 0.5 * np.pi)  # the metatarsus below the horizontal
+    ball = rig.toe[leg] * np.sin(rig.roll_amount[leg] * TOE_OFF)  # the ball above the ground, over the toe tip
+    by_thigh = f * np.cos(TOE_OFF_THIGH) + t * np.cos(shank) + m * np.sin(foot) + ball - rest
+    chain = np.array([f * np.sin(TOE_OFF_THIGH) + t * np.sin(shank) + m * np.cos(foot),
+                      f * np.cos(TOE_OFF_THIGH) + t * np.cos(shank) + m * np.sin(foot)])
+    behind = 0.5 * (1.0 + back_of_stance) * stride - m * np.cos(lift)  # the ball behind the hip at toe-off
+    by_reach = np.sqrt(np.maximum(float(chain @ chain) - behind ** 2, 0.0)) + ball - rest
+    _, flight = _step_times(duty, frequency)
+    rise = np.minimum(TAKE_OFF_SPEED, 0.5 * G * flight)
+    highest = touchdown + (0.5 * G * flight - rise) * flight
+    lowest = touchdown - 0.5 * G * flight * flight
+    toe_off = np.clip(np.minimum(by_thigh, by_reach), lowest, highest)
+    return touchdown, np.minimum(low, toe_off), toe_off
 
 
 def body_height(rig: Rig, phase: NDArray[np.float64], duty: NDArray[np.float64], frequency: NDArray[np.float64],
-                ahead: NDArray[np.float64]) -> NDArray[np.float64]:
+                stride: NDArray[np.float64]) -> NDArray[np.float64]:
     """A posed body's height offset (m), (T,): the key poses' curve while a foot is always
     down, the running step's (:func:`flight_height`) once the duty factor falls below one
-    half, faded in over :data:`RUN_BLEND`. phase, duty (T, L); frequency (T,) Hz; ahead
+    half, faded in over :data:`RUN_BLEND`. phase, duty (T, L); frequency (T,) Hz; stride
     (T,) m: how far in front of its hip the reference foot lands."""
     assert rig.poses.heights is not None, "body_height is for posed bodies"
     ref = reference_foot(rig)
@@ -150,5 +233,36 @@ def body_height(rig: Rig, phase: NDArray[np.float64], duty: NDArray[np.float64],
     if not np.any(run_weight):
         return walk
     w = run_weight * run_weight * (3.0 - 2.0 * run_weight)
-    run = flight_height(u, d, frequency, running_low(rig, ref, ahead, d, frequency))
+    run = flight_height(u, d, frequency, running_heights(rig, ref, stride, d, frequency))
     return walk * (1.0 - w) + run * w
+
+
+HEIGHT_SETTLE = 0.25  # s: how long a jump in a posed body's height (a change of duty factor) takes to die away
+
+
+def height_jump(rig: Rig, phase: NDArray[np.float64], before: NDArray[np.float64], now: NDArray[np.float64],
+                frequency: float, stride: float, dt: float) -> tuple[float, float]:
+    """How much higher (m) and faster rising (m/s) a posed body would stand at this frame by
+    the feet's duty factors ``before`` (L,) than it does by ``now`` (L,): the jump their
+    change makes in :func:`body_height`, to be eased away (:func:`settle`). phase (L,) the
+    feet's phases; frequency cycles/s; stride (m) the reference foot's travel under its hip;
+    dt (s) the frame's length (the speeds are differences over it)."""
+    back = phase - frequency * dt
+    phases = np.stack([phase, back, phase, back])
+    duties = np.stack([before, before, now, now])
+    heights = body_height(rig, phases, duties, np.full(4, frequency), np.full(4, stride))
+    jump = float(heights[0] - heights[2])
+    speed = float((heights[0] - heights[1]) - (heights[2] - heights[3])) / max(dt, 1e-9)
+    return jump, speed
+
+
+def settle(jump: float, speed: float, elapsed: NDArray[np.float64] | float,
+           duration: float = HEIGHT_SETTLE) -> NDArray[np.float64]:
+    """What is left (m) ``elapsed`` s after it of a height jump of ``jump`` m rising at
+    ``speed`` m/s: a quintic from the jump (with its speed, no acceleration) to nothing at
+    rest after ``duration`` s, so that the body keeps the height and speed it had
+    (inertialization)."""
+    t = np.asarray(elapsed, dtype=np.float64)
+    zero = np.zeros_like(t)
+    eased = _quintic(np.full_like(t, duration), (jump + zero, speed + zero, zero), (zero, zero, zero), t)
+    return np.where(t < duration, eased, 0.0)

@@ -19,11 +19,20 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..choices import PLANTIGRADE_BELOW
-from .gait import GaitParams, ground_speed
+from .gait import GaitParams, ground_speed, walking_weight
 
 MIN_CROUCH = 0.6  # a girdle never stands lower than this fraction of its rest height
 REACH_LIMIT = 0.985  # a planted foot's ball stays within this fraction of L_max, wherever the ground is
 STANCE_BACK = 0.25  # of half the stride: how far behind the hip a rolling plantigrade ankle is at mid-stance
+RUN_STANCE_BACK = 0.37  # ... a runner's: its foot lands nearer under it and pushes off further behind
+
+
+def stance_back(duty: float | NDArray[np.float64]) -> NDArray[np.float64]:
+    """Of half the stride, how far behind the hip a rolling plantigrade ankle is at
+    mid-stance at duty factor ``duty`` (any shape): a walker's :data:`STANCE_BACK` turning
+    into a runner's :data:`RUN_STANCE_BACK` as the feet start to leave the ground together."""
+    w = walking_weight(duty)
+    return STANCE_BACK * w + RUN_STANCE_BACK * (1.0 - w)
 SPRAWL_MARGIN = 0.95  # a sprawled foot's rest spot stays within this fraction of full reach, striding
 
 
@@ -279,6 +288,11 @@ class Rig:
         reach = self.sideways_reach
         return np.sqrt(reach ** 2 + half_stride ** 2 + 2.0 * reach * half_stride * np.abs(np.sin(self.splay)))
 
+    @property
+    def stance_back(self) -> float:
+        """:func:`stance_back` at the gait's duty factor."""
+        return float(stance_back(self.gait.duty_factor))
+
     @functools.cached_property
     def neutral_feet(self) -> NDArray[np.float64]:
         """Each foot's rest position relative to its girdle's centre on the ground, in the
@@ -291,7 +305,7 @@ class Rig:
         # mid-stance, the ball ahead: it strikes with its heel about a third of a stride
         # ahead of the hip and pushes off well behind it, as walkers do.
         ahead = np.where((self.roll_amount > 0) & (self.heel_length > 0),
-                         self.metatarsus * np.cos(self.ankle_lift) - STANCE_BACK * 0.5 * self.stride_length, 0.0)
+                         self.metatarsus * np.cos(self.ankle_lift) - self.stance_back * 0.5 * self.stride_length, 0.0)
         return _frozen(np.stack([lateral, reach * np.sin(self.splay) + ahead], axis=-1))
 
     def with_gait(self, gait: GaitParams) -> Rig:

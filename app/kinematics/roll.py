@@ -31,12 +31,13 @@ from numpy.typing import NDArray
 from .easing import smoothstep
 from .footfalls import FootPlan
 from .rig import REACH_LIMIT, Rig
-from .walker import knee_fold, walker_knee, walker_knee_band
+from .walker import knee_fold, walker_knee, walker_knee_band, walking_weight
 
 HEEL_PART = 0.2  # of the stance, at roll 1: heel strike to foot flat
 RISE_PART = 0.5  # of the stance before lift-off, at roll 1: where the heel starts to rise
 TOE_PART = 0.2  # of the stance before lift-off, at roll 1: the roll over the toes
 HEEL_RISE = np.radians(30.0)  # how far the heel rises about the ball before the toe roll, at roll 1
+RUN_HEEL_RISE = np.radians(50.0)  # ... a runner's, pushing off on a steep foot
 TOE_OFF = np.radians(12.0)  # the toe's angle at lift-off, at roll 1
 STRAIGHT_KNEE = np.radians(3.0)  # a rolling plantigrade stance leg is never straighter than this
 SWING_DORSIFLEXION = 0.0  # rad: the swinging plantigrade foot's ankle between lift-off and strike
@@ -89,15 +90,16 @@ def _foot_frame(direction: NDArray[np.float64], normal: NDArray[np.float64]) -> 
 
 
 def _stance(rig: Rig, foot_angle: float, u: NDArray[np.float64], foothold: NDArray[np.float64],
-            forward: NDArray[np.float64], normal: NDArray[np.float64]):
+            forward: NDArray[np.float64], normal: NDArray[np.float64], heel_rise: NDArray[np.float64]):
     """The rolled foot at stance fraction u (T, L) on a foothold (T, L, 3) (the flat ball's
-    place): ball (T, L, 3), metatarsus angle and toe drop (T, L)."""
+    place), its heel rising by up to ``heel_rise`` (rad, (T, L)) at roll 1: ball (T, L, 3),
+    metatarsus angle and toe drop (T, L)."""
     r = rig.roll_amount
     a, b, c = r * HEEL_PART, 1.0 - r * RISE_PART, 1.0 - r * TOE_PART
     rolls = a > 1e-9  # a roll too small to last a frame is none
     x_heel = np.clip(u / np.where(rolls, a, 1.0), 0.0, 1.0)
     heel_pitch = np.where(rolls, r * foot_angle * (1.0 - x_heel) ** 2, 0.0)  # toes up, about the heel
-    rise = r * HEEL_RISE * smoothstep((u - b) / np.maximum(c - b, 1e-9))
+    rise = r * heel_rise * smoothstep((u - b) / np.maximum(c - b, 1e-9))
     x_toe = np.clip((u - c) / np.where(rolls, 1.0 - c, 1.0), 0.0, 1.0)
     toe_pitch = np.where(rolls, r * TOE_OFF * x_toe ** 2, 0.0)  # ball up, about the toe tip
     heel = rig.heel_length
@@ -130,9 +132,12 @@ def foot_roll(rig: Rig, plan: FootPlan, ball: NDArray[np.float64], foot_angle: f
     f_start = _foot_frame(plan.start_dir, plan.start_normal)
     f_end = _foot_frame(plan.end_dir, plan.end_normal)
     u = np.clip(plan.phase / plan.duty, 0.0, 1.0)
-    stance_ball, stance_ankle, stance_drop = _stance(rig, foot_angle, u, plan.start, f_start, plan.start_normal)
+    walk = walking_weight(plan.duty)
+    heel_rise = HEEL_RISE * walk + RUN_HEEL_RISE * (1.0 - walk)
+    stance_ball, stance_ankle, stance_drop = _stance(rig, foot_angle, u, plan.start, f_start, plan.start_normal,
+                                                     heel_rise)
     one = np.ones_like(u)
-    _, lift_ankle, lift_drop = _stance(rig, foot_angle, one, plan.start, f_start, plan.start_normal)
+    _, lift_ankle, lift_drop = _stance(rig, foot_angle, one, plan.start, f_start, plan.start_normal, heel_rise)
 
     s = plan.swing
     contact = plan.contact

@@ -52,7 +52,10 @@ from numpy.typing import NDArray
 from scipy.interpolate import PchipInterpolator
 
 from .easing import smootherstep, smoothstep
+from .gait import WALK_DUTY, walking_weight
 from .rig import Rig
+
+__all__ = ["WALK_DUTY", "walking_weight"]  # re-exported: the walker's own names for the walk-to-run blend
 
 SWING = np.linspace(0.0, 1.0, 11)
 WORLD_PROGRESS = np.array([0.0, 0.041, 0.127, 0.24, 0.366, 0.504, 0.647, 0.779, 0.889, 0.972, 1.0])
@@ -76,7 +79,6 @@ CEILING_FADE = (-0.14, -0.08)  # of the cycle before the strike: the band's ceil
 RUN_KNEE_FROM_TOE_OFF = np.array([-0.20, -0.16, -0.12, -0.08, -0.04, 0.0, 0.04, 0.08, 0.12])
 RUN_KNEE_NEAR_TOE_OFF = np.array([45.0, 42.0, 38.0, 32.0, 25.0, 20.0, 38.0, 60.0, 80.0])
 RUN_HEEL_FROM = -0.20
-WALK_DUTY = (0.45, 0.55)  # duty factors over which the walker's swing fades in
 SWING_KNEE = float(KNEE_BEFORE_STRIKE.max())  # deg: the curves' knee at its most bent in the swing
 KNEE_STRAIGHT = 5.0  # deg: the curves' nearly straight knee; a walker's ``swing_knee`` scales the bend beyond it
 # deg: the swing knees a walker may be given. Below ~57 the swing's own foot path bends
@@ -100,12 +102,6 @@ def _curve(name: str) -> PchipInterpolator:
 def heel_to_toe(rig: Rig) -> NDArray[np.bool_]:
     """Which legs (L,) swing as a walker's: plantigrade feet that roll heel to toe."""
     return (rig.roll_amount > 0) & (rig.heel_length > 0)
-
-
-def walking_weight(duty: NDArray[np.float64]) -> NDArray[np.float64]:
-    """1 for a walk (duty factor 0.55 and over), 0 for a run (0.45 and under), smooth between."""
-    low, high = WALK_DUTY
-    return smoothstep((np.asarray(duty) - low) / (high - low))
 
 
 def walker_ease(swing: NDArray[np.float64], duty: NDArray[np.float64]) -> NDArray[np.float64]:
