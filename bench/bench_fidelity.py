@@ -8,8 +8,8 @@ table with its typical range, the RMS difference of the hip, knee and ankle curv
 the bundled normative mean (Schwartz et al. 2008) and of the knee from the CMU walk
 12_01; for the human run, every row of fidelity.md's run table (knee at strike, stance
 and swing peaks, hip and ankle at toe-off, vertical excursion) with the flight's
-acceleration, the largest jolt, elbows, duty and cadence; for the horse's walk and trot and the dog's rotary gallop and bound, duty, stride,
-speed, head nod and back flexion.
+acceleration, the largest jolt, elbows, duty and cadence; for the horse's walk and trot
+and the dog's rotary gallop and bound, duty, stride, speed, head nod and back flexion.
 """
 
 from __future__ import annotations

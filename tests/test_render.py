@@ -376,3 +376,41 @@ def test_a_person_s_eyes_look_out_of_the_face() -> None:
         up = skulls[0, Ell.AXES[1]]
         height = (eyes[:, Ell.CENTRE] - skulls[0, Ell.CENTRE]) @ up / rig.body.head_radius
         assert np.all((lowest < height) & (height < highest)), (name, height)
+
+
+def test_a_mammal_s_neck_is_deeper_than_wide_and_a_horse_s_is_maned() -> None:
+    """A four-legged mammal's neck has flattened sections, deep as the chest at the base
+    and as the head at the throat (a round tube read as a hose into the chest); the
+    horse's crest carries a dark mane (``body.mane``), drawn on the skinned body as the
+    eyes are and left out of the skin's surface."""
+    from app.render.scene import NECK_SECTIONS, NECK_WIDTH, Ell, mane_color, motion_instances
+    from app.skin.body import _parts
+
+    def rows(name: str, **keys: float):
+        rig = build_rig(load_creature(name).with_overrides({f"body.{k}": v for k, v in keys.items()}))
+        motion, _ = clip_motion(rig, 30.0, cycles=0.25)
+        ells = np.asarray(motion_instances(motion, show_joints=False).frame(0).ellipsoids, np.float64)
+        skin = np.asarray(motion_instances(motion, show_joints=False, parts=False).frame(0).ellipsoids, np.float64)
+        maned = np.all(np.abs(ells[:, Ell.COLOR] - mane_color(rig)) < 1e-3, axis=1)
+        return rig, motion, ells, skin, maned
+
+    rig, motion, ells, skin, maned = rows("horse")
+    assert rig.body.mane > 0 and maned.sum() > 4
+    assert np.all(np.abs(skin[:, Ell.COLOR] - mane_color(rig)) < 1e-3, axis=1).sum() == maned.sum()
+    _, skin_parts = _parts(motion)
+    assert len(skin_parts) == len(ells) - maned.sum() - 2  # neither the mane nor the eyes
+    base, top = motion.neck[0, 0], motion.neck[0, -1]
+    along = base + NECK_SECTIONS[:, None] * (top - base)
+    sections = ells[np.linalg.norm(ells[:, Ell.CENTRE][:, None] - along[None], axis=-1).min(axis=1) < 0.25 * rig.body.radius[-1]]
+    sections = sections[~np.all(np.abs(sections[:, Ell.COLOR] - mane_color(rig)) < 1e-3, axis=1)]
+    assert len(sections) == len(NECK_SECTIONS)
+    radii = sections[:, Ell.RADII]
+    assert np.allclose(radii[:, 0], NECK_WIDTH * radii[:, 1])
+    assert radii[0, 1] > 1.5 * rig.body.head_radius > radii[-1, 1]  # deep at the base, as the head at the throat
+    _, _, _, _, unmaned = rows("horse", mane=0.0)
+    assert not unmaned.any()
+    for name in ("human", "spider", "bird"):  # no mammal's neck
+        _, motion, ells, _, _ = rows(name)
+        base, top = motion.neck[0, 0], motion.neck[0, -1]
+        along = base + NECK_SECTIONS[:, None] * (top - base)
+        assert np.linalg.norm(ells[:, Ell.CENTRE][:, None] - along[None], axis=-1).min() > 1e-3

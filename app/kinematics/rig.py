@@ -80,6 +80,7 @@ class BodyShape:
     tail_segments: int
     upright: bool = False  # the trunk rises from its one girdle (a human) instead of running between girdles
     tail_radius: float | None = None  # m at the base (None: a third of the rump's radius)
+    mane: float = 0.0  # m: the height of a mane along the top of the neck (0: none)
 
 
 @dataclass(frozen=True)

@@ -164,6 +164,84 @@ SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches
 TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half its width and half its depth
 SHOULDER_LINE = 0.42  # of the chest's radius: the thickness of the line from shoulder to shoulder
 THIGH_OUT = 0.5  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
+NECK_SECTIONS = np.array([0.25, 0.55, 0.82])  # along a mammal's neck, base to head: its deep, flattened sections
+NECK_WIDTH = 0.6  # of a section's depth: a mammal's neck is deeper than wide
+CREST_DROP = 0.3  # of a section's depth beyond the head's radius: how far it hangs below the crest
+MANE_SHADE = 0.3  # of the body's colour (linear): a mane's darker hair
+MANE_TUFTS = 14  # flattened ellipsoids along the crest, poll to withers, overlapping into one ridge
+
+
+def mane_color(rig: Rig) -> NDArray[np.float64]:
+    """A mane's colour (3,), linear: the body's, darker."""
+    return MANE_SHADE * srgb_to_linear(rig.look.body_color)
+
+
+def _neck_top(s: NDArray[np.float64], capsule: tuple[float, float], chest: float, head_radius: float
+              ) -> NDArray[np.float64]:
+    """How far above its axis a mammal's neck's crest runs (m) at fractions ``s`` of it from
+    the base: the neck capsule's radius or a deep section's top, whichever is higher."""
+    depth = head_radius + (chest - head_radius) * (1.0 - s)
+    return np.maximum(capsule[0] + (capsule[1] - capsule[0]) * s, depth - CREST_DROP * (depth - head_radius))
+
+
+def _deep_neck(neck: NDArray[np.float64], chest: float, head_radius: float, color: NDArray[np.float64]
+               ) -> NDArray[np.float64]:
+    """A mammal's neck, deeper than wide (a round tube read as a hose into the chest):
+    flattened ellipsoids (T, 3, 18) at :data:`NECK_SECTIONS` of the neck (T, 2, 3), as deep
+    as the chest (radius ``chest``, m) at the base and as the head at the throat,
+    :data:`NECK_WIDTH` as wide, their extra depth hanging below the crest (the throat and
+    the breast)."""
+    base, top = neck[:, :1], neck[:, -1:]
+    axis = top - base
+    length = np.linalg.norm(axis, axis=-1, keepdims=True)
+    s = NECK_SECTIONS[None, :, None]
+    depth = head_radius + (chest - head_radius) * (1.0 - s)
+    _, y, _ = _frame_axes(np.broadcast_to(axis, (axis.shape[0], s.shape[1], 3)))
+    centre = base + s * axis - y * CREST_DROP * (depth - head_radius)
+    shape = (axis.shape[0], s.shape[1], 1)
+    radii = np.concatenate([np.broadcast_to(NECK_WIDTH * depth, shape), np.broadcast_to(depth, shape),
+                            np.broadcast_to(0.34 * length, shape)], axis=-1)
+    return _ellipsoids(centre, axis, radii, color)
+
+
+def _neck_radii(rig: Rig, spine_radius: NDArray[np.float64]) -> tuple[float, float]:
+    """The neck capsule's radii (m) at its base and at the head: a person's slim neck, an
+    animal's deep one rising from the chest."""
+    head_radius = rig.body.head_radius
+    if rig.body.upright:
+        return 0.45 * head_radius, 0.4 * head_radius
+    return 0.68 * float(spine_radius[-1]), 0.85 * head_radius
+
+
+def _mammal_neck(rig: Rig) -> bool:
+    """Whether the neck is a mammal's: deeper than wide, maybe maned (four or more
+    upright-kneed legs, a horizontal trunk and a neck)."""
+    return not rig.body.upright and rig.leg_count >= 4 and not rig.knee_out.any() and rig.body.neck_length > 0
+
+
+def _mane_rows(neck: NDArray[np.float64], spine_radius: NDArray[np.float64], rig: Rig) -> NDArray[np.float64]:
+    """The mane's ellipsoid rows (T, K, 18); none (K = 0) without ``body.mane``."""
+    if not (_mammal_neck(rig) and rig.body.mane > 0):
+        return np.zeros((neck.shape[0], 0, ELLIPSOID_FLOATS))
+    return _mane(neck, _neck_radii(rig, spine_radius), float(spine_radius[-1]), rig.body.head_radius,
+                 rig.body.mane, mane_color(rig))
+
+
+def _mane(neck: NDArray[np.float64], capsule: tuple[float, float], chest: float, head_radius: float,
+          height: float, color: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A mane (T, MANE_TUFTS, 18): flattened ellipsoids standing ``height`` m above the neck's
+    crest from the poll back to the withers, thin across."""
+    base, top = neck[:, :1], neck[:, -1:]
+    axis = top - base
+    length = np.linalg.norm(axis, axis=-1, keepdims=True)
+    s = np.linspace(0.08, 1.0, MANE_TUFTS)
+    _, y, _ = _frame_axes(np.broadcast_to(axis, (axis.shape[0], MANE_TUFTS, 3)))
+    crest = _neck_top(s, capsule, chest, head_radius)[None, :, None]
+    centre = base + s[None, :, None] * axis + y * (crest + 0.1 * height)
+    spacing = length / (MANE_TUFTS - 1)
+    radii = np.concatenate([np.full(spacing.shape, 0.15 * height + 0.01), np.full(spacing.shape, 0.55 * height),
+                            1.6 * spacing], axis=-1)
+    return _ellipsoids(centre, axis, np.broadcast_to(radii, centre.shape), color)
 
 
 def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Rig,
@@ -372,9 +450,9 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     if not parts and rig.model:  # the user's model is drawn instead, with its own eyes
         return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
                               ellipsoids=np.zeros((frames, 0, ELLIPSOID_FLOATS), np.float32), ellipsoid_casters=0)
-    if not parts:  # a skinned body is drawn instead: only the eyes and the joint markers
+    if not parts:  # a skinned body is drawn instead: only the eyes, the mane and the joint markers
         skull, head_dir = _skull(head, rig)
-        on_skin = [_eyes(skull, head_dir, rig)] + markers
+        on_skin = [_eyes(skull, head_dir, rig), _mane_rows(neck, spine_radius, rig)] + markers
         return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
                               ellipsoids=np.concatenate(on_skin, axis=1).astype(np.float32), ellipsoid_casters=0)
 
@@ -390,8 +468,11 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         trunk, torso = trunk[:, :0], _upright_torso(spine, spine_tangent, r, joints[:, 0, 0] - joints[:, 1, 0],
                                                     arms[:, 0, 0], arms[:, 1, 0], rig, body_color)
     # A deep neck rising from the chest, narrowing to the head.
-    neck_r = (0.45 * head_radius, 0.4 * head_radius) if upright else (0.68 * r[-1], 0.85 * head_radius)
+    neck_r = _neck_radii(rig, r)
     neck_c = _capsules(neck[:, :1], neck[:, 1:], neck_r[0], neck_r[1], body_color)
+    neck_e = _deep_neck(neck, float(r[-1]), head_radius, body_color) if _mammal_neck(rig) \
+        else np.zeros((frames, 0, ELLIPSOID_FLOATS))
+    mane = _mane_rows(neck, r, rig)
 
     # Head: a round skull and a tapering muzzle towards the nose.
     skull, head_dir = _skull(head, rig)
@@ -426,7 +507,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
 
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
-    ellipsoid_parts = [skull_e, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells, *markers]
+    ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells, *markers]
     capsule_parts += [part for part in torso if part.shape[-1] == CAPSULE_FLOATS]
     ellipsoid_parts += [part for part in torso if part.shape[-1] == ELLIPSOID_FLOATS]
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),

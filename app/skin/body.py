@@ -105,13 +105,14 @@ def bind_joints(starts: NDArray[np.float64], ends: NDArray[np.float64] | None, c
 
 def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The first frame's capsules (C, 8: a, b, r0, r1) and ellipsoids (E, 15: centre,
-    axes, radii), without joint markers."""
-    from ..render.scene import EYE_COLOR, Cap, Ell, motion_instances
+    axes, radii), without joint markers, eyes or mane."""
+    from ..render.scene import EYE_COLOR, Cap, Ell, mane_color, motion_instances
 
     frame = motion_instances(motion, show_joints=False).frame(0)
     caps = np.asarray(frame.capsules, np.float64)
     ells = np.asarray(frame.ellipsoids, np.float64)
-    ells = ells[~np.all(np.abs(ells[:, Ell.COLOR] - EYE_COLOR) < 1e-3, axis=1)]  # the eyes sit on the skin
+    for on_skin in (EYE_COLOR, mane_color(motion.rig)):  # the eyes and the mane sit on the skin
+        ells = ells[~np.all(np.abs(ells[:, Ell.COLOR] - on_skin) < 1e-3, axis=1)]
     capsules = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], caps[:, Cap.RADII]], axis=1) if len(caps) \
         else np.zeros((0, 8))
     ellipsoids = np.concatenate([ells[:, Ell.CENTRE], *(ells[:, a] for a in Ell.AXES), ells[:, Ell.RADII]],
@@ -169,12 +170,12 @@ def _simplify(verts: NDArray[np.float64], faces: NDArray[np.int64], target: int
               ) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
     """Quadric decimation towards ``target`` triangles, cleaned of the degenerate and
     repeated faces it can leave, kept only if still closed; a decimation that opens the
-    surface is tried again gentler (less aggressive collapses), then less deep (up to twice
-    the target); failing all, the mesh is kept as it is."""
+    surface is tried again gentler (less aggressive collapses), then less deep (up to three
+    times the target); failing all, the mesh is kept as it is."""
     import fast_simplification
     import trimesh
 
-    for goal in (target, int(1.25 * target), int(1.6 * target), 2 * target):
+    for goal in (target, int(1.25 * target), int(1.6 * target), 2 * target, int(2.5 * target), 3 * target):
         if len(faces) <= goal:
             break
         for aggression in (7.0, 3.0):

@@ -65,7 +65,8 @@ def _length(doc: str, *, zero_ok: bool = False, hi: float = 50.0) -> Rule:
 
 
 # Body keys that are lengths (m): a fitted or model-driven creature scales them with its legs.
-SCALED_BODY_KEYS = ("length", "neck_length", "head_length", "head_radius", "tail_length", "tail_radius", "ear_length")
+SCALED_BODY_KEYS = ("length", "neck_length", "head_length", "head_radius", "tail_length", "tail_radius", "ear_length",
+                    "mane")
 
 BODY_RULES: dict[str, Rule] = {
     "length": _length("distance from the hind hips to the fore shoulders along the spine"),
@@ -84,6 +85,8 @@ BODY_RULES: dict[str, Rule] = {
     "tail_segments": Rule("integer", 1, 32, doc="number of tail segments"),
     "tail_radius": _length("the tail's radius at its base, tapering to a quarter at the tip (default: a third "
                            "of the rump's radius; a lizard's or theropod's thick muscular tail: about two thirds)"),
+    "mane": _length("the height of a mane of hair along the top of the neck, from the poll to the withers "
+                    "(0 for none; a horse's: about 0.1)", zero_ok=True),
     "posture": Rule("choice", choices=POSTURES, doc="horizontal: the trunk runs from the hind to the fore legs; "
                     "upright: it rises from the hips (a human; one leg pair)"),
 }
