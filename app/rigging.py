@@ -187,7 +187,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
                       head_angle=math.radians(body.head_angle), ear_length=body.ear_length,
                       tail_length=body.tail_length, tail_angle=math.radians(body.tail_angle),
                       tail_segments=body.tail_segments, upright=body.posture == "upright",
-                      tail_radius=body.tail_radius, mane=body.mane)
+                      tail_radius=body.tail_radius, mane=body.mane, tail_curl=math.radians(body.tail_curl))
     hip_height = float(rest_height.mean())
     rig = Rig(
         name=spec.name,

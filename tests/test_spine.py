@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from app import load_creature, simulate
 from app.kinematics.spine import arc_length_parameters, bezier
@@ -30,3 +31,22 @@ def test_body_segments_evenly_spaced_in_simulation() -> None:
     motion = simulate(load_creature("dog"), seconds=0.5, fps=30)
     gaps = np.linalg.norm(np.diff(motion.spine, axis=1), axis=-1)  # chords ~ arc for gentle curves
     assert np.allclose(gaps, gaps.mean(axis=1, keepdims=True), rtol=5e-3)
+
+
+def test_a_tail_curls_by_its_tail_curl_from_the_first_segment_to_the_last() -> None:
+    """``body.tail_curl`` turns the tail up (+) or down (-) along its length: the last
+    segment's droop below the first's changes by the curl (tails were straight cones)."""
+    from app import build_rig, load_creature
+    from app.kinematics.clip import clip_motion
+
+    def bend(curl: float) -> float:
+        spec = load_creature("dog").with_overrides({"body.tail_curl": curl, "motion.tail_sway": 0.0})
+        motion, _ = clip_motion(build_rig(spec), 30.0, cycles=0.25)
+        tail = motion.tail[0]
+        first, last = tail[1] - tail[0], tail[-1] - tail[-2]
+        slope = lambda v: np.degrees(np.arctan2(v[1], np.linalg.norm(v[[0, 2]])))
+        return slope(last) - slope(first)
+
+    straight, up, down = bend(0.0), bend(50.0), bend(-30.0)
+    assert up - straight == pytest.approx(50.0, abs=1.0)
+    assert down - straight == pytest.approx(-30.0, abs=1.0)

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .body import TAIL_DROOP, pitch, unit
+from .body import pitch, unit
 from .frames import UP
 from .herd import rotation_between
 from .rig import Rig
@@ -52,8 +52,7 @@ def appendage_turns(rig: Rig, neck: NDArray[np.float64], head: NDArray[np.float6
     body = rig.body
     frames = heading_frames(root)  # (T, 3, 3)
     forward = frames[..., 2]
-    k = np.arange(tail.shape[1] - 1)
-    droop = np.minimum(body.tail_angle * (1.0 + TAIL_DROOP * k / max(len(k), 1)), 0.5 * np.pi)  # (K,)
+    droop = body.tail_droop(tail.shape[1] - 1)  # (K,)
     rest = {"neck": pitch(forward, body.neck_angle), "head": pitch(forward, -body.head_angle),
             "tail": pitch(-forward[:, None, :], -droop[None, :])}
     now = {"neck": unit(neck[:, 1] - neck[:, 0]), "head": unit(head[:, 1] - head[:, 0]),

@@ -28,7 +28,6 @@ from .rig import MIN_CROUCH, REACH_LIMIT, Rig
 from .spine import bezier, bezier_tangent
 from .world import World
 
-TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
 MAX_ROLL = 0.5  # rad
@@ -336,8 +335,7 @@ def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float6
     head = np.stack([neck_top, neck_top + body.head_length * head_dir], axis=1)
     k = np.arange(body.tail_segments)
     along = (k + 1) / body.tail_segments
-    droop = np.minimum(body.tail_angle * (1.0 + TAIL_DROOP * k / body.tail_segments), 0.5 * np.pi)
-    droop = droop - np.asarray(follow("tail", body.tail_length))[..., None] * along
+    droop = body.tail_droop() - np.asarray(follow("tail", body.tail_length))[..., None] * along
     delay = rig.overlap.tail
     sway = rig.motion.tail_sway * along * np.sin(2.0 * np.pi * (clock[:, None] - delay - TAIL_WAVE_LAG * along))
     back = rotate_y(-d_rear[:, None, :], sway + yaw_rear[:, None])  # (T, K, 3)

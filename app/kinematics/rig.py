@@ -24,6 +24,7 @@ from .gait import GaitParams, ground_speed, walking_weight
 MIN_CROUCH = 0.6  # a girdle never stands lower than this fraction of its rest height
 REACH_LIMIT = 0.985  # a planted foot's ball stays within this fraction of L_max, wherever the ground is
 STANCE_BACK = 0.25  # of half the stride: how far behind the hip a rolling plantigrade ankle is at mid-stance
+TAIL_DROOP = 0.4  # the tail's last segment hangs this much further (fraction of tail_angle)
 RUN_STANCE_BACK = 0.37  # ... a runner's: its foot lands nearer under it and pushes off further behind
 
 
@@ -81,6 +82,17 @@ class BodyShape:
     upright: bool = False  # the trunk rises from its one girdle (a human) instead of running between girdles
     tail_radius: float | None = None  # m at the base (None: a third of the rump's radius)
     mane: float = 0.0  # m: the height of a mane along the top of the neck (0: none)
+    tail_curl: float = 0.0  # rad the tail turns up (+) from its first segment to its last
+
+    def tail_droop(self, segments: int | None = None) -> NDArray[np.float64]:
+        """Each tail segment's droop below the body axis at rest (rad, (K,), base to tip):
+        the tail angle, a little more towards the tip (:data:`TAIL_DROOP`), less the curl
+        (up to hanging straight down)."""
+        count = self.tail_segments if segments is None else segments
+        k = np.arange(count)
+        along = k / max(count - 1, 1)
+        droop = self.tail_angle * (1.0 + TAIL_DROOP * k / max(count, 1)) - self.tail_curl * along
+        return np.minimum(droop, 0.5 * np.pi)
 
 
 @dataclass(frozen=True)

@@ -120,16 +120,14 @@ def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     return capsules, ellipsoids
 
 
-def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail,
-             limbs: tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]] | None = None
-             ) -> tuple[NDArray[np.float64], NDArray[np.int64], float, Callable[[NDArray[np.float64]], NDArray]]:
-    """The union's zero surface: vertices (V, 3), faces (F, 3), the blend width (m) and
-    the surface's own normal at any points (N, 3) -> (N, 3) (the field's gradient,
-    trilinear between grid nodes: smooth, where a simplified mesh's own normals are as
-    faceted as its triangles). ``limbs``: each part's leg and arm (P,) and whether it is
-    the tail's, see :func:`app.skin.sdf.union_on_grid`."""
-    from skimage.measure import marching_cubes
-
+def grid_parts(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail
+               ) -> tuple[NDArray[np.float64], NDArray[np.float64], float, float, NDArray[np.float64],
+                          NDArray[np.float64]]:
+    """The grid a body's union is sampled on and what it samples: its corners lo, hi (3,)
+    (m, a margin beyond every part), the cell (m: as fine as :data:`VOXELS` allows over the
+    creature's box, no coarser than :data:`MAX_CELLS` along it), the blend width (m: 0.12
+    of the parts' median radius, at least 1.5 cells) and the parts with every radius at
+    least 1.1 cells (thin legs two cells across)."""
     lo = np.minimum(capsules[:, 0:3].min(axis=0) if len(capsules) else np.inf,
                     ellipsoids[:, 0:3].min(axis=0) if len(ellipsoids) else np.inf)
     hi = np.maximum(capsules[:, 3:6].max(axis=0) if len(capsules) else -np.inf,
@@ -148,6 +146,20 @@ def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], det
     ellipsoids = ellipsoids.copy()
     ellipsoids[:, 12:15] = np.maximum(ellipsoids[:, 12:15], 1.1 * cell)
     lo, hi = lo - 3.0 * cell - blend, hi + 3.0 * cell + blend  # a closed surface: the grid's edge is outside
+    return lo, hi, cell, blend, capsules, ellipsoids
+
+
+def _surface(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail,
+             limbs: tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.bool_]] | None = None
+             ) -> tuple[NDArray[np.float64], NDArray[np.int64], float, Callable[[NDArray[np.float64]], NDArray]]:
+    """The union's zero surface: vertices (V, 3), faces (F, 3), the blend width (m) and
+    the surface's own normal at any points (N, 3) -> (N, 3) (the field's gradient,
+    trilinear between grid nodes: smooth, where a simplified mesh's own normals are as
+    faceted as its triangles). ``limbs``: each part's leg and arm (P,) and whether it is
+    the tail's, see :func:`app.skin.sdf.union_on_grid`."""
+    from skimage.measure import marching_cubes
+
+    lo, hi, cell, blend, capsules, ellipsoids = grid_parts(capsules, ellipsoids, detail)
     axes = tuple(np.arange(lo[k], hi[k] + cell, cell) for k in range(3))
     legs, arms, tail = limbs if limbs is not None else (None, None, None)
     volume = union_on_grid(axes, capsules, ellipsoids, blend, legs, arms, LIMB_BLEND * blend,  # type: ignore[arg-type]

@@ -41,6 +41,7 @@ class BodySpec:
     tail_angle: float = 30.0
     tail_segments: int = 6
     tail_radius: float | None = None
+    tail_curl: float = 0.0
     mane: float = 0.0
     posture: Posture = "horizontal"
 

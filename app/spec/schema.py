@@ -83,6 +83,8 @@ BODY_RULES: dict[str, Rule] = {
     "tail_length": _length("tail length (0 for none)", zero_ok=True),
     "tail_angle": _num(-90, 90, unit="deg", doc="tail droop below the body axis"),
     "tail_segments": Rule("integer", 1, 32, doc="number of tail segments"),
+    "tail_curl": _num(-180, 180, unit="deg", doc="how far the tail turns from its first segment to its last: "
+                      "+ curving up (a dog's sickle, a cat's J), - falling (a horse's hair)"),
     "tail_radius": _length("the tail's radius at its base, tapering to a quarter at the tip (default: a third "
                            "of the rump's radius; a lizard's or theropod's thick muscular tail: about two thirds)"),
     "mane": _length("the height of a mane of hair along the top of the neck, from the poll to the withers "

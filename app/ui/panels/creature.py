@@ -143,6 +143,7 @@ def body_panel(state: ViewerState, pc: PanelContext) -> None:
         slider(state, pc, "motion.tail_sway", "tail sway", 0.0, 60.0, "%.1f deg")
         slider(state, pc, "body.neck_angle", "neck angle", -60.0, 90.0, "%.0f deg")
         slider(state, pc, "body.tail_angle", "tail angle", -90.0, 90.0, "%.0f deg")
+        slider(state, pc, "body.tail_curl", "tail curl", -180.0, 180.0, "%.0f deg")
         slider(state, pc, "motion.pelvis_tilt", "pelvis tilt", 0.0, 20.0, "%.1f deg")
         slider(state, pc, "motion.spine_flex", "spine flex", 0.0, 3.0, "%.2f x")
         imgui.end_table()
