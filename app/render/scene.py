@@ -163,7 +163,8 @@ ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segmen
 SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches before the tendons
 TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half its width and half its depth
 SHOULDER_LINE = 0.42  # of the chest's radius: the thickness of the line from shoulder to shoulder
-THIGH_OUT = 0.5  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
+THIGH_OUT = 0.2  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
+PERSON_THIGH = 1.6  # of the leg's radius: a person's thigh at its top (the hips ~37 cm across, not a pear)
 NECK_SECTIONS = np.array([0.25, 0.55, 0.82])  # along a mammal's neck, base to head: its deep, flattened sections
 NECK_WIDTH = 0.6  # of a section's depth: a mammal's neck is deeper than wide
 CREST_DROP = 0.3  # of a section's depth beyond the head's radius: how far it hangs below the crest
@@ -263,7 +264,7 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
     heels = _heels(rig, joints)[:, legs]
     # Thigh (hind) or upper arm (fore): from just above the hip to past the femur's middle.
     # (It starts a little down the bone, so it never shows above the back.)
-    top = np.where(hind, 1.85, 1.55) * r[:, 0]
+    top = np.where(hind, PERSON_THIGH if rig.body.upright else 1.85, 1.55) * r[:, 0]
     upper = hip + 0.12 * (knee - hip)
     if rig.body.upright:  # a person's thigh: its flesh lies out over the femur's neck, the hip joint inside it
         partner = joints[:, legs ^ 1, 0]  # the other hip of each pair (legs are stored left, right)
