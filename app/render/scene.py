@@ -51,6 +51,8 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 # hip, knee, ankle, ball, toe tip.
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
 EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (the skinned body leaves them out)
+SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
+EYE_SHAPE = {False: (0.2, 0.17, 0.14), True: (0.2, 0.12, 0.12)}  # of the head's radius (across, up, along): an animal's, a person's
 _UP = UP
 
 
@@ -360,11 +362,17 @@ def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
     # A person's eyes look out of the face at mid-height; an animal's sit high on the skull.
     ahead, up, apart = (0.8, 0.08, 0.36) if rig.body.upright else (0.55, 0.42, 0.5)
+    if not rig.body.upright:  # on the skull's surface, half out (further in, the skin's blend buried them)
+        scale = 1.0 / np.sqrt((apart / SKULL[0]) ** 2 + (up / SKULL[1]) ** 2 + (ahead / SKULL[2]) ** 2)
+        ahead, up, apart = ahead * scale, up * scale, apart * scale
     centres = (skull + head_dir * ahead * head_radius + hy * up * head_radius)[:, None] \
         + sides * hx[:, None] * apart * head_radius
-    shape = centres.shape[:-1]  # spheres: any orthonormal axes will do
-    return np.concatenate([centres, np.broadcast_to(np.eye(3).reshape(9), shape + (9,)),
-                           np.full(shape + (3,), 0.17 * head_radius), np.broadcast_to(EYE_COLOR, shape + (3,))],
+    shape = centres.shape[:-1]
+    # Wider than tall, turned with the head: a few pixels across read as eyes, where a
+    # small sphere read as a dark "x" once antialiased.
+    axes = np.concatenate([np.broadcast_to(a[:, None], shape + (3,)) for a in (hx, hy, head_dir)], axis=-1)
+    radii = np.array(EYE_SHAPE[rig.body.upright]) * head_radius
+    return np.concatenate([centres, axes, np.broadcast_to(radii, shape + (3,)), np.broadcast_to(EYE_COLOR, shape + (3,))],
                           axis=-1)
 
 
@@ -507,7 +515,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         ear_tip = ear_base + ear_length * _unit(ear_dir[:, None] + sides * hx[:, None] * 0.25)
         capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
 
-    skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array([0.9, 0.85, 1.0]) * head_radius, body_color)
+    skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array(SKULL) * head_radius, body_color)
     ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells, *markers]
     capsule_parts += [part for part in torso if part.shape[-1] == CAPSULE_FLOATS]
     ellipsoid_parts += [part for part in torso if part.shape[-1] == ELLIPSOID_FLOATS]
