@@ -52,7 +52,8 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
 EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (the skinned body leaves them out)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
-EYE_SHAPE = {False: (0.2, 0.17, 0.14), True: (0.2, 0.12, 0.12)}  # of the head's radius (across, up, along): an animal's, a person's
+# Of the head's radius (across, up, along): an animal's eyes (False), a person's (True).
+EYE_SHAPE = {False: (0.2, 0.17, 0.14), True: (0.2, 0.12, 0.12)}
 _UP = UP
 
 
