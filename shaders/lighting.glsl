@@ -16,14 +16,18 @@ vec3 ambient_light(vec3 n) {
     return mix(u_bounce_color, u_sky_color, 0.5 + 0.5 * n.y) * 0.55;
 }
 
-vec3 shade(vec3 albedo, vec3 n, vec3 p, float lit) {
+// n: the smooth (interpolated) normal; face: the triangle's own, from the surface's
+// screen derivatives. The rim lights only where both graze the view (a silhouette): in a
+// fold of skinned skin (an armpit as the arm swings back) the smooth normals turn away
+// while the triangles still face the eye, and the rim had lit pale patches there.
+vec3 shade(vec3 albedo, vec3 n, vec3 face, vec3 p, float lit) {
     vec3 to_light = -u_light_dir;
     vec3 to_eye = normalize(u_camera_pos - p);
     float wrapped = max((dot(n, to_light) + 0.35) * (1.0 / 1.35), 0.0);
     float h = max(dot(n, normalize(to_light + to_eye)), 0.0);
     float h2 = h * h, h4 = h2 * h2, h8 = h4 * h4, h16 = h8 * h8;
     float spec = h16 * h16 * 0.12 * lit;  // h^32
-    float facing = 1.0 - abs(dot(n, to_eye));  // (a normal turned away, in a fold of skin, is no silhouette)
+    float facing = 1.0 - max(abs(dot(n, to_eye)), abs(dot(face, to_eye)));
     float rim = facing * facing * facing * 0.18;
     return albedo * (ambient_light(n) + SUN_COLOR * wrapped * lit) + vec3(spec) + rim * u_sky_color;
 }

@@ -16,5 +16,6 @@ void main() {
 #else
     float lit = light_visibility(v_shadow);  // the window: one tap (each costs there)
 #endif
-    frag_color = vec4(to_display(shade(v_color, n, v_world, lit)), 1.0);
+    vec3 face = normalize(cross(dFdx(v_world), dFdy(v_world)));
+    frag_color = vec4(to_display(shade(v_color, n, face, v_world, lit)), 1.0);
 }
