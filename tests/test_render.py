@@ -414,3 +414,25 @@ def test_a_mammal_s_neck_is_deeper_than_wide_and_a_horse_s_is_maned() -> None:
         base, top = motion.neck[0, 0], motion.neck[0, -1]
         along = base + NECK_SECTIONS[:, None] * (top - base)
         assert np.linalg.norm(ells[:, Ell.CENTRE][:, None] - along[None], axis=-1).min() > 1e-3
+
+
+def test_a_mammal_s_tail_leaves_the_top_of_the_croup_and_a_horse_s_is_hair() -> None:
+    """A four-legged mammal's tail is set high on the rump (the horse's had come out of the
+    middle of the buttock); a maned animal's tail is dark hair, full to its end, in the
+    parts and on the skinned body (the tail's own vertices take the mane's colour)."""
+    from app.render.bodies import _build
+    from app.render.scene import Cap, mane_color, motion_instances
+
+    for name, high in (("dog", True), ("horse", True), ("theropod", False)):
+        rig = build_rig(load_creature(name))
+        motion, _ = clip_motion(rig, 30.0, cycles=0.25)
+        above = motion.tail[0, 0, 1] - motion.spine[0, 0, 1]
+        assert (above > 0.3 * rig.body.radius[0]) == high, (name, above)
+        caps = np.asarray(motion_instances(motion, show_joints=False).frame(0).capsules, np.float64)
+        tail = caps[np.linalg.norm(caps[:, Cap.A] - motion.tail[0, 0], axis=1) < 1e-6]
+        hair = np.all(np.abs(tail[:, Cap.COLOR] - mane_color(rig)) < 1e-3, axis=1)
+        assert len(tail) == 1 and hair.all() == (rig.body.mane > 0), name
+    horse = build_rig(load_creature("horse"))
+    body = _build(horse, "coarse")
+    dark = np.all(np.abs(body.colors - mane_color(horse)) < 0.02, axis=1)
+    assert 0.02 < dark.mean() < 0.2  # the tail's vertices, not the coat

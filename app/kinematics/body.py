@@ -28,6 +28,7 @@ from .rig import MIN_CROUCH, REACH_LIMIT, Rig
 from .spine import bezier, bezier_tangent
 from .world import World
 
+TAIL_SET = 0.45  # of the rump's radius: how far above the spine's end a mammal's tail leaves the croup
 TAIL_WAVE_LAG = 0.15  # cycle fraction by which the tail tip lags its base
 REACH_MARGIN = 0.97  # planted feet stay within this fraction of the leg's full extension
 MAX_ROLL = 0.5  # rad
@@ -473,6 +474,8 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     # Neck and head off the front, tail off the rear.
     front = bezier(ctrl[:, -1], np.full((frames, 1), 1.0 + 0.6 * ext_front))[:, 0]
     rear = bezier(ctrl[:, 0], np.full((frames, 1), -0.6 * ext_rear))[:, 0]
+    if rig.leg_count >= 4 and not rig.knee_out.any():  # a mammal's tail is set high, at the top of the croup
+        rear = rear + UP * TAIL_SET * body.radius[0]
     neck, head, tail = _appendages(rig, front, tangent[:, -1], rear, tangent[:, 0], yaw[:, 0], clock, lag)
 
     # The root: the middle of the trunk (position 0.5) and its direction there, on the

@@ -492,8 +492,10 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
                        (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius, body_color)
     tail_base = 0.32 * r[0] if rig.body.tail_radius is None else rig.body.tail_radius
-    tail_r = np.linspace(tail_base, 0.25 * tail_base, tail.shape[1])
-    tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], body_color)
+    hair = rig.body.mane > 0  # a maned animal's tail is hair, full to its end
+    tail_r = np.linspace(tail_base, (0.7 if hair else 0.25) * tail_base, tail.shape[1])
+    tail_color = mane_color(rig) if hair else body_color
+    tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], tail_color)
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
     arm_caps, arm_ells = _arm_shapes(np.zeros((frames, 0, 4, 3)) if arms is None else arms, rig, arm_color)

@@ -357,10 +357,13 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     from :func:`app.kinematics.skeleton.skeleton_clip`), in their first frame."""
     import trimesh
 
+    from ..render.scene import mane_color
+
     start = time.perf_counter()
     capsules, ellipsoids, part_joint, limbs = bound_parts(motion, clip)
     verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, limbs)
     roots = _limb_roots(capsules, part_joint, clip)
+    tail_joints = np.array([k for k, name in enumerate(clip.skeleton.names) if name.startswith("tail")], dtype=np.int64)
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
                 shadow: SkinnedBody | None = None, far: SkinnedBody | None = None) -> SkinnedBody:
@@ -375,8 +378,12 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
         normals = np.where((np.sum(smooth * normals, axis=1) > 0.2)[:, None], smooth, normals)
         joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1],
                                    0.45 * blend, *roots)
+        colors = _colors(normals, motion.rig.look.body_color, motion.rig.look.countershade)
+        if motion.rig.body.mane > 0:  # a maned animal's tail is hair of the mane's colour
+            hair = np.sum(np.where(np.isin(joints, tail_joints), weights, 0.0), axis=1)[:, None]
+            colors = (colors * (1.0 - hair) + mane_color(motion.rig)[None, :] * hair).astype(np.float32)
         return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),
-                           colors=_colors(normals, motion.rig.look.body_color, motion.rig.look.countershade),
+                           colors=colors,
                            faces=faces.astype(np.int32),
                            joints=joints, weights=weights, bind=joint_matrices(clip, 0), layout=clip.layout,
                            detail=detail, shadow=shadow, far=far, seconds=time.perf_counter() - start)
