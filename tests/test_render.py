@@ -174,10 +174,13 @@ def test_legs_of_the_two_sides_are_distinguishable() -> None:
 
 @pytest.mark.parametrize("camera", ["side", "front", "top", "three-quarter", "chase"])
 def test_camera_presets_keep_the_creature_in_frame(camera: str) -> None:
+    from app.render.scene import creature_points
+
     motion, _ = clip_motion(build_rig(load_creature("horse")), 25.0, cycles=1.0)
     cam = frame_points(motion_bounds(motion), camera, aspect=4 / 3)
     vp = np.array(cam.view_proj(4 / 3))
-    pts = np.c_[motion.joints.reshape(-1, 3), np.ones(motion.joints.size // 3)] @ vp.T
+    points = creature_points(motion).reshape(-1, 3)  # joints, head, neck, tail, trunk
+    pts = np.c_[points, np.ones(len(points))] @ vp.T
     ndc = pts[:, :3] / pts[:, 3:]
     assert np.all(np.abs(ndc[:, :2]) <= 1.0)
     assert np.abs(ndc[:, :2]).max() > 0.6  # and fills the frame reasonably

@@ -52,6 +52,8 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
 EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (the skinned body leaves them out)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
+EYE_OUT = 0.1  # of the head's radius: an animal's eyes out of the skull, over the skin's blend
+JOWL = (0.45, 0.5, 0.8, 1.1, 1.15)  # of it: a long head's jowl, ahead of and below the skull's centre; its radii
 # Of the head's radius (across, up, along): an animal's eyes (False), a person's (True).
 EYE_SHAPE = {False: (0.2, 0.17, 0.14), True: (0.2, 0.12, 0.12)}
 _UP = UP
@@ -168,7 +170,7 @@ TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half it
 SHOULDER_LINE = 0.42  # of the chest's radius: the thickness of the line from shoulder to shoulder
 THIGH_OUT = 0.2  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
 PERSON_THIGH = 1.6  # of the leg's radius: a person's thigh at its top (the hips ~37 cm across, not a pear)
-NECK_SECTIONS = np.array([0.25, 0.55, 0.82])  # along a mammal's neck, base to head: its deep, flattened sections
+NECK_SECTIONS = np.array([0.22, 0.48, 0.72])  # along a mammal's neck, base to head: its deep, flattened sections
 NECK_WIDTH = 0.6  # of a section's depth: a mammal's neck is deeper than wide
 CREST_DROP = 0.3  # of a section's depth beyond the head's radius: how far it hangs below the crest
 MANE_SHADE = 0.3  # of the body's colour (linear): a mane's darker hair
@@ -210,11 +212,17 @@ def _deep_neck(neck: NDArray[np.float64], chest: float, head_radius: float, colo
 
 def _neck_radii(rig: Rig, spine_radius: NDArray[np.float64]) -> tuple[float, float]:
     """The neck capsule's radii (m) at its base and at the head: a person's slim neck, an
-    animal's deep one rising from the chest."""
+    animal's deep one rising from the chest, narrower at the throat under a long head's
+    jowl."""
     head_radius = rig.body.head_radius
     if rig.body.upright:
         return 0.45 * head_radius, 0.4 * head_radius
-    return 0.68 * float(spine_radius[-1]), 0.85 * head_radius
+    return 0.68 * float(spine_radius[-1]), (0.85 - 0.25 * _long_head(rig)) * head_radius
+
+
+def _long_head(rig: Rig) -> float:
+    """How far a head is a long one (0 to 1: over 3.5 to 5 head radii long, a horse's)."""
+    return float(np.clip((rig.body.head_length / max(rig.body.head_radius, 1e-9) - 3.5) / 1.5, 0.0, 1.0))
 
 
 def _mammal_neck(rig: Rig) -> bool:
@@ -364,7 +372,8 @@ def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -
     # A person's eyes look out of the face at mid-height; an animal's sit high on the skull.
     ahead, up, apart = (0.8, 0.08, 0.36) if rig.body.upright else (0.55, 0.42, 0.5)
     if not rig.body.upright:  # on the skull's surface, half out (further in, the skin's blend buried them)
-        scale = 1.0 / np.sqrt((apart / SKULL[0]) ** 2 + (up / SKULL[1]) ** 2 + (ahead / SKULL[2]) ** 2)
+        scale = 1.0 / np.sqrt((apart / SKULL[0]) ** 2 + (up / SKULL[1]) ** 2 + (ahead / SKULL[2]) ** 2) \
+            + EYE_OUT / np.sqrt(apart ** 2 + up ** 2 + ahead ** 2)
         ahead, up, apart = ahead * scale, up * scale, apart * scale
     centres = (skull + head_dir * ahead * head_radius + hy * up * head_radius)[:, None] \
         + sides * hx[:, None] * apart * head_radius
@@ -488,7 +497,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     skull, head_dir = _skull(head, rig)
     nose = head[:, 1]
     # Long heads (a horse's: over four skull radii) keep a broad muzzle; short ones taper.
-    long_head = float(np.clip((rig.body.head_length / max(head_radius, 1e-9) - 3.5) / 1.5, 0.0, 1.0))
+    long_head = _long_head(rig)
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
                        (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius, body_color)
     tail_base = 0.32 * r[0] if rig.body.tail_radius is None else rig.body.tail_radius
@@ -519,6 +528,10 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
 
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array(SKULL) * head_radius, body_color)
+    if long_head > 0:  # a long head (a horse's) is deepest at the jowl, below and behind the eyes
+        jowl = skull + head_dir * JOWL[0] * head_radius - hy * JOWL[1] * head_radius
+        skull_e = np.concatenate([skull_e, _ellipsoids(jowl[:, None], head_dir[:, None],
+                                                       long_head * np.array(JOWL[2:]) * head_radius, body_color)], axis=1)
     ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells, *markers]
     capsule_parts += [part for part in torso if part.shape[-1] == CAPSULE_FLOATS]
     ellipsoid_parts += [part for part in torso if part.shape[-1] == ELLIPSOID_FLOATS]
