@@ -327,7 +327,7 @@ def test_compare_refuses_bad_references_in_one_line(tmp_path, case: str, text: s
 def test_a_runner_leans_in_and_drives_the_elbows_back() -> None:
     """Runners lean 5-10 degrees forward and swing their arms more back than forward, the
     hands coming forward to about the chest (the run's forearm once pointed up ahead at
-    shoulder height, on an upright trunk)."""
+    shoulder height, on an upright trunk), the elbow closing as the arm comes forward."""
     from app.kinematics.body import RUN_LEAN
 
     walk_rig = build_rig(load_creature("human"))
@@ -344,6 +344,13 @@ def test_a_runner_leans_in_and_drives_the_elbows_back() -> None:
             swing = np.degrees(np.arctan2(np.sum(upper * forward, axis=-1), -upper[:, 1]))
             assert swing.max() < 12.0 and swing.min() < -30.0  # more back than forward
             assert np.max(hand[:, 1] - shoulder[:, 1]) < -0.2  # the hand never above the lower chest
+            # ... its forearm rising as it comes forward (held out level like a tray, it
+            # was 0.6 cm higher at the wrist than at the elbow), turned in to the body's middle.
+            front = int(np.argmax(swing))
+            wrist = motion.arms[:, 0, 2]
+            assert wrist[front, 1] - elbow[front, 1] > 0.04
+            left = np.cross(np.array([0.0, 1.0, 0.0]), forward)
+            assert np.sum((wrist[front] - elbow[front]) * left[front]) < -0.02
     assert 5.0 <= lean["run"] <= 10.0
     assert lean["run"] - lean["walk"] == pytest.approx(np.degrees(RUN_LEAN), abs=0.5)
 

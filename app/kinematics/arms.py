@@ -18,6 +18,9 @@ from .rig import ArmShape
 RUN_ELBOW = np.radians(80.0)  # a runner's elbows at rest in the swing (held near 80-100 degrees)
 RUN_ARM_BACK = np.radians(15.0)  # a runner's arms swing about a line this far behind the vertical (more back than forward)
 FORWARD_BEND = 0.6  # extra elbow bend per radian of forward swing
+RUN_ELBOW_SWING = 0.8  # a runner's elbow bends more (less) per radian its arm is ahead of (behind) the swing's middle
+RUN_FIST = 0.5  # of the hand's length: a runner's loose fist (the fingers curled in), straight on from the forearm
+RUN_ARM_IN = 0.35  # a runner's forearms turn in towards the body's middle (the hands cross in front of it)
 WRIST_FLEX = 0.15  # rad the hand turns further than the forearm
 ARM_SPREAD = 0.06  # rad the arms hang out from the body
 
@@ -34,8 +37,10 @@ def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.
     """Arm joints (T, 2, 4, 3): shoulder, elbow, wrist and hand tip of the left and right
     arm. centre (T, 3) the point between the shoulders; lateral (T, 3) the unit axis to
     the body's left through them; angle (T, 2) each arm's swing (rad, forward); running
-    (T,) in [0, 1]: how far the elbows bend towards a runner's :data:`RUN_ELBOW` and the
-    swing moves back by :data:`RUN_ARM_BACK`."""
+    (T,) in [0, 1]: how far the elbows bend towards a runner's :data:`RUN_ELBOW`, the
+    swing moves back by :data:`RUN_ARM_BACK`, the elbow closes ahead of the swing's middle
+    and opens behind it (:data:`RUN_ELBOW_SWING`), the forearm turns in towards the
+    body's middle (:data:`RUN_ARM_IN`) and the hand closes (:data:`RUN_FIST`)."""
     lateral = lateral - np.sum(lateral * UP, axis=-1, keepdims=True) * UP
     lateral = lateral / np.maximum(np.linalg.norm(lateral, axis=-1, keepdims=True), 1e-12)
     forward = np.cross(lateral, UP)  # (T, 3): left x up = forward
@@ -49,11 +54,16 @@ def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.
 
     run = np.reshape(np.asarray(running, dtype=np.float64), (-1, 1))
     rest = arms.elbow + (max(RUN_ELBOW, arms.elbow) - arms.elbow) * run
+    swing = angle  # about the swing's middle
     angle = angle - RUN_ARM_BACK * run  # driving the elbows back, the hands coming forward only to the chest
-    bend = rest + FORWARD_BEND * np.maximum(angle, 0.0)
+    # A walker's elbow bends as the arm comes forward; a runner's closes ahead and opens
+    # behind about its rest, the forearm rising to the chest (not held out like a tray).
+    bend = rest + (1.0 - run) * FORWARD_BEND * np.maximum(angle, 0.0) + run * RUN_ELBOW_SWING * swing
+    inward = -side * (RUN_ARM_IN * run)[..., None] * lateral[:, None, :]  # (T, 2, 3)
     elbow = shoulder + arms.upper * _unit(direction(angle))
-    wrist = elbow + arms.fore * _unit(direction(angle + bend))
-    hand = wrist + arms.hand * _unit(direction(angle + bend + WRIST_FLEX))
+    wrist = elbow + arms.fore * _unit(direction(angle + bend) + inward)
+    fist = (1.0 - (1.0 - RUN_FIST) * run)[..., None]  # (T, 1, 1)
+    hand = wrist + arms.hand * fist * _unit(direction(angle + bend + WRIST_FLEX * (1.0 - run)) + inward)
     return np.stack([shoulder, elbow, wrist, hand], axis=2)
 
 
