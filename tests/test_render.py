@@ -218,7 +218,7 @@ def test_travelling_cameras_keep_the_creature_in_frame_and_chase_stays_behind(ca
 def test_legs_have_volume_and_feet_by_leg_type() -> None:
     """Issue 8, looks: thighs thick at the top, paws, hooves and soles by leg type; sprawled
     legs (insects, spiders) stay plain."""
-    from app.render.scene import _HOOF_COLOR, pose_instances
+    from app.render.scene import HOOF_COLOR, pose_instances
 
     def shapes(name: str):
         rig = build_rig(load_creature(name))
@@ -228,7 +228,7 @@ def test_legs_have_volume_and_feet_by_leg_type() -> None:
     for name in ("dog", "horse", "bear", "ant"):
         rig, pose, scene = shapes(name)
         caps = scene.capsules.astype(float)
-        hoofs = np.all(np.abs(caps[:, 8:11] - _HOOF_COLOR) < 1e-6, axis=1)
+        hoofs = np.all(np.abs(caps[:, 8:11] - HOOF_COLOR) < 1e-6, axis=1)
         toes = pose.joints[:, 4]
         near_toe = lambda centres, toes=toes: np.linalg.norm(centres[:, None] - toes[None], axis=-1).min(axis=0)
         if name == "horse":  # a dark hoof at every toe
@@ -439,3 +439,17 @@ def test_a_mammal_s_tail_leaves_the_top_of_the_croup_and_a_horse_s_is_hair() -> 
     body = _build(horse, "coarse")
     dark = np.all(np.abs(body.colors - mane_color(horse)) < 0.02, axis=1)
     assert 0.02 < dark.mean() < 0.2  # the tail's vertices, not the coat
+
+
+def test_hooves_are_dark_horn_on_the_skinned_body_too() -> None:
+    """An unguligrade foot's hoof was dark only in the parts; on the skinned body it took
+    the coat's colour (a slipper of hide). Vertices whose nearest part is a hoof are horn."""
+    from app.render.bodies import _build
+    from app.render.scene import HOOF_COLOR
+
+    for name, hooved in (("horse", True), ("deer", True), ("dog", False)):
+        body = _build(build_rig(load_creature(name)), "coarse")
+        horn = np.all(np.abs(body.colors - HOOF_COLOR) < 1e-4, axis=1)
+        assert horn.any() == hooved, name
+        if hooved:
+            assert body.positions[horn, 1].max() < 0.15 and horn.mean() < 0.1, name  # at the ground, not the coat

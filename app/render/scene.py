@@ -163,7 +163,7 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
     return side_colors(rig)[(rig.hip_side < 0).astype(int)]
 
 
-_HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
+HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
 ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segment, rising before the elbow
 SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches before the tendons
 TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half its width and half its depth
@@ -309,7 +309,7 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
                                       0.55 * length + 0.7 * rb[:, 3:4]], axis=-1)
             ellipsoids.append(_ellipsoids(0.55 * t + 0.45 * b, t - b, radii_e, c))
         else:  # a hoof below the fetlock
-            capsules.append(_capsules(b + 0.35 * (t - b), t, 1.25 * rb[:, 3], 1.45 * rb[:, 3], _HOOF_COLOR))
+            capsules.append(_capsules(b + 0.35 * (t - b), t, 1.25 * rb[:, 3], 1.45 * rb[:, 3], HOOF_COLOR))
             radii_e = np.broadcast_to(1.3 * rb[:, 3:4], b.shape)
             ellipsoids.append(_ellipsoids(b, t - b, radii_e, c))
     return capsules, ellipsoids

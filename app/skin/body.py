@@ -103,6 +103,17 @@ def bind_joints(starts: NDArray[np.float64], ends: NDArray[np.float64] | None, c
     return np.argmin(near - 0.01 * along, axis=1)  # nearest start; ties go to the bone pointing the right way
 
 
+def _hooves(motion: Motion) -> NDArray[np.float64]:
+    """The first frame's hoof capsules (K, 8: a, b, r0, r1): the dark horn below each
+    unguligrade fetlock, none for other feet."""
+    from ..render.scene import HOOF_COLOR, Cap, motion_instances
+
+    caps = np.asarray(motion_instances(motion, show_joints=False).frame(0).capsules, np.float64)
+    caps = caps[np.all(np.abs(caps[:, Cap.COLOR] - HOOF_COLOR) < 1e-3, axis=1)]
+    return np.concatenate([caps[:, Cap.A], caps[:, Cap.B], caps[:, Cap.RADII]], axis=1) if len(caps) \
+        else np.zeros((0, 8))
+
+
 def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The first frame's capsules (C, 8: a, b, r0, r1) and ellipsoids (E, 15: centre,
     axes, radii), without joint markers, eyes or mane."""
@@ -357,12 +368,16 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     from :func:`app.kinematics.skeleton.skeleton_clip`), in their first frame."""
     import trimesh
 
-    from ..render.scene import mane_color
+    from ..render.scene import HOOF_COLOR, mane_color
 
     start = time.perf_counter()
     capsules, ellipsoids, part_joint, limbs = bound_parts(motion, clip)
     verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, limbs)
     roots = _limb_roots(capsules, part_joint, clip)
+    found = _hooves(motion)  # which of the parts (capsules first) are hooves
+    hooves = np.zeros(len(capsules) + len(ellipsoids), dtype=bool)
+    if len(found):
+        hooves[:len(capsules)] = np.any(np.all(np.abs(capsules[:, None, :8] - found[None]) < 1e-6, axis=2), axis=1)
     tail_joints = np.array([k for k, name in enumerate(clip.skeleton.names) if name.startswith("tail")], dtype=np.int64)
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
@@ -379,6 +394,10 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
         joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1],
                                    0.45 * blend, *roots)
         colors = _colors(normals, motion.rig.look.body_color, motion.rig.look.countershade)
+        if hooves.any():  # hooves are dark horn, on the skin as in the parts: where one is the nearest part
+            nearest = np.argmin(part_distances(verts, capsules, ellipsoids), axis=0)
+            horn = hooves[nearest][:, None]
+            colors = np.where(horn, HOOF_COLOR[None, :], colors).astype(np.float32)
         if motion.rig.body.mane > 0:  # a maned animal's tail is hair of the mane's colour
             hair = np.sum(np.where(np.isin(joints, tail_joints), weights, 0.0), axis=1)[:, None]
             colors = (colors * (1.0 - hair) + mane_color(motion.rig)[None, :] * hair).astype(np.float32)
