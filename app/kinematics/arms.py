@@ -19,7 +19,7 @@ RUN_ELBOW = np.radians(80.0)  # a runner's elbows at rest in the swing (held nea
 RUN_ARM_BACK = np.radians(15.0)  # a runner's arms swing about a line this far behind the vertical (more back than forward)
 FORWARD_BEND = 0.6  # extra elbow bend per radian of forward swing
 RUN_ELBOW_SWING = 0.8  # a runner's elbow bends more (less) per radian its arm is ahead of (behind) the swing's middle
-RUN_FIST = 0.5  # of the hand's length: a runner's loose fist (the fingers curled in), straight on from the forearm
+RUN_FIST = 2.0  # a runner's hand turns in across the body this much more than the forearm (a loose fist, palm in)
 RUN_ARM_IN = 0.35  # a runner's forearms turn in towards the body's middle (the hands cross in front of it)
 WRIST_FLEX = 0.15  # rad the hand turns further than the forearm
 ARM_SPREAD = 0.06  # rad the arms hang out from the body
@@ -40,7 +40,7 @@ def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.
     (T,) in [0, 1]: how far the elbows bend towards a runner's :data:`RUN_ELBOW`, the
     swing moves back by :data:`RUN_ARM_BACK`, the elbow closes ahead of the swing's middle
     and opens behind it (:data:`RUN_ELBOW_SWING`), the forearm turns in towards the
-    body's middle (:data:`RUN_ARM_IN`) and the hand closes (:data:`RUN_FIST`)."""
+    body's middle (:data:`RUN_ARM_IN`) and the hand turns in across the body (a loose fist, :data:`RUN_FIST`)."""
     lateral = lateral - np.sum(lateral * UP, axis=-1, keepdims=True) * UP
     lateral = lateral / np.maximum(np.linalg.norm(lateral, axis=-1, keepdims=True), 1e-12)
     forward = np.cross(lateral, UP)  # (T, 3): left x up = forward
@@ -62,8 +62,9 @@ def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.
     inward = -side * (RUN_ARM_IN * run)[..., None] * lateral[:, None, :]  # (T, 2, 3)
     elbow = shoulder + arms.upper * _unit(direction(angle))
     wrist = elbow + arms.fore * _unit(direction(angle + bend) + inward)
-    fist = (1.0 - (1.0 - RUN_FIST) * run)[..., None]  # (T, 1, 1)
-    hand = wrist + arms.hand * fist * _unit(direction(angle + bend + WRIST_FLEX * (1.0 - run)) + inward)
+    across = -side * lateral[:, None, :]  # (T, 2, 3): towards the body's middle
+    fist = (RUN_FIST * run)[..., None]  # (T, 1, 1)
+    hand = wrist + arms.hand * _unit(_unit(direction(angle + bend + WRIST_FLEX) + inward) + fist * across)
     return np.stack([shoulder, elbow, wrist, hand], axis=2)
 
 
