@@ -44,7 +44,8 @@ from .analysis.sources import load_tracks
 from .errors import GaitlabError
 from .gaits import GAIT_PRESETS
 from .kinematics.clip import clip_motion
-from .kinematics.walker import SWING_KNEE, SWING_KNEE_RANGE, WALK_DUTY
+from .kinematics.gait import WALK_DUTY
+from .kinematics.walker import SWING_KNEE, SWING_KNEE_RANGE
 from .rigging import build_rig
 from .spec import SCALED_BODY_KEYS, CreatureSpec, creature_from_dict, load_creature
 

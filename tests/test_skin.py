@@ -297,3 +297,20 @@ def test_the_grid_union_is_the_limb_union_sampled() -> None:
     near = np.abs(exact) < 0.5 * blend  # where the surface is (each part is left out beyond four blends of its box)
     assert near.sum() > 100
     assert np.abs(grid.ravel()[near] - exact[near]).max() < 0.05 * blend
+
+
+def test_a_black_coat_keeps_every_part_of_its_skin() -> None:
+    """The parts drawn on the skin rather than in it (eyes, mane) and the hooves are found by
+    where they are, not by their colour: a black dog lost its skull and neck from its skin,
+    their colour matching a mane's (a third of the coat's)."""
+    from app.kinematics.clip import clip_motion
+    from app.skin.body import _parts
+
+    for name in ("dog", "horse"):
+        counts = []
+        for coat in ("#b38b5d", "#000000"):
+            rig = build_rig(load_creature(name).with_overrides({"look.body_color": coat}))
+            motion, _ = clip_motion(rig, 30.0, cycles=0.25)
+            capsules, ellipsoids = _parts(motion)
+            counts.append((len(capsules), len(ellipsoids)))
+        assert counts[0] == counts[1], (name, counts)

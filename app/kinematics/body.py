@@ -474,7 +474,7 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     # Neck and head off the front, tail off the rear.
     front = bezier(ctrl[:, -1], np.full((frames, 1), 1.0 + 0.6 * ext_front))[:, 0]
     rear = bezier(ctrl[:, 0], np.full((frames, 1), -0.6 * ext_rear))[:, 0]
-    if rig.leg_count >= 4 and not rig.knee_out.any():  # a mammal's tail is set high, at the top of the croup
+    if rig.four_legged_mammal:  # a mammal's tail is set high, at the top of the croup
         rear = rear + UP * TAIL_SET * body.radius[0]
     neck, head, tail = _appendages(rig, front, tangent[:, -1], rear, tangent[:, 0], yaw[:, 0], clock, lag)
 

@@ -15,6 +15,7 @@ it, so planted feet keep still relative to the ground.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
@@ -225,33 +226,45 @@ def _leg_frames(rig: Rig, heading: NDArray[np.float64], normal: NDArray[np.float
     return forward, normal
 
 
-def _body_height(rig: Rig, inputs: MotionInputs, wave: str, bob: NDArray[np.float64],
-                 delay: float = 0.0) -> NDArray[np.float64]:
+def _body_heights(rig: Rig, inputs: MotionInputs, wave: str, bob: NDArray[np.float64],
+                  delays: Sequence[float] = (0.0,)) -> list[NDArray[np.float64]]:
     """How far (m) each girdle (T, G) stands above or below its standing height from the
-    gait's rhythm ``delay`` cycles ago: the key poses' height (a run's flights once the
-    feet leave the ground together), or the bob."""
+    gait's rhythm each of ``delays`` cycles ago: the key poses' height (a run's flights once
+    the feet leave the ground together), or the bob. A posed body's heights at every delay
+    are one vectorised evaluation (the frames stacked delay by delay)."""
     plan = inputs.plan
+    frames, girdles = plan.phase.shape[0], rig.girdle_rest_height.size
     if rig.poses.heights is not None:
         ref = reference_foot(rig)
-        frequency = inputs.frequency if inputs.frequency is not None else np.full(plan.phase.shape[0], rig.gait.frequency)
-        height = body_height(rig, plan.phase - delay, plan.duty, frequency, inputs.stride[:, ref])
-        return np.broadcast_to(height[:, None], (height.shape[0], rig.girdle_rest_height.size))
-    lift = foot_wave(plan.phase - rig.motion.bob_phase - delay, plan.duty, wave).lift  # type: ignore[arg-type]
-    girdle_lift = np.maximum(lift[:, 0::2], lift[:, 1::2])
-    return bob[:, None] * rig.girdle_rest_height * (girdle_lift - 0.5)
+        frequency = inputs.frequency if inputs.frequency is not None else np.full(frames, rig.gait.frequency)
+        k = len(delays)
+        phase = np.concatenate([plan.phase - delay for delay in delays])
+        height = body_height(rig, phase, np.tile(plan.duty, (k, 1)), np.tile(frequency, k),
+                             np.tile(inputs.stride[:, ref], k)).reshape(k, frames)
+        return [np.broadcast_to(h[:, None], (frames, girdles)) for h in height]
+    out = []
+    for delay in delays:  # (the bob: a handful of delayed parts at most)
+        lift = foot_wave(plan.phase - rig.motion.bob_phase - delay, plan.duty, wave).lift  # type: ignore[arg-type]
+        girdle_lift = np.maximum(lift[:, 0::2], lift[:, 1::2])
+        out.append(bob[:, None] * rig.girdle_rest_height * (girdle_lift - 0.5))
+    return out
 
 
-def _overlap(rig: Rig, inputs: MotionInputs, wave: str, bob: NDArray[np.float64]) -> dict[str, NDArray[np.float64]]:
+_DELAYED = (("head", 0), ("neck", 0), ("tail", -1), ("ears", 0))  # parts that follow through, and their girdle
+
+
+def _overlap(rig: Rig, inputs: MotionInputs, wave: str, bob: NDArray[np.float64]
+             ) -> tuple[dict[str, NDArray[np.float64]], NDArray[np.float64]]:
     """Each delayed part's lag (T,): how much higher (m) its end of the body stood its delay
-    ago than now (the head and neck at the front girdle, the tail at the rear one)."""
-    lag = {}
-    now = None
-    for part, girdle in (("head", 0), ("neck", 0), ("tail", -1), ("ears", 0)):
-        delay = getattr(rig.overlap, part)
-        if delay > 0:
-            now = _body_height(rig, inputs, wave, bob) if now is None else now
-            lag[part] = _body_height(rig, inputs, wave, bob, delay)[:, girdle] - now[:, girdle]
-    return lag
+    ago than now (the head and neck at the front girdle, the tail at the rear one); and the
+    height now (T, G) (:func:`_body_heights`)."""
+    parts = [(part, girdle, getattr(rig.overlap, part)) for part, girdle in _DELAYED if getattr(rig.overlap, part) > 0]
+    if not parts and rig.poses.heights is None:  # nothing follows through, and the bob is placed elsewhere
+        return {}, np.zeros((inputs.plan.phase.shape[0], rig.girdle_rest_height.size))
+    heights = _body_heights(rig, inputs, wave, bob, [0.0] + [delay for _, _, delay in parts])
+    now = heights[0]
+    lag = {part: then[:, girdle] - now[:, girdle] for (part, girdle, _), then in zip(parts, heights[1:])}
+    return lag, now
 
 
 def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0) -> Motion:
@@ -269,7 +282,8 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     planted = np.where(plan.contact, 1.0, np.clip(np.maximum(1.0 - 4.0 * plan.swing, 4.0 * plan.swing - 3.0), 0, 1))
     posed = rig.poses.heights is not None
     bob = np.zeros_like(inputs.bob) if posed else inputs.bob
-    height = _body_height(rig, inputs, inputs.wave, bob)[:, 0] if posed else None
+    lag, now = _overlap(rig, inputs, inputs.wave, bob)  # (3. the parts that follow through)
+    height = now[:, 0] if posed else None
     if height is not None and inputs.height_shift is not None:
         height = height + inputs.height_shift
     trunk = trunk_motion(rig, plan.phase, wave, inputs.trunk)
@@ -279,7 +293,6 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
                             pitch=None if trunk is None else trunk[1], phase=plan.phase)
 
     # 3. Spine, neck, head, tail (following through by their overlap).
-    lag = _overlap(rig, inputs, inputs.wave, bob)
     running = 1.0 - walking_weight(plan.duty[:, reference_foot(rig)])  # a biped's run: lean in, elbows bent
     spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, lag, flex=None if trunk is None else trunk[0],
                           running=running if rig.body.upright else None)

@@ -121,27 +121,46 @@ def _quintic(h: NDArray[np.float64], start: tuple[NDArray[np.float64], ...], end
     return y0 * h0 + v0 * h * h1 + a0 * h * h * h2 + a1 * h * h * h3 + v1 * h * h4 + y1 * h5
 
 
+# Gauss-Legendre nodes and weights on [0, 1]: three integrate a quintic's squared jerk
+# (a quartic) exactly.
+_GAUSS_S = 0.5 + 0.5 * np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)])
+_GAUSS_W = np.array([5.0, 8.0, 5.0]) / 18.0
+
+
+def _quintic_jerk(h: NDArray[np.float64], start: tuple[NDArray[np.float64], ...], end: tuple[NDArray[np.float64], ...]
+                  ) -> NDArray[np.float64]:
+    """The third derivative (m/s^3) of :func:`_quintic` at the Gauss nodes, (3, ...)."""
+    y0, v0, a0 = start
+    y1, v1, a1 = end
+    s = _GAUSS_S.reshape((3,) + (1,) * np.ndim(h))
+    d0 = -60.0 + 360.0 * s - 360.0 * s * s
+    d1 = -36.0 + 192.0 * s - 180.0 * s * s
+    d2 = -9.0 + 36.0 * s - 30.0 * s * s
+    d3 = 3.0 - 24.0 * s + 30.0 * s * s
+    d4 = -24.0 + 168.0 * s - 180.0 * s * s
+    return ((y0 - y1) * d0 + v0 * h * d1 + a0 * h * h * d2 + a1 * h * h * d3 + v1 * h * d4) / h ** 3  # (y1's basis: -d0)
+
+
 def _lowest_acceleration(first: NDArray[np.float64], second: NDArray[np.float64], drop: NDArray[np.float64],
                          rise: NDArray[np.float64], land: NDArray[np.float64], lift: NDArray[np.float64]
                          ) -> NDArray[np.float64]:
     """The body's upward acceleration (m/s^2) at its lowest point that makes the stance's two
     quintics (``first`` s falling ``drop`` m from landing at ``land`` m/s, ``second`` s
     rising ``rise`` m to lift off at ``lift`` m/s, -g at both ends) as smooth as they can
-    be: the least squared jerk over the whole stance (a quadratic in it, solved exactly)."""
-    t = np.linspace(0.0, 1.0, 33)[:, None]
-    # Jerk of each quintic at the samples, as a + b * acceleration (the jerk is linear in it).
-    def jerk(h, y0, v0, a0, y1, v1, a1):
-        return np.gradient(np.gradient(np.gradient(_quintic(h, (y0, v0, a0), (y1, v1, a1), t * h), axis=0),
-                                       axis=0), axis=0) / (h / 32.0) ** 3
+    be: the least squared jerk over the whole stance. The jerk is linear in that
+    acceleration and the squared jerk a quartic in time, integrated exactly (three-point
+    Gauss-Legendre), so the least is found exactly: a ratio of two sums."""
     zero = np.zeros_like(first)
-    parts = []
-    for h, ends in ((first, lambda a: (zero, -land, -G + zero, -drop, zero, a)),
-                    (second, lambda a: (zero, zero, a, rise, lift, -G + zero))):
-        base = jerk(h, *ends(zero))
-        slope = jerk(h, *ends(zero + 1.0)) - base
-        parts.append((base, slope, h))
-    num = sum(np.sum(b * s, axis=0) * h for b, s, h in parts)
-    den = sum(np.sum(s * s, axis=0) * h for _, s, h in parts)
+    one = zero + 1.0
+    num = zero.copy()
+    den = zero.copy()
+    for h, ends in ((first, lambda a: ((zero, -land, -G + zero), (-drop, zero, a))),
+                    (second, lambda a: ((zero, zero, a), (rise, lift, -G + zero)))):
+        base = _quintic_jerk(h, *ends(zero))
+        slope = _quintic_jerk(h, *ends(one)) - base
+        w = _GAUSS_W.reshape((3,) + (1,) * np.ndim(h)) * h
+        num = num + np.sum(w * base * slope, axis=0)
+        den = den + np.sum(w * slope * slope, axis=0)
     return -num / np.maximum(den, 1e-12)
 
 
@@ -223,7 +242,7 @@ def body_height(rig: Rig, phase: NDArray[np.float64], duty: NDArray[np.float64],
     """A posed body's height offset (m), (T,): the key poses' curve while a foot is always
     down, the running step's (:func:`flight_height`) once the duty factor falls below one
     half, faded in over :data:`RUN_BLEND`. phase, duty (T, L); frequency (T,) Hz; stride
-    (T,) m: how far in front of its hip the reference foot lands."""
+    (T,) m: how far the reference foot travels under its hip while planted."""
     assert rig.poses.heights is not None, "body_height is for posed bodies"
     ref = reference_foot(rig)
     u = step_phase(rig, phase)

@@ -301,6 +301,12 @@ class Rig:
         reach = self.sideways_reach
         return np.sqrt(reach ** 2 + half_stride ** 2 + 2.0 * reach * half_stride * np.abs(np.sin(self.splay)))
 
+    @functools.cached_property
+    def four_legged_mammal(self) -> bool:
+        """Four or more upright-kneed legs under a horizontal trunk: a mammal's deep neck,
+        its tail set high on the croup, a mane's hair on its tail."""
+        return self.leg_count >= 4 and not bool(self.knee_out.any()) and not self.body.upright
+
     @property
     def stance_back(self) -> float:
         """:func:`stance_back` at the gait's duty factor."""

@@ -52,10 +52,8 @@ from numpy.typing import NDArray
 from scipy.interpolate import PchipInterpolator
 
 from .easing import smootherstep, smoothstep
-from .gait import WALK_DUTY, walking_weight
+from .gait import walking_weight
 from .rig import Rig
-
-__all__ = ["WALK_DUTY", "walking_weight"]  # re-exported: the walker's own names for the walk-to-run blend
 
 SWING = np.linspace(0.0, 1.0, 11)
 WORLD_PROGRESS = np.array([0.0, 0.041, 0.127, 0.24, 0.366, 0.504, 0.647, 0.779, 0.889, 0.972, 1.0])

@@ -177,6 +177,30 @@ MANE_SHADE = 0.3  # of the body's colour (linear): a mane's darker hair
 MANE_TUFTS = 14  # flattened ellipsoids along the crest, poll to withers, overlapping into one ridge
 
 
+def hoof_ends(ball: NDArray[np.float64], toe: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Where a hoof's capsule starts and ends (..., 3) each: from a third of the way along
+    the toe (pastern) to its tip."""
+    return ball + 0.35 * (toe - ball), toe
+
+
+def hoof_legs(rig: Rig) -> NDArray[np.int64]:
+    """The legs (K,) that end in hooves: unguligrade mammal legs."""
+    from ..choices import leg_type
+
+    return np.array([leg for leg in range(rig.leg_count) if not rig.knee_out[leg]
+                     and leg_type(float(np.degrees(rig.ankle_lift[leg]))) == "unguligrade"], dtype=np.int64)
+
+
+def skin_overlays(motion) -> NDArray[np.float64]:
+    """The centres (K, 3), in a clip's first frame, of the ellipsoids drawn on a skinned body
+    rather than in its surface: the eyes and the mane."""
+    rig = motion.rig
+    skull, head_dir = _skull(motion.head[:1], rig)
+    eyes = _eyes(skull, head_dir, rig)[0, :, 0:3]
+    mane = _mane_rows(motion.neck[:1], motion.spine_radius, rig)[0, :, 0:3]
+    return np.concatenate([eyes, mane])
+
+
 def mane_color(rig: Rig) -> NDArray[np.float64]:
     """A mane's colour (3,), linear: the body's, darker."""
     return MANE_SHADE * srgb_to_linear(rig.look.body_color)
@@ -228,7 +252,7 @@ def _long_head(rig: Rig) -> float:
 def _mammal_neck(rig: Rig) -> bool:
     """Whether the neck is a mammal's: deeper than wide, maybe maned (four or more
     upright-kneed legs, a horizontal trunk and a neck)."""
-    return not rig.body.upright and rig.leg_count >= 4 and not rig.knee_out.any() and rig.body.neck_length > 0
+    return rig.four_legged_mammal and rig.body.neck_length > 0
 
 
 def _mane_rows(neck: NDArray[np.float64], spine_radius: NDArray[np.float64], rig: Rig) -> NDArray[np.float64]:
@@ -309,7 +333,7 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
                                       0.55 * length + 0.7 * rb[:, 3:4]], axis=-1)
             ellipsoids.append(_ellipsoids(0.55 * t + 0.45 * b, t - b, radii_e, c))
         else:  # a hoof below the fetlock
-            capsules.append(_capsules(b + 0.35 * (t - b), t, 1.25 * rb[:, 3], 1.45 * rb[:, 3], HOOF_COLOR))
+            capsules.append(_capsules(*hoof_ends(b, t), 1.25 * rb[:, 3], 1.45 * rb[:, 3], HOOF_COLOR))
             radii_e = np.broadcast_to(1.3 * rb[:, 3:4], b.shape)
             ellipsoids.append(_ellipsoids(b, t - b, radii_e, c))
     return capsules, ellipsoids
@@ -501,7 +525,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
                        (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius, body_color)
     tail_base = 0.32 * r[0] if rig.body.tail_radius is None else rig.body.tail_radius
-    hair = rig.body.mane > 0  # a maned animal's tail is hair, full to its end
+    hair = rig.body.mane > 0 and rig.four_legged_mammal  # a maned animal's tail is hair, full to its end
     tail_r = np.linspace(tail_base, (0.7 if hair else 0.25) * tail_base, tail.shape[1])
     tail_color = mane_color(rig) if hair else body_color
     tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], tail_color)

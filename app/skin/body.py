@@ -103,27 +103,32 @@ def bind_joints(starts: NDArray[np.float64], ends: NDArray[np.float64] | None, c
     return np.argmin(near - 0.01 * along, axis=1)  # nearest start; ties go to the bone pointing the right way
 
 
-def _hooves(motion: Motion) -> NDArray[np.float64]:
-    """The first frame's hoof capsules (K, 8: a, b, r0, r1): the dark horn below each
-    unguligrade fetlock, none for other feet."""
-    from ..render.scene import HOOF_COLOR, Cap, motion_instances
+def _hooves(motion: Motion, capsules: NDArray[np.float64]) -> NDArray[np.bool_]:
+    """Which of the parts (capsules (C, >=6) first, then ellipsoids: (P,), only capsules can
+    be) are hooves: the dark horn below each unguligrade fetlock (found by where it lies,
+    not by its colour, which a coat may share)."""
+    from ..render.scene import hoof_ends, hoof_legs
 
-    caps = np.asarray(motion_instances(motion, show_joints=False).frame(0).capsules, np.float64)
-    caps = caps[np.all(np.abs(caps[:, Cap.COLOR] - HOOF_COLOR) < 1e-3, axis=1)]
-    return np.concatenate([caps[:, Cap.A], caps[:, Cap.B], caps[:, Cap.RADII]], axis=1) if len(caps) \
-        else np.zeros((0, 8))
+    legs = hoof_legs(motion.rig)
+    found = np.zeros(len(capsules), dtype=bool)
+    if len(legs):
+        start, end = hoof_ends(motion.joints[0, legs, 3], motion.joints[0, legs, 4])  # (K, 3) each
+        found = np.any((np.linalg.norm(capsules[:, None, 0:3] - start[None], axis=-1) < 1e-4)
+                       & (np.linalg.norm(capsules[:, None, 3:6] - end[None], axis=-1) < 1e-4), axis=1)
+    return found
 
 
 def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The first frame's capsules (C, 8: a, b, r0, r1) and ellipsoids (E, 15: centre,
     axes, radii), without joint markers, eyes or mane."""
-    from ..render.scene import EYE_COLOR, Cap, Ell, mane_color, motion_instances
+    from ..render.scene import Cap, Ell, motion_instances, skin_overlays
 
     frame = motion_instances(motion, show_joints=False).frame(0)
     caps = np.asarray(frame.capsules, np.float64)
     ells = np.asarray(frame.ellipsoids, np.float64)
-    for on_skin in (EYE_COLOR, mane_color(motion.rig)):  # the eyes and the mane sit on the skin
-        ells = ells[~np.all(np.abs(ells[:, Ell.COLOR] - on_skin) < 1e-3, axis=1)]
+    on_skin = skin_overlays(motion)  # the eyes and the mane sit on the skin (found by where they are)
+    if len(ells) and len(on_skin):
+        ells = ells[np.min(np.linalg.norm(ells[:, None, Ell.CENTRE] - on_skin[None], axis=-1), axis=1) > 1e-4]
     capsules = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], caps[:, Cap.RADII]], axis=1) if len(caps) \
         else np.zeros((0, 8))
     ellipsoids = np.concatenate([ells[:, Ell.CENTRE], *(ells[:, a] for a in Ell.AXES), ells[:, Ell.RADII]],
@@ -374,10 +379,7 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     capsules, ellipsoids, part_joint, limbs = bound_parts(motion, clip)
     verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, limbs)
     roots = _limb_roots(capsules, part_joint, clip)
-    found = _hooves(motion)  # which of the parts (capsules first) are hooves
-    hooves = np.zeros(len(capsules) + len(ellipsoids), dtype=bool)
-    if len(found):
-        hooves[:len(capsules)] = np.any(np.all(np.abs(capsules[:, None, :8] - found[None]) < 1e-6, axis=2), axis=1)
+    hooves = np.concatenate([_hooves(motion, capsules), np.zeros(len(ellipsoids), dtype=bool)])
     tail_joints = np.array([k for k, name in enumerate(clip.skeleton.names) if name.startswith("tail")], dtype=np.int64)
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
@@ -398,7 +400,7 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
             nearest = np.argmin(part_distances(verts, capsules, ellipsoids), axis=0)
             horn = hooves[nearest][:, None]
             colors = np.where(horn, HOOF_COLOR[None, :], colors).astype(np.float32)
-        if motion.rig.body.mane > 0:  # a maned animal's tail is hair of the mane's colour
+        if motion.rig.body.mane > 0 and motion.rig.four_legged_mammal:  # a maned animal's tail is hair of the mane's colour
             hair = np.sum(np.where(np.isin(joints, tail_joints), weights, 0.0), axis=1)[:, None]
             colors = (colors * (1.0 - hair) + mane_color(motion.rig)[None, :] * hair).astype(np.float32)
         return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),

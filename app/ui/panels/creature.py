@@ -6,7 +6,8 @@ from imgui_bundle import imgui
 
 from ...choices import KNEE_DIRECTIONS, LEG_TYPES, WAVE_SHAPES
 from ...gaits import GAIT_PRESETS, gaits_for
-from ...kinematics.walker import SWING_KNEE_RANGE, WALK_DUTY, heel_to_toe
+from ...kinematics.gait import WALK_DUTY
+from ...kinematics.walker import SWING_KNEE_RANGE, heel_to_toe
 from ...render.scene import KEY_POSE_COLORS
 from ...styles import DEFAULT_TIMING_FPS, STYLES, WALK_STYLES
 from ..state import ViewerState
