@@ -183,8 +183,9 @@ def flight_height(u: NDArray[np.float64], duty: NDArray[np.float64], frequency: 
     t = np.mod(u, 1.0) * (contact + flight)
     first, second = LOWEST_AT * contact, (1.0 - LOWEST_AT) * contact
     a = _lowest_acceleration(first, second, touchdown - low, toe_off - low, land, lift)
-    falling = _quintic(first, (touchdown, -land, -G + 0.0 * a), (low, 0.0 * a, a), t)
-    rising = _quintic(second, (low, 0.0 * a, a), (toe_off, lift, -G + 0.0 * a), t - first)
+    still, fall = np.zeros_like(a), np.full_like(a, -G)
+    falling = _quintic(first, (touchdown, -land, fall), (low, still, a), t)
+    rising = _quintic(second, (low, still, a), (toe_off, lift, fall), t - first)
     in_air = t - contact
     ballistic = toe_off + lift * in_air - 0.5 * G * in_air ** 2
     return np.where(in_air > 0.0, ballistic, np.where(t < first, falling, rising))

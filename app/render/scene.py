@@ -50,7 +50,7 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 # Bone radius along the leg as a fraction of the leg's radius at the hip:
 # hip, knee, ankle, ball, toe tip.
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
-EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (the skinned body leaves them out)
+EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (drawn on a skinned body, not in it: skin_overlays)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
 EYE_OUT = 0.1  # of the head's radius: an animal's eyes out of the skull, over the skin's blend
 JOWL = (0.45, 0.5, 0.8, 1.1, 1.15)  # of it: a long head's jowl, ahead of and below the skull's centre; its radii
