@@ -187,7 +187,8 @@ def build_rig(spec: CreatureSpec) -> Rig:
                       head_angle=math.radians(body.head_angle), ear_length=body.ear_length,
                       tail_length=body.tail_length, tail_angle=math.radians(body.tail_angle),
                       tail_segments=body.tail_segments, upright=body.posture == "upright",
-                      tail_radius=body.tail_radius, mane=body.mane, tail_curl=math.radians(body.tail_curl))
+                      tail_radius=body.tail_radius, mane=body.mane, tail_curl=math.radians(body.tail_curl),
+                      wings=body.wings, beak=body.beak)
     hip_height = float(rest_height.mean())
     rig = Rig(
         name=spec.name,
@@ -227,6 +228,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
         overlap=spec.overlap,
         roll=per_leg("roll"),
         heel=per_leg("heel"),
+        toes=np.array([int(leg.toes) for leg in legs], dtype=np.int64),
     )
     return _with_natural_heights(spec, rig) if _natural(spec) else rig
 

@@ -9,13 +9,15 @@ import pytest
 from app import build_rig, load_creature
 from app.gaits import gaits_for
 from app.kinematics.clip import clip_motion
+from app.kinematics.motion import simulate
 from app.kinematics.world import IN_PLACE
 from app.render.camera import Camera, frame_points
 from app.render.clip import ClipRenderer
 from app.render.framing import clip_camera, loop_grid_spacing
 from app.render.lighting import SKY_FADE, sky_band
 from app.render.options import RenderOptions, ViewSettings
-from app.render.scene import motion_bounds, srgb_to_linear
+from app.render.scene import motion_bounds, motion_instances, srgb_to_linear
+from app.spec import SpecError
 
 pytestmark = pytest.mark.gl
 SIZE = (192, 144)
@@ -39,7 +41,7 @@ def render(renderer, creature: str, gait: str | None = None, frame: int = 4, cam
     return renderer.frame(motion, frame % motion.frame_count, clip_camera(motion, view), settings)
 
 
-@pytest.mark.parametrize("creature", ["bear", "dog", "horse"])  # plantigrade, digitigrade, unguligrade
+@pytest.mark.parametrize("creature", ["bear", "dog", "horse", "bird"])  # plantigrade, digitigrade, unguligrade; a bird
 def test_leg_types_golden_side_view(renderer, snapshot, creature: str) -> None:
     snapshot.check(f"{creature}_side", render(renderer, creature))
 
@@ -400,7 +402,7 @@ def test_a_mammal_s_neck_is_deeper_than_wide_and_a_horse_s_is_maned() -> None:
     rig, motion, ells, skin, maned = rows("horse")
     assert rig.body.mane > 0 and maned.sum() > 4
     assert np.all(np.abs(skin[:, Ell.COLOR] - mane_color(rig)) < 1e-3, axis=1).sum() == maned.sum()
-    _, skin_parts = _parts(motion)
+    _, skin_parts, _ = _parts(motion)
     assert len(skin_parts) == len(ells) - maned.sum() - 2  # neither the mane nor the eyes
     base, top = motion.neck[0, 0], motion.neck[0, -1]
     along = base + NECK_SECTIONS[:, None] * (top - base)
@@ -443,7 +445,8 @@ def test_a_mammal_s_tail_leaves_the_top_of_the_croup_and_a_horse_s_is_hair() -> 
 
 def test_hooves_are_dark_horn_on_the_skinned_body_too() -> None:
     """An unguligrade foot's hoof was dark only in the parts; on the skinned body it took
-    the coat's colour (a slipper of hide). Vertices whose nearest part is a hoof are horn."""
+    the coat's colour (a slipper of hide). Vertices on a hoof are horn (within the soft
+    edge where colours meet)."""
     from app.render.bodies import _build
     from app.render.scene import HOOF_COLOR
 
@@ -453,3 +456,77 @@ def test_hooves_are_dark_horn_on_the_skinned_body_too() -> None:
         assert horn.any() == hooved, name
         if hooved:
             assert body.positions[horn, 1].max() < 0.15 and horn.mean() < 0.1, name  # at the ground, not the coat
+
+
+def test_a_bird_has_a_beak_folded_wings_plumes_and_splayed_toes() -> None:
+    """The bird was an egg on stilts: one dark coat from beak to toes, no wings, a paw for
+    a foot and its head pitched 68 degrees down. Its parts now: a flat beak at the head's
+    tip, a folded wing on each flank (out of the trunk, in the plumes' colour), a tail of
+    plumes, two toes a foot (an ostrich's), the neck and lower legs in their own colours."""
+    from app.render.scene import Ell, palette, pose_instances, srgb_to_linear
+
+    rig = build_rig(load_creature("bird"))
+    motion = simulate(rig, 0.5, 30.0, world=IN_PLACE)
+    shapes = motion_instances(motion, show_joints=False, by_side=False).frame(0)
+    colors = palette(rig)
+    ells = shapes.ellipsoids.astype(np.float64)
+    plumes = np.all(np.abs(ells[:, Ell.COLOR] - colors.plume) < 1e-5, axis=1)
+    assert plumes.sum() == 2  # two wings
+    wings = ells[plumes]
+    assert np.allclose(wings[:, 14], 0.5 * rig.body.wings, atol=1e-6)  # half their length along
+    spine = motion.spine[0]
+    assert np.all(np.abs(wings[:, 0] - spine[:, 0].mean()) > 0.8 * rig.body.radius.max())  # out on the flanks
+    assert wings[0, 0] * wings[1, 0] < 0  # one each side
+    beak = ells[np.all(np.abs(ells[:, Ell.COLOR] - srgb_to_linear(rig.look.beak_color)) < 1e-5, axis=1)]
+    assert len(beak) == 1
+    nose = motion.head[0, 1]
+    assert np.linalg.norm(beak[0, 0:3] + beak[0, 9:12] * 0.5 * rig.body.beak - nose) < 1e-6  # its tip is the head's
+    head_dir = motion.head[0, 1] - motion.head[0, 0]
+    assert abs(np.degrees(np.arcsin(head_dir[1] / np.linalg.norm(head_dir)))) < 25  # held about level
+    caps = shapes.capsules.astype(np.float64)
+    feet = np.all(np.abs(caps[:, 8:11] - colors.legs) < 1e-5, axis=1)
+    toe_caps = caps[feet & (np.linalg.norm(caps[:, 0:3][:, None] - motion.joints[0, :, 3][None], axis=-1).min(axis=1)
+                            < 1e-5)]
+    assert len(toe_caps) == 2 * (1 + 2)  # each foot: its toe bone and two splayed toes
+    neck = np.all(np.abs(caps[:, 8:11] - colors.neck) < 1e-5, axis=1)
+    assert neck.any() and not np.allclose(colors.neck, colors.coat)
+    tail = np.all(np.abs(caps[:, 8:11] - colors.plume) < 1e-5, axis=1)
+    assert tail.sum() == rig.body.tail_segments
+    # Side colours still colour every leg part by side (a debugging view).
+    by_side = pose_instances(motion.pose(0), rig, show_joints=False)
+    assert not np.any(np.all(np.abs(by_side.capsules[..., 8:11] - colors.legs) < 1e-5, axis=-1))
+
+
+def test_the_skin_takes_each_parts_colour_with_soft_edges() -> None:
+    """On the skinned bird the feet are the legs' colour, the neck the neck's, the wings
+    and tail plumes, the rest the coat; where two colours meet they blend over a few
+    triangles (each vertex's colour averaged with its neighbours'), not a saw-tooth."""
+    from app.render.bodies import _build
+    from app.render.scene import palette
+
+    rig = build_rig(load_creature("bird").with_overrides({"look.countershade": 0.0}))  # every coat vertex the coat's
+    body = _build(rig, "coarse")
+    colors = palette(rig)
+
+    def share(color: np.ndarray) -> float:
+        return float(np.mean(np.all(np.abs(body.colors - color) < 1e-3, axis=1)))
+
+    low = body.positions[:, 1] < 0.3  # the lower legs and feet
+    assert np.mean(np.all(np.abs(body.colors[low] - colors.legs) < 1e-3, axis=1)) > 0.8
+    assert share(colors.plume) > 0.03 and share(colors.neck) > 0.05
+    edges = np.concatenate([body.faces[:, [0, 1]], body.faces[:, [1, 2]], body.faces[:, [2, 0]]])
+    jump = np.linalg.norm(body.colors[edges[:, 0]] - body.colors[edges[:, 1]], axis=1).max()
+    assert jump < 0.55 * np.linalg.norm(colors.plume - colors.coat)  # no edge jumps from one part's colour to the next
+    pure = np.any([np.all(np.abs(body.colors - c) < 1e-3, axis=1)
+                   for c in (colors.coat, colors.legs, colors.plume, colors.neck, colors.beak)], axis=0)
+    assert 0.5 < pure.mean() < 1.0  # a soft band where colours meet, not a smear over the body
+
+
+def test_bird_keys_are_checked() -> None:
+    """The new keys refuse what they cannot draw, in one line naming the key."""
+    spec = load_creature("bird")
+    for key, value, words in (("body.beak", 0.5, "longer than the head"), ("legs.legs.toes", 5, "toes"),
+                              ("body.wings", -0.1, "wings"), ("look.plume_color", "white", "plume_color")):
+        with pytest.raises(SpecError, match=words):
+            spec.with_overrides({key: value})
+    assert spec.with_overrides({"legs.legs.toes": 4, "body.wings": 0.0}).legs[0].toes == 4

@@ -51,11 +51,11 @@ def test_vertices_follow_their_bones_through_the_clip(built) -> None:
     name, motion, clip, body = built
 
     def error(frame: int) -> float:
-        capsules, ellipsoids = _parts(motion.frames(frame))
+        capsules, ellipsoids, _ = _parts(motion.frames(frame))
         d = smooth_union(part_distances(body.posed(clip, frame), capsules, ellipsoids), 0.01)
         return float(np.percentile(np.abs(d), 95))
 
-    capsules, ellipsoids = _parts(motion)
+    capsules, ellipsoids, _ = _parts(motion)
     typical = float(np.median(np.concatenate([capsules[:, 6:8].ravel(), ellipsoids[:, 12:15].ravel()])))
     size = float(np.ptp(body.positions, axis=0).max())
     bind = error(0)
@@ -145,7 +145,7 @@ def test_a_single_pose_is_skinned_like_the_clip_it_comes_from(creature: str) -> 
         body = draw.body
         p = np.concatenate([body.positions, np.ones((len(body.positions), 1), np.float32)], axis=1).astype(float)
         posed = np.einsum("vk,vkij,vj->vi", body.weights.astype(float), draw.skin.astype(float)[body.joints], p)[:, :3]
-        capsules, ellipsoids = _parts(motion)
+        capsules, ellipsoids, _ = _parts(motion)
         off = np.abs(smooth_union(part_distances(posed, capsules, ellipsoids), 0.01))
         size = float(np.ptp(body.positions, axis=0).max())
         assert np.percentile(off, 95) < 0.015 * size, (creature, phase)
@@ -311,6 +311,6 @@ def test_a_black_coat_keeps_every_part_of_its_skin() -> None:
         for coat in ("#b38b5d", "#000000"):
             rig = build_rig(load_creature(name).with_overrides({"look.body_color": coat}))
             motion, _ = clip_motion(rig, 30.0, cycles=0.25)
-            capsules, ellipsoids = _parts(motion)
+            capsules, ellipsoids, _ = _parts(motion)
             counts.append((len(capsules), len(ellipsoids)))
         assert counts[0] == counts[1], (name, counts)

@@ -83,6 +83,8 @@ class BodyShape:
     tail_radius: float | None = None  # m at the base (None: a third of the rump's radius)
     mane: float = 0.0  # m: the height of a mane along the top of the neck (0: none)
     tail_curl: float = 0.0  # rad the tail turns up (+) from its first segment to its last
+    wings: float = 0.0  # m: how far a bird's folded wings reach back from the shoulders (0: none)
+    beak: float = 0.0  # m: a beak's length back from the head's tip (0: a muzzle)
 
     def tail_droop(self, segments: int | None = None) -> NDArray[np.float64]:
         """Each tail segment's droop below the body axis at rest (rad, (K,), base to tip):
@@ -159,6 +161,10 @@ class Look:
     left_color: str = "#2f8f9d"
     right_color: str = "#d8664f"
     countershade: float = 0.35
+    leg_color: str | None = None  # the lower legs and feet on a smooth body (None: the body's)
+    neck_color: str | None = None  # the neck and head (None: the body's)
+    beak_color: str | None = None  # the beak (None: horn)
+    plume_color: str | None = None  # the wings' and tail's feathers (None: the body's)
 
 
 @dataclass(frozen=True)
@@ -228,6 +234,7 @@ class Rig:
     overlap: Overlap = Overlap()
     roll: NDArray[np.float64] | None = None  # (L,) foot roll amount 0..1 (None: all 0)
     heel: NDArray[np.float64] | None = None  # (L,) m a plantigrade heel reaches behind the ankle (None: all 0)
+    toes: NDArray[np.int64] | None = None  # (L,) splayed toes drawn (0: the leg type's sole, paw or hoof; None: all 0)
     model: str = ""  # the rigged model (a .glb/.gltf path) whose own skeleton and mesh this creature drives
 
     @property

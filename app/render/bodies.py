@@ -115,11 +115,10 @@ def body_levels(draws: Sequence[BodyDraw], eye: NDArray[np.float64], shadow_texe
 
 def shape_key(rig: Rig) -> str:
     """A digest of what a rig's body is built from (bones, radii, trunk, head, tail, arms,
-    coat), not its gait."""
+    toes, colours), not its gait."""
     parts = (rig.name, rig.body, rig.femur, rig.tibia, rig.metatarsus, rig.toe, rig.bone_radius, rig.ankle_lift,
-             rig.hip_offset, rig.girdle_rest_height, rig.girdle_position, rig.arms, rig.look.body_color,
-             rig.look.countershade,
-             rig.leg_names, rig.roll_amount)
+             rig.hip_offset, rig.girdle_rest_height, rig.girdle_position, rig.arms,
+             replace(rig.look, left_color="", right_color=""), rig.toes, rig.leg_names, rig.roll_amount)
     return hashlib.sha1(pickle.dumps(parts)).hexdigest()
 
 

@@ -52,10 +52,13 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
 EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (drawn on a skinned body, not in it: skin_overlays)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
-EYE_OUT = 0.1  # of the head's radius: an animal's eyes out of the skull, over the skin's blend
 JOWL = (0.45, 0.5, 0.8, 1.1, 1.15)  # of it: a long head's jowl, ahead of and below the skull's centre; its radii
-# Of the head's radius (across, up, along): an animal's eyes (False), a person's (True).
-EYE_SHAPE = {False: (0.2, 0.17, 0.14), True: (0.2, 0.12, 0.12)}
+# Eyes by kind, of the head's radius: their shape (across, up, along), where they look out
+# of the skull (ahead, up, apart: a direction from its centre) and how far out of it they
+# sit, over the skin's blend (a bird's large eyes bulge from a small head).
+EYE_SHAPE = {"animal": (0.2, 0.17, 0.14), "person": (0.2, 0.12, 0.12), "bird": (0.26, 0.25, 0.25)}
+EYE_PLACE = {"animal": (0.55, 0.42, 0.5), "person": (0.8, 0.08, 0.36), "bird": (0.3, 0.3, 0.85)}
+EYE_OUT = {"animal": 0.1, "person": 0.0, "bird": 0.3}
 _UP = UP
 
 
@@ -164,6 +167,44 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 
 
 HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
+BEAK_COLOR = np.array([0.66, 0.58, 0.47]) ** 2  # a beak's horn, unless the look gives one (linear)
+BEAK_SHAPE = (0.5, 0.24)  # of the head's radius: a beak's half width and half depth (broad and flat)
+WING_AT = 0.72  # along the trunk (0 rear, 1 front): where a folded wing's shoulder lies
+WING_SHAPE = (0.09, 0.3, 0.5)  # of body.wings: a folded wing's half thickness, half height and half length
+WING_DROOP = 0.3  # rad: a folded wing runs back and down from the shoulder
+WING_LEAN = 0.35  # rad: its top leans in against the flank
+WING_OUT = 0.9  # of the trunk's radius under it: how far out its middle lies (its outer face clears the skin)
+TOE_SPREAD = 0.42  # rad: a splayed toe's angle from the middle toe
+TOE_SHAPES = {  # splayed toes: (angle out from the middle toe in TOE_SPREADs, length, radius: of the middle toe's)
+    1: ((0.0, 1.0, 1.0),),
+    2: ((-0.15, 1.0, 1.0), (0.85, 0.62, 0.75)),  # an ostrich's: a big inner toe and a small outer one
+    3: ((-1.0, 0.8, 0.75), (0.0, 1.0, 0.9), (1.0, 0.8, 0.75)),
+    4: ((-1.0, 0.8, 0.75), (0.0, 1.0, 0.9), (1.0, 0.8, 0.75), (None, 0.4, 0.7)),  # and a hind toe (the hallux)
+}
+
+
+@dataclass(frozen=True)
+class Palette:
+    """A creature's colours where parts differ from its coat (linear RGB, (3,) each): the
+    coat, the lower legs and feet, the neck and head, a beak and feathers."""
+
+    coat: NDArray[np.float64]
+    legs: NDArray[np.float64]
+    neck: NDArray[np.float64]
+    beak: NDArray[np.float64]
+    plume: NDArray[np.float64]
+
+
+def palette(rig: Rig) -> Palette:
+    """The look's colours (unset ones from the coat; a beak's from horn)."""
+    look = rig.look
+    coat = srgb_to_linear(look.body_color)
+
+    def given(color: str | None, default: NDArray[np.float64]) -> NDArray[np.float64]:
+        return default if color is None else srgb_to_linear(color)
+
+    return Palette(coat=coat, legs=given(look.leg_color, coat), neck=given(look.neck_color, coat),
+                   beak=given(look.beak_color, BEAK_COLOR), plume=given(look.plume_color, coat))
 ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segment, rising before the elbow
 SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches before the tendons
 TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half its width and half its depth
@@ -241,6 +282,8 @@ def _neck_radii(rig: Rig, spine_radius: NDArray[np.float64]) -> tuple[float, flo
     head_radius = rig.body.head_radius
     if rig.body.upright:
         return 0.45 * head_radius, 0.4 * head_radius
+    if _eye_kind(rig) == "bird":  # a bird's slender neck under a rounder head
+        return 0.68 * float(spine_radius[-1]), 0.6 * head_radius
     return 0.68 * float(spine_radius[-1]), (0.85 - 0.25 * _long_head(rig)) * head_radius
 
 
@@ -281,11 +324,12 @@ def _mane(neck: NDArray[np.float64], capsule: tuple[float, float], chest: float,
 
 
 def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Rig,
-                leg_color: NDArray[np.float64]) -> tuple[list, list]:
+                leg_color: NDArray[np.float64], foot_color: NDArray[np.float64]) -> tuple[list, list]:
     """Muscle and feet for mammal legs (not sprawled insect or spider legs): a thigh or
-    upper arm thick at the top and tapering down the femur; feet by leg type, a flat
-    sole (plantigrade), a round paw (digitigrade) or a dark hoof with a fetlock
-    (unguligrade). Returns capsule and ellipsoid row arrays (T, K, 11 / 18)."""
+    upper arm thick at the top and tapering down the femur, in ``leg_color`` (L, 3); feet
+    in ``foot_color`` (L, 3) by leg type, a flat sole (plantigrade), a round paw
+    (digitigrade) or a dark hoof with a fetlock (unguligrade), or splayed toes
+    (``legs.NAME.toes``). Returns capsule and ellipsoid row arrays (T, K, 11 / 18)."""
     from ..choices import leg_type
 
     legs = np.nonzero(~rig.knee_out)[0]
@@ -312,13 +356,19 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
     ankle = j[:, :, 2]
     shank = _capsules(knee + 0.08 * (ankle - knee), knee + SHANK_MUSCLE * (ankle - knee), 1.35 * r[:, 1],
                       r[:, 1], color)
-    kinds = [leg_type(float(np.degrees(a))) for a in rig.ankle_lift[legs]]
+    toes = np.zeros(len(legs), dtype=np.int64) if rig.toes is None else rig.toes[legs]
+    kinds = ["toes" if n > 0 else leg_type(float(np.degrees(a))) for a, n in zip(rig.ankle_lift[legs], toes)]
     capsules, ellipsoids = [muscle, shank], []
+    feet = foot_color[legs]
+    for count in np.unique(toes[toes > 0]):
+        pick = toes == count
+        capsules.append(_splayed_toes(ball[:, pick], toe[:, pick], r[pick, 3], r[pick, 4], rig.hip_side[legs][pick],
+                                      int(count), feet[pick]))
     for kind in ("plantigrade", "digitigrade", "unguligrade"):
         pick = np.array([k == kind for k in kinds])
         if not pick.any():
             continue
-        b, t, rb, c = ball[:, pick], toe[:, pick], r[pick], color[pick]
+        b, t, rb, c = ball[:, pick], toe[:, pick], r[pick], feet[pick]
         if kind == "plantigrade":  # a flat sole from heel to toes
             heel = heels[:, pick]
             length = np.linalg.norm(t - heel, axis=-1, keepdims=True)
@@ -337,6 +387,28 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
             radii_e = np.broadcast_to(1.3 * rb[:, 3:4], b.shape)
             ellipsoids.append(_ellipsoids(b, t - b, radii_e, c))
     return capsules, ellipsoids
+
+
+def _splayed_toes(ball: NDArray[np.float64], tip: NDArray[np.float64], ball_radius: NDArray[np.float64],
+                  tip_radius: NDArray[np.float64], side: NDArray[np.float64], count: int,
+                  color: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A bird's or theropod's toes (T, M * count, 11) from each ball (T, M, 3): the middle
+    toe along the foot's own toe bone (to ``tip``), the others turned out from it about the
+    vertical by :data:`TOE_SPREAD` (+ towards the leg's ``side`` (M,): +1 left), shorter,
+    and a hind toe back along the ground (:data:`TOE_SHAPES`)."""
+    d = tip - ball
+    level = d * np.array([1.0, 0.0, 1.0])
+    along = np.linalg.norm(level, axis=-1, keepdims=True)
+    out = _unit(cross(_UP, d)) * along * side[None, :, None]  # horizontal, as long as the toe's level part
+    toes = []
+    for turn, length, thick in TOE_SHAPES[count]:
+        if turn is None:  # the hind toe: back along the ground, from the ball
+            end = ball - length * level
+        else:
+            angle = turn * TOE_SPREAD
+            end = ball + length * (np.cos(angle) * d + np.sin(angle) * out)
+        toes.append(_capsules(ball, end, thick * ball_radius, thick * tip_radius, color))
+    return np.concatenate(toes, axis=1)
 
 
 def _heels(rig: Rig, joints: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -388,16 +460,23 @@ def _skull(head: NDArray[np.float64], rig: Rig) -> tuple[NDArray[np.float64], ND
     return skull, head_dir
 
 
+def _eye_kind(rig: Rig) -> str:
+    """Whose eyes a creature has: a person's (upright), a bird's (a beak) or an animal's."""
+    return "person" if rig.body.upright else "bird" if rig.body.beak > 0 else "animal"
+
+
 def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -> NDArray[np.float64]:
     """The two eyes (T, 2, 18) on the skull, looking along the head."""
     head_radius = rig.body.head_radius
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
-    # A person's eyes look out of the face at mid-height; an animal's sit high on the skull.
-    ahead, up, apart = (0.8, 0.08, 0.36) if rig.body.upright else (0.55, 0.42, 0.5)
-    if not rig.body.upright:  # on the skull's surface, half out (further in, the skin's blend buried them)
+    kind = _eye_kind(rig)
+    # A person's eyes look out of the face at mid-height; an animal's sit high on the
+    # skull, a bird's on its sides.
+    ahead, up, apart = EYE_PLACE[kind]
+    if kind != "person":  # on the skull's surface, half out (further in, the skin's blend buried them)
         scale = 1.0 / np.sqrt((apart / SKULL[0]) ** 2 + (up / SKULL[1]) ** 2 + (ahead / SKULL[2]) ** 2) \
-            + EYE_OUT / np.sqrt(apart ** 2 + up ** 2 + ahead ** 2)
+            + EYE_OUT[kind] / np.sqrt(apart ** 2 + up ** 2 + ahead ** 2)
         ahead, up, apart = ahead * scale, up * scale, apart * scale
     centres = (skull + head_dir * ahead * head_radius + hy * up * head_radius)[:, None] \
         + sides * hx[:, None] * apart * head_radius
@@ -405,9 +484,54 @@ def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -
     # Wider than tall, turned with the head: a few pixels across read as eyes, where a
     # small sphere read as a dark "x" once antialiased.
     axes = np.concatenate([np.broadcast_to(a[:, None], shape + (3,)) for a in (hx, hy, head_dir)], axis=-1)
-    radii = np.array(EYE_SHAPE[rig.body.upright]) * head_radius
+    radii = np.array(EYE_SHAPE[kind]) * head_radius
     return np.concatenate([centres, axes, np.broadcast_to(radii, shape + (3,)), np.broadcast_to(EYE_COLOR, shape + (3,))],
                           axis=-1)
+
+
+def _beak(nose: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig, color: NDArray[np.float64]
+          ) -> NDArray[np.float64]:
+    """A bird's beak (T, 1, 18): broad, flat and round-tipped, ``body.beak`` long back from
+    the head's tip ``nose`` (T, 3); none (T, 0, 18) without one."""
+    length = rig.body.beak
+    if length <= 0:
+        return np.zeros((nose.shape[0], 0, ELLIPSOID_FLOATS))
+    radii = np.array([BEAK_SHAPE[0] * rig.body.head_radius, BEAK_SHAPE[1] * rig.body.head_radius, 0.5 * length])
+    return _ellipsoids((nose - 0.5 * length * head_dir)[:, None], head_dir[:, None], radii, color)
+
+
+def _wings(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64], rig: Rig,
+           color: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A bird's folded wings (T, 2, 18), left then right: flat ellipsoids ``body.wings``
+    long lying back and down along the flanks from the shoulders (:data:`WING_AT` of the
+    trunk (T, S, 3) from its rear), their tops leaning in against it; none (T, 0, 18)
+    without wings."""
+    length = rig.body.wings
+    if length <= 0:
+        return np.zeros((spine.shape[0], 0, ELLIPSOID_FLOATS))
+    count = spine.shape[1]
+    at = WING_AT * (count - 1)
+    k = min(int(at), count - 2)
+    w = at - k
+    shoulder = (1.0 - w) * spine[:, k] + w * spine[:, k + 1]  # (T, 3)
+    forward = _unit((1.0 - w) * tangent[:, k] + w * tangent[:, k + 1])
+    side, up, _ = _frame_axes(forward)  # side: the body's left
+    back = -np.cos(WING_DROOP) * forward - np.sin(WING_DROOP) * up
+    # The trunk's radius under the wing's middle (its profile runs rear to front).
+    middle = np.clip(at - 0.5 * length / max(rig.body.length, 1e-9) * (count - 1), 0, count - 1)
+    under = float(np.interp(middle, np.arange(count), radius))
+    half = np.array(WING_SHAPE) * length
+    rows = []
+    for sign in (1.0, -1.0):  # left, right
+        out = sign * side
+        across = np.cos(WING_LEAN) * out + np.sin(WING_LEAN) * up  # the wing's thin axis: out, tipped up
+        tall = _unit(cross(back, across))
+        tall = np.where(np.sum(tall * up, axis=-1, keepdims=True) < 0, -tall, tall)
+        across = cross(tall, back)
+        centre = shoulder + 0.5 * length * back + out * (WING_OUT * under + half[0]) + 0.15 * under * up
+        rows.append(np.concatenate([centre, across, tall, back, np.broadcast_to(half, centre.shape),
+                                    np.broadcast_to(color, centre.shape)], axis=-1)[:, None])
+    return np.concatenate(rows, axis=1)
 
 
 def _joint_markers(joints: NDArray[np.float64], radii: NDArray[np.float64],
@@ -427,16 +551,19 @@ def _leg_rows(joints: NDArray[np.float64], rig: Rig, show_joints: bool, parts: b
     """The legs' shapes from joints (T, L, 5, 3): capsule rows, foot ellipsoid rows and
     joint-marker rows (lists of (T, K, 11 / 18) arrays; only the markers when not ``parts``)."""
     frames = joints.shape[0]
-    body_color = srgb_to_linear(rig.look.body_color)
-    leg_color = leg_colors(rig) if by_side else np.broadcast_to(body_color, (rig.leg_count, 3))
+    colors = palette(rig)
+    leg_color = leg_colors(rig) if by_side else np.broadcast_to(colors.coat, (rig.leg_count, 3))
+    foot_color = leg_color if by_side else np.broadcast_to(colors.legs, (rig.leg_count, 3))
     radii = rig.bone_radius[:, None] * _LEG_TAPER[None, :]  # (L, 5)
     markers = [_joint_markers(joints, radii, leg_color)] if show_joints else []
     if not parts:
         return [], [], markers
-    # Four tapered bones each, then muscle and feet.
+    # Four tapered bones each (the lower two, from the ankle down, in the feet's colour),
+    # then muscle and feet.
+    bone_color = np.stack([leg_color, leg_color, foot_color, foot_color], axis=1)  # (L, 4, 3)
     legs = _capsules(joints[:, :, :-1], joints[:, :, 1:], radii[:, :-1], radii[:, 1:],
-                     leg_color[:, None, :]).reshape(frames, -1, CAPSULE_FLOATS)
-    leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color)
+                     bone_color).reshape(frames, -1, CAPSULE_FLOATS)
+    leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color, foot_color)
     return [legs, *leg_parts], list(foot_parts), markers
 
 
@@ -483,11 +610,11 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     array has a leading frame axis T. ``parts`` False leaves only what sits on a skinned
     body (the eyes, the joint markers); ``by_side`` colours legs and arms by side;
     ``legs`` False leaves the legs out (see :func:`leg_instances`)."""
-    look = rig.look
     head_radius = rig.body.head_radius
     ear_length = rig.body.ear_length
     frames = joints.shape[0]
-    body_color = srgb_to_linear(look.body_color)
+    colors = palette(rig)
+    body_color, neck_color = colors.coat, colors.neck
     arm_color = side_colors(rig) if by_side else np.broadcast_to(body_color, (2, 3))
     leg_caps, foot_parts, markers = _leg_rows(joints, rig, show_joints, parts, by_side) if legs else ([], [], [])
     if not parts and rig.model:  # the user's model is drawn instead, with its own eyes
@@ -512,8 +639,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
                                                     arms[:, 0, 0], arms[:, 1, 0], rig, body_color)
     # A deep neck rising from the chest, narrowing to the head.
     neck_r = _neck_radii(rig, r)
-    neck_c = _capsules(neck[:, :1], neck[:, 1:], neck_r[0], neck_r[1], body_color)
-    neck_e = _deep_neck(neck, float(r[-1]), head_radius, body_color) if _mammal_neck(rig) \
+    neck_c = _capsules(neck[:, :1], neck[:, 1:], neck_r[0], neck_r[1], neck_color)
+    neck_e = _deep_neck(neck, float(r[-1]), head_radius, neck_color) if _mammal_neck(rig) \
         else np.zeros((frames, 0, ELLIPSOID_FLOATS))
     mane = _mane_rows(neck, r, rig)
 
@@ -522,12 +649,15 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     nose = head[:, 1]
     # Long heads (a horse's: over four skull radii) keep a broad muzzle; short ones taper.
     long_head = _long_head(rig)
+    beak = _beak(nose, head_dir, rig, colors.beak)
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
-                       (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius, body_color)
+                       (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius,
+                       neck_color)[:, :0 if beak.shape[1] else 1]  # a beak takes the muzzle's place
     tail_base = 0.32 * r[0] if rig.body.tail_radius is None else rig.body.tail_radius
     hair = rig.body.mane > 0 and rig.four_legged_mammal  # a maned animal's tail is hair, full to its end
-    tail_r = np.linspace(tail_base, (0.7 if hair else 0.25) * tail_base, tail.shape[1])
-    tail_color = mane_color(rig) if hair else body_color
+    plumes = rig.body.wings > 0  # a bird's tail is feathers, in a tuft
+    tail_r = np.linspace(tail_base, (0.7 if hair else 0.9 if plumes else 0.25) * tail_base, tail.shape[1])
+    tail_color = mane_color(rig) if hair else colors.plume if plumes else body_color
     tail_c = _capsules(tail[:, :-1], tail[:, 1:], tail_r[:-1], tail_r[1:], tail_color)
     hx, hy, _ = _frame_axes(head_dir)
     sides = np.array([1.0, -1.0])[None, :, None]  # left, right
@@ -542,21 +672,23 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         elbow = base + ANTENNA_SCAPE * ear_length * scape
         flagellum = _unit((c * (head_dir + 0.15 * hy) + s_ * (hy - 0.3 * head_dir))[:, None] + sides * hx[:, None] * 0.4)
         tip = elbow + (1.0 - ANTENNA_SCAPE) * ear_length * flagellum
-        capsule_parts.append(_capsules(base, elbow, 0.14 * head_radius, 0.1 * head_radius, body_color))
-        capsule_parts.append(_capsules(elbow, tip, 0.1 * head_radius, 0.06 * head_radius, body_color))
+        capsule_parts.append(_capsules(base, elbow, 0.14 * head_radius, 0.1 * head_radius, neck_color))
+        capsule_parts.append(_capsules(elbow, tip, 0.1 * head_radius, 0.06 * head_radius, neck_color))
     elif ear_length > 0:
         ear_base = (skull - head_dir * 0.2 * head_radius + hy * 0.6 * head_radius)[:, None] \
             + sides * hx[:, None] * 0.55 * head_radius
         ear_dir = c * (hy - head_dir * 0.35) + s_ * (-head_dir - 0.35 * hy)
         ear_tip = ear_base + ear_length * _unit(ear_dir[:, None] + sides * hx[:, None] * 0.25)
-        capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, body_color))
+        capsule_parts.append(_capsules(ear_base, ear_tip, 0.3 * head_radius, 0.1 * head_radius, neck_color))
 
-    skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array(SKULL) * head_radius, body_color)
+    skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array(SKULL) * head_radius, neck_color)
     if long_head > 0:  # a long head (a horse's) is deepest at the jowl, below and behind the eyes
         jowl = skull + head_dir * JOWL[0] * head_radius - hy * JOWL[1] * head_radius
         skull_e = np.concatenate([skull_e, _ellipsoids(jowl[:, None], head_dir[:, None],
-                                                       long_head * np.array(JOWL[2:]) * head_radius, body_color)], axis=1)
-    ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), *foot_parts, *arm_ells, *markers]
+                                                       long_head * np.array(JOWL[2:]) * head_radius, neck_color)], axis=1)
+    wings = _wings(spine, spine_tangent, r, rig, colors.plume)
+    ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), beak, wings, *foot_parts, *arm_ells,
+                       *markers]
     capsule_parts += [part for part in torso if part.shape[-1] == CAPSULE_FLOATS]
     ellipsoid_parts += [part for part in torso if part.shape[-1] == ELLIPSOID_FLOATS]
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),

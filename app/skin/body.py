@@ -38,6 +38,7 @@ INFLUENCES = 4  # joints per vertex
 ROOT_SPREAD = 3.0  # weights this much softer where a leg meets the trunk ...
 ROOT_REACH = 4.0  # ... within this many of the leg's thickest part's radii of its hip ...
 ROOT_BONE = 1.0  # ... and no farther than the next joint down (a horse's thick thigh: four radii reached past the stifle)
+COLOR_SMOOTHING = 2  # times a vertex's colour is averaged with its neighbours' (a soft edge between parts' colours)
 LIMB_BLEND = 0.3  # of the blend width: how softly a leg joins another leg, and an arm the body (no webs)
 
 
@@ -103,27 +104,14 @@ def bind_joints(starts: NDArray[np.float64], ends: NDArray[np.float64] | None, c
     return np.argmin(near - 0.01 * along, axis=1)  # nearest start; ties go to the bone pointing the right way
 
 
-def _hooves(motion: Motion, capsules: NDArray[np.float64]) -> NDArray[np.bool_]:
-    """Which of the parts (capsules (C, >=6) first, then ellipsoids: (P,), only capsules can
-    be) are hooves: the dark horn below each unguligrade fetlock (found by where it lies,
-    not by its colour, which a coat may share)."""
-    from ..render.scene import hoof_ends, hoof_legs
-
-    legs = hoof_legs(motion.rig)
-    found = np.zeros(len(capsules), dtype=bool)
-    if len(legs):
-        start, end = hoof_ends(motion.joints[0, legs, 3], motion.joints[0, legs, 4])  # (K, 3) each
-        found = np.any((np.linalg.norm(capsules[:, None, 0:3] - start[None], axis=-1) < 1e-4)
-                       & (np.linalg.norm(capsules[:, None, 3:6] - end[None], axis=-1) < 1e-4), axis=1)
-    return found
-
-
-def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The first frame's capsules (C, 8: a, b, r0, r1) and ellipsoids (E, 15: centre,
-    axes, radii), without joint markers, eyes or mane."""
+    axes, radii), without joint markers, eyes or mane, and each part's colour (C + E, 3;
+    linear): the coat, or the look's colour of a part that differs from it (hooves, feet,
+    neck, beak, feathers)."""
     from ..render.scene import Cap, Ell, motion_instances, skin_overlays
 
-    frame = motion_instances(motion, show_joints=False).frame(0)
+    frame = motion_instances(motion, show_joints=False, by_side=False).frame(0)
     caps = np.asarray(frame.capsules, np.float64)
     ells = np.asarray(frame.ellipsoids, np.float64)
     on_skin = skin_overlays(motion)  # the eyes and the mane sit on the skin (found by where they are)
@@ -133,7 +121,8 @@ def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         else np.zeros((0, 8))
     ellipsoids = np.concatenate([ells[:, Ell.CENTRE], *(ells[:, a] for a in Ell.AXES), ells[:, Ell.RADII]],
                                 axis=1) if len(ells) else np.zeros((0, 15))
-    return capsules, ellipsoids
+    colors = np.concatenate([caps[:, Cap.COLOR].reshape(-1, 3), ells[:, Ell.COLOR].reshape(-1, 3)])
+    return capsules, ellipsoids, colors
 
 
 def grid_parts(capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64], detail: Detail
@@ -222,7 +211,13 @@ def bound_parts(motion: Motion, clip: SkeletonClip) -> tuple[NDArray[np.float64]
                                                              NDArray[np.int64], tuple[NDArray, NDArray, NDArray]]:
     """The first frame's parts (:func:`_parts`), the joint each moves with (P,) and their
     limbs (:func:`_limbs`): what the body's surface and weights are built from."""
-    capsules, ellipsoids = _parts(motion)
+    capsules, ellipsoids, _ = _parts(motion)
+    return _bound(motion, clip, capsules, ellipsoids)
+
+
+def _bound(motion: Motion, clip: SkeletonClip, capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64]
+           ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int64], tuple[NDArray, NDArray, NDArray]]:
+    """:func:`bound_parts` of parts already gathered."""
     part_joint = np.concatenate([_between_limbs(capsules, bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip), clip),
                                  bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
     return capsules, ellipsoids, part_joint, _limbs(part_joint, clip, _tail_parts(capsules, ellipsoids, motion.tail[0]))
@@ -357,13 +352,28 @@ def _limb_roots(capsules: NDArray[np.float64], part_joint: NDArray[np.int64], cl
     return points[tops], np.minimum(ROOT_REACH * radius[tops], ROOT_BONE * bone)
 
 
-def _colors(normals: NDArray[np.float64], body_color: str, countershade: float) -> NDArray[np.float32]:
-    """The coat: ``body_color`` (sRGB) in linear RGB, lighter where the surface faces down
-    by ``countershade`` (0 to 1)."""
-    from ..render.scene import srgb_to_linear
+def _colors(normals: NDArray[np.float64], faces: NDArray[np.int64], nearest: NDArray[np.int64],
+            part_colors: NDArray[np.float64], coat: NDArray[np.float64], countershade: float) -> NDArray[np.float32]:
+    """Each vertex's colour (V, 3), linear: the colour (of ``part_colors`` (P, 3)) of the
+    part ``nearest`` (V,) it, averaged :data:`COLOR_SMOOTHING` times with its neighbours
+    along the mesh's edges (``faces`` (F, 3)), so two colours meet in a soft edge, not a
+    saw-tooth along the triangles; on the ``coat`` (3,), lighter where the surface faces
+    down by ``countershade`` (0 to 1) (bare skin, horn and feathers are not countershaded)."""
+    from scipy.sparse import coo_matrix, identity
 
-    base = np.asarray(srgb_to_linear(body_color), dtype=np.float64)
-    under = np.clip(-normals[:, 1], 0.0, 1.0)[:, None]
+    count = len(normals)
+    a = faces[:, [0, 1, 2, 1, 2, 0]].reshape(-1, 2) if len(faces) else np.zeros((0, 2), np.int64)
+    pairs = np.concatenate([a, a[:, ::-1]])
+    near = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(count, count)).tocsr()
+    near.data[:] = 1.0  # an edge shared by two triangles counts once
+    near = near + identity(count, format="csr")
+    near = near.multiply(1.0 / np.asarray(near.sum(axis=1))).tocsr()  # each row averages a vertex's neighbourhood
+    on_coat = np.all(np.abs(part_colors - coat[None, :]) < 1e-6, axis=1).astype(np.float64)[nearest]
+    values = np.concatenate([part_colors[nearest], on_coat[:, None]], axis=1)
+    for _ in range(COLOR_SMOOTHING):
+        values = near @ values
+    base, on_coat = values[:, :3], values[:, 3]
+    under = (np.clip(-normals[:, 1], 0.0, 1.0) * on_coat)[:, None]
     light = base + (1.0 - base) * 0.5
     return (base * (1.0 - countershade * under) + light * countershade * under).astype(np.float32)
 
@@ -373,13 +383,14 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     from :func:`app.kinematics.skeleton.skeleton_clip`), in their first frame."""
     import trimesh
 
-    from ..render.scene import HOOF_COLOR, mane_color
+    from ..render.scene import mane_color, srgb_to_linear
 
     start = time.perf_counter()
-    capsules, ellipsoids, part_joint, limbs = bound_parts(motion, clip)
+    capsules, ellipsoids, part_colors = _parts(motion)
+    capsules, ellipsoids, part_joint, limbs = _bound(motion, clip, capsules, ellipsoids)
+    coat = srgb_to_linear(motion.rig.look.body_color)
     verts, faces, blend, normal_at = _surface(capsules, ellipsoids, detail, limbs)
     roots = _limb_roots(capsules, part_joint, clip)
-    hooves = np.concatenate([_hooves(motion, capsules), np.zeros(len(ellipsoids), dtype=bool)])
     tail_joints = np.array([k for k, name in enumerate(clip.skeleton.names) if name.startswith("tail")], dtype=np.int64)
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
@@ -395,11 +406,10 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
         normals = np.where((np.sum(smooth * normals, axis=1) > 0.2)[:, None], smooth, normals)
         joints, weights = _weights(verts, capsules, ellipsoids, part_joint, clip.world_position.shape[1],
                                    0.45 * blend, *roots)
-        colors = _colors(normals, motion.rig.look.body_color, motion.rig.look.countershade)
-        if hooves.any():  # hooves are dark horn, on the skin as in the parts: where one is the nearest part
-            nearest = np.argmin(part_distances(verts, capsules, ellipsoids), axis=0)
-            horn = hooves[nearest][:, None]
-            colors = np.where(horn, HOOF_COLOR[None, :], colors).astype(np.float32)
+        # Each vertex takes the colour of the part it lies on (hooves are dark horn, a bird's
+        # feet scaly, its wings feathers, as in the parts).
+        nearest = np.argmin(part_distances(verts, capsules, ellipsoids), axis=0)
+        colors = _colors(normals, faces, nearest, part_colors, coat, motion.rig.look.countershade)
         if motion.rig.body.mane > 0 and motion.rig.four_legged_mammal:  # a maned animal's tail is hair of the mane's colour
             hair = np.sum(np.where(np.isin(joints, tail_joints), weights, 0.0), axis=1)[:, None]
             colors = (colors * (1.0 - hair) + mane_color(motion.rig)[None, :] * hair).astype(np.float32)

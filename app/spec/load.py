@@ -100,6 +100,9 @@ def creature_from_dict(data: Mapping[str, Any], source: str = "<dict>", origin: 
     poses = PosesSpec(**_read_table(_subtable(data, "poses", where, required=False), POSES_RULES, "poses", where))
     overlap = OverlapSpec(**_read_table(_subtable(data, "overlap", where, required=False), OVERLAP_RULES,
                                         "overlap", where))
+    if body.beak > body.head_length:
+        raise SpecError(f"{at(where)}body.beak = {body.beak:g} m is longer than the head (body.head_length = "
+                        f"{body.head_length:g} m); the beak is the front of the head")
     if body.posture == "upright" and pairs != 1:
         raise SpecError(f"{at(where)}body.posture = 'upright' is for bipeds (one leg pair); this creature has "
                         f"{pairs} pairs")

@@ -43,6 +43,8 @@ class BodySpec:
     tail_radius: float | None = None
     tail_curl: float = 0.0
     mane: float = 0.0
+    wings: float = 0.0
+    beak: float = 0.0
     posture: Posture = "horizontal"
 
 
@@ -68,6 +70,7 @@ class LegSpec:
     splay: float = 0.0
     roll: float = 0.0
     heel: float = 0.0
+    toes: int = 0
 
     @property
     def positions(self) -> tuple[float, ...]:
@@ -253,7 +256,7 @@ class CreatureSpec:
         return atomic_write_text(Path(path), text)
 
 
-_LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0, "roll": 0.0, "heel": 0.0}  # left out of saved files
+_LEG_DEFAULTS = {"count": 1, "abduction": 0.0, "splay": 0.0, "roll": 0.0, "heel": 0.0, "toes": 0}  # left out of saved files
 
 
 def _leg_table(leg: LegSpec) -> dict[str, Any]:

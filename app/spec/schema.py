@@ -66,7 +66,7 @@ def _length(doc: str, *, zero_ok: bool = False, hi: float = 50.0) -> Rule:
 
 # Body keys that are lengths (m): a fitted or model-driven creature scales them with its legs.
 SCALED_BODY_KEYS = ("length", "neck_length", "head_length", "head_radius", "tail_length", "tail_radius", "ear_length",
-                    "mane")
+                    "mane", "wings", "beak")
 
 BODY_RULES: dict[str, Rule] = {
     "length": _length("distance from the hind hips to the fore shoulders along the spine"),
@@ -89,6 +89,10 @@ BODY_RULES: dict[str, Rule] = {
                            "of the rump's radius; a lizard's or theropod's thick muscular tail: about two thirds)"),
     "mane": _length("the height of a mane of hair along the top of the neck, from the poll to the withers "
                     "(0 for none; a horse's: about 0.1)", zero_ok=True),
+    "wings": _length("a bird's folded wings: how far each reaches back along the flank from the shoulder "
+                     "(0 for none; an ostrich's: about 0.4)", zero_ok=True),
+    "beak": _length("a bird's beak: its length back from the tip of the head, flat and pointed, in "
+                    "look.beak_color (0: a muzzle; at most the head's length)", zero_ok=True),
     "posture": Rule("choice", choices=POSTURES, doc="horizontal: the trunk runs from the hind to the fore legs; "
                     "upright: it rises from the hips (a human; one leg pair)"),
 }
@@ -116,6 +120,8 @@ LEG_RULES: dict[str, Rule] = {
                   doc="which way the middle joint points: forward (knee), back (elbow), out (up and away from "
                       "the body: insects, spiders)"),
     "radius": _length("bone radius at the hip; bones taper towards the foot", hi=2.0),
+    "toes": Rule("integer", 0, 4, doc="splayed toes instead of a sole, paw or hoof (0: the foot its leg type "
+                 "gives): 2 an ostrich's, 3 a theropod's, 4 a bird's three forward and one back"),
     "roll": _num(0, 1, doc="foot roll: heel strike, roll to flat, heel rise, toe-off; scales its angles and "
                  "timing (0 lands and lifts the foot flat)"),
 }
@@ -191,6 +197,12 @@ LOOK_RULES: dict[str, Rule] = {
     "body_color": Rule("color", doc="body, neck, head and tail colour"),
     "left_color": Rule("color", doc="colour of the left legs"),
     "right_color": Rule("color", doc="colour of the right legs"),
+    "leg_color": Rule("color", doc="the lower legs and feet, from the ankle down, on a smooth body (a bird's "
+                      "scaly feet, a horse's socks; default: the body colour)"),
+    "neck_color": Rule("color", doc="the neck and head on a smooth body (an ostrich's bare neck; default: the "
+                       "body colour)"),
+    "beak_color": Rule("color", doc="the beak (body.beak; default: horn)"),
+    "plume_color": Rule("color", doc="the wings' and tail's feathers (body.wings; default: the body colour)"),
     "countershade": _num(0.0, 1.0, doc="how much lighter the smooth body is underneath (0: one colour all "
                          "round, as a person's skin; 0.35: a mammal's coat)"),
 }
