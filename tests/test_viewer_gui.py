@@ -193,6 +193,24 @@ def test_real_input_changes_the_creature_and_pauses(display: str, tmp_path: Path
         quit_viewer(display, proc, window)
 
 
+def test_a_dragged_wings_slider_grows_wings_on_the_live_body(display: str, tmp_path: Path) -> None:
+    """The Body rows have wings and beak sliders (the beak's at most the head's length): a
+    drag on the bird's wings slider lengthens them, with no error."""
+    with running_viewer(display, tmp_path, "bird", "--size", "1024x720") as (proc, dump, window):
+        state = read_state(dump, until=lambda s: "body.wings" in s["widgets"] and "body.beak" in s["widgets"])
+        assert state["creature"]["body"]["wings"] == pytest.approx(0.42)
+        x0, y0, x1, y1 = state["widgets"]["body.wings"]
+        ym = str(int((y0 + y1) / 2))
+        xdotool(display, "mousemove", "--window", window, str(int(x0 + 0.45 * (x1 - x0))), ym)
+        for step in (("mousedown", "1"), ("mousemove", "--window", window, str(int(x0 + 0.7 * (x1 - x0))), ym),
+                     ("mousemove", "--window", window, str(int(x0 + 0.85 * (x1 - x0))), ym), ("mouseup", "1")):
+            after_frames(dump)
+            xdotool(display, *step)
+        grown = read_state(dump, until=lambda s: s["creature"]["body"]["wings"] > 0.6)
+        assert grown["error"] is None
+        quit_viewer(display, proc, window)
+
+
 def test_f12_takes_the_3d_view_and_paused_shows(display: str, tmp_path: Path) -> None:
     """F12 saves the 3-D view alone; Shift+F12 the whole window; a paused viewer says so."""
     with running_viewer(display, tmp_path, "--size", "1024x640") as (proc, dump, window):
