@@ -530,3 +530,32 @@ def test_bird_keys_are_checked() -> None:
         with pytest.raises(SpecError, match=words):
             spec.with_overrides({key: value})
     assert spec.with_overrides({"legs.legs.toes": 4, "body.wings": 0.0}).legs[0].toes == 4
+
+
+def test_a_centipede_is_a_row_of_plates_and_a_spider_is_not() -> None:
+    """The centipede was an unsegmented sausage on pegs: its trunk is now a flattened plate
+    a leg pair, wider than tall, over a thinner, darker tube (the membranes between them);
+    its lower legs are yellow. A spider's two-part body has no plates."""
+    from app.render.scene import MEMBRANE_SHADE, Ell, palette
+
+    rig = build_rig(load_creature("centipede"))
+    motion = simulate(rig, 0.5, 30.0, world=IN_PLACE)
+    shapes = motion_instances(motion, show_joints=False, by_side=False).frame(0)
+    colors = palette(rig)
+    ells = shapes.ellipsoids.astype(np.float64)
+    plates = ells[np.all(np.abs(ells[:, Ell.COLOR] - colors.coat) < 1e-5, axis=1) & (ells[:, 12] > 1.5 * ells[:, 13])]
+    assert len(plates) == rig.leg_count // 2
+    t = np.linspace(0.0, 1.0, 20)[:, None, None]
+    spine = ((1.0 - t) * motion.spine[0, :-1] + t * motion.spine[0, 1:]).reshape(-1, 3)  # the polyline, finely
+    gaps = np.linalg.norm(spine[:, None] - plates[None, :, 0:3], axis=-1).min(axis=0)
+    assert gaps.max() < 0.01 * rig.body.length  # on the spine
+    along = np.sort(plates[:, 2])
+    assert np.all(2 * plates[:, 14].max() < np.diff(along).min() * 1.01)  # apart: the membranes show between them
+    caps = shapes.capsules.astype(np.float64)
+    tube = np.all(np.abs(caps[:, 8:11] - MEMBRANE_SHADE * colors.coat) < 1e-5, axis=1)
+    assert tube.sum() >= rig.body.segments
+    assert not np.allclose(colors.legs, colors.coat)
+    spider = build_rig(load_creature("spider"))
+    flat = motion_instances(simulate(spider, 0.5, 30.0, world=IN_PLACE), show_joints=False, by_side=False).frame(0)
+    body = srgb_to_linear(spider.look.body_color)
+    assert not np.any(np.all(np.abs(flat.capsules[:, 8:11] - MEMBRANE_SHADE * body) < 1e-5, axis=1))

@@ -174,6 +174,9 @@ WING_SHAPE = (0.09, 0.3, 0.5)  # of body.wings: a folded wing's half thickness, 
 WING_DROOP = 0.3  # rad: a folded wing runs back and down from the shoulder
 WING_LEAN = 0.35  # rad: its top leans in against the flank
 WING_OUT = 0.9  # of the trunk's radius under it: how far out its middle lies (its outer face clears the skin)
+SEGMENT_TUBE = 0.6  # of a segmented trunk's radius: the tube under its plates
+MEMBRANE_SHADE = 0.45  # of the body's colour: the membranes between a segmented trunk's plates
+PLATE_SHAPE = (1.45, 0.72, 0.42)  # a segment's plate: of the trunk's radius across and up, of the gap between pairs along
 TOE_SPREAD = 0.42  # rad: a splayed toe's angle from the middle toe
 TOE_SHAPES = {  # splayed toes: (angle out from the middle toe in TOE_SPREADs, length, radius: of the middle toe's)
     1: ((0.0, 1.0, 1.0),),
@@ -489,6 +492,29 @@ def _eyes(skull: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -
                           axis=-1)
 
 
+def _segmented(rig: Rig) -> bool:
+    """Whether the trunk is a row of segments, one a leg pair (a centipede's: more sprawled
+    leg pairs than a spider's four)."""
+    return bool(rig.knee_out.all()) and rig.leg_count > 8
+
+
+def _segment_plates(spine: NDArray[np.float64], radius: NDArray[np.float64], rig: Rig,
+                    color: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A segmented trunk's plates (T, G, 18): one flattened ellipsoid a leg pair, centred on
+    the spine (T, S, 3) at the pair's place along it, :data:`PLATE_SHAPE` of the trunk's
+    radius there (``radius`` (S,)) across and up and of the gap to the next pair along."""
+    count = spine.shape[1]
+    at = rig.girdle_position * (count - 1)  # (G,) on the spine's points, rear 0 to front S - 1
+    k = np.clip(np.floor(at).astype(int), 0, count - 2)
+    w = (at - k)[None, :, None]
+    centre = (1.0 - w) * spine[:, k] + w * spine[:, k + 1]  # (T, G, 3)
+    ahead = spine[:, np.minimum(k + 1, count - 1)] - spine[:, k]
+    r = np.interp(at, np.arange(count), radius)  # (G,)
+    gap = rig.body.length * np.abs(np.gradient(rig.girdle_position)) if len(at) > 1 else np.full(len(at), 0.1)
+    radii = np.stack([PLATE_SHAPE[0] * r, PLATE_SHAPE[1] * r, PLATE_SHAPE[2] * gap], axis=-1)  # (G, 3)
+    return _ellipsoids(centre, ahead, radii, color)
+
+
 def _beak(nose: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig, color: NDArray[np.float64]
           ) -> NDArray[np.float64]:
     """A bird's beak (T, 1, 18): broad, flat and round-tipped, ``body.beak`` long back from
@@ -631,9 +657,13 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     trunk_pts = np.concatenate([spine[:, :1] - spine_tangent[:, :1] * 0.35 * r[0], spine,
                                 spine[:, -1:] + spine_tangent[:, -1:] * 0.2 * r[-1]], axis=1)
     trunk_r = np.concatenate([r[:1] * 0.8, r, r[-1:] * 0.9])
-    trunk = _capsules(trunk_pts[:, :-1], trunk_pts[:, 1:], trunk_r[:-1], trunk_r[1:], body_color)
+    segmented = _segmented(rig)
+    if segmented:  # a centipede's trunk: plates over a thinner, darker tube (the membranes between them)
+        trunk_r = SEGMENT_TUBE * trunk_r
+    trunk = _capsules(trunk_pts[:, :-1], trunk_pts[:, 1:], trunk_r[:-1], trunk_r[1:],
+                      MEMBRANE_SHADE * body_color if segmented else body_color)
     upright = rig.body.upright  # a human: a slim neck, the skull sitting on it
-    torso: list[NDArray[np.float64]] = []
+    torso: list[NDArray[np.float64]] = [_segment_plates(spine, r, rig, body_color)] if segmented else []
     if upright and arms is not None and arms.shape[1] == 2 and joints.shape[1] >= 2:
         trunk, torso = trunk[:, :0], _upright_torso(spine, spine_tangent, r, joints[:, 0, 0] - joints[:, 1, 0],
                                                     arms[:, 0, 0], arms[:, 1, 0], rig, body_color)
