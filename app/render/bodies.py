@@ -118,7 +118,7 @@ def shape_key(rig: Rig) -> str:
     toes, colours), not its gait."""
     parts = (rig.name, rig.body, rig.femur, rig.tibia, rig.metatarsus, rig.toe, rig.bone_radius, rig.ankle_lift,
              rig.hip_offset, rig.girdle_rest_height, rig.girdle_position, rig.arms,
-             replace(rig.look, left_color="", right_color=""), rig.toes, rig.leg_names, rig.roll_amount)
+             replace(rig.look, left_color="", right_color=""), rig.toes, rig.heel, rig.leg_names, rig.roll_amount)
     return hashlib.sha1(pickle.dumps(parts)).hexdigest()
 
 

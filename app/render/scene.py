@@ -169,6 +169,7 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
 BEAK_COLOR = np.array([0.66, 0.58, 0.47]) ** 2  # a beak's horn, unless the look gives one (linear)
 BEAK_SHAPE = (0.5, 0.24)  # of the head's radius: a beak's half width and half depth (broad and flat)
+BEAK_INTO = 0.9  # of the head's radius from the skull's centre: as far back as a beak reaches (into the skull)
 WING_AT = 0.72  # along the trunk (0 rear, 1 front): where a folded wing's shoulder lies
 WING_SHAPE = (0.09, 0.3, 0.5)  # of body.wings: a folded wing's half thickness, half height and half length
 WING_DROOP = 0.3  # rad: a folded wing runs back and down from the shoulder
@@ -208,6 +209,7 @@ def palette(rig: Rig) -> Palette:
 
     return Palette(coat=coat, legs=given(look.leg_color, coat), neck=given(look.neck_color, coat),
                    beak=given(look.beak_color, BEAK_COLOR), plume=given(look.plume_color, coat))
+
 ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segment, rising before the elbow
 SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches before the tendons
 TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half its width and half its depth
@@ -227,14 +229,6 @@ def hoof_ends(ball: NDArray[np.float64], toe: NDArray[np.float64]) -> tuple[NDAr
     return ball + 0.35 * (toe - ball), toe
 
 
-def hoof_legs(rig: Rig) -> NDArray[np.int64]:
-    """The legs (K,) that end in hooves: unguligrade mammal legs."""
-    from ..choices import leg_type
-
-    return np.array([leg for leg in range(rig.leg_count) if not rig.knee_out[leg]
-                     and leg_type(float(np.degrees(rig.ankle_lift[leg]))) == "unguligrade"], dtype=np.int64)
-
-
 def skin_overlays(motion) -> NDArray[np.float64]:
     """The centres (K, 3), in a clip's first frame, of the ellipsoids drawn on a skinned body
     rather than in its surface: the eyes and the mane."""
@@ -243,6 +237,14 @@ def skin_overlays(motion) -> NDArray[np.float64]:
     eyes = _eyes(skull, head_dir, rig)[0, :, 0:3]
     mane = _mane_rows(motion.neck[:1], motion.spine_radius, rig)[0, :, 0:3]
     return np.concatenate([eyes, mane])
+
+
+def trunk_parts(motion) -> NDArray[np.float64]:
+    """The centres (K, 3), in a clip's first frame, of the ellipsoids that lie on the trunk
+    but nearer a hip than the spine (a bird's folded wings): a skinned body binds them to
+    the spine, not the thigh they would swing with."""
+    return _wings(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig,
+                  np.zeros(3))[0, :, 0:3]
 
 
 def mane_color(rig: Rig) -> NDArray[np.float64]:
@@ -515,15 +517,19 @@ def _segment_plates(spine: NDArray[np.float64], radius: NDArray[np.float64], rig
     return _ellipsoids(centre, ahead, radii, color)
 
 
-def _beak(nose: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig, color: NDArray[np.float64]
-          ) -> NDArray[np.float64]:
+def _beak(skull: NDArray[np.float64], nose: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig,
+          color: NDArray[np.float64]) -> NDArray[np.float64]:
     """A bird's beak (T, 1, 18): broad, flat and round-tipped, ``body.beak`` long back from
-    the head's tip ``nose`` (T, 3); none (T, 0, 18) without one."""
-    length = rig.body.beak
-    if length <= 0:
+    the head's tip ``nose`` (T, 3), and on back into the skull (centre ``skull`` (T, 3))
+    where the head is longer than its skull and beak (it took the muzzle's place, and a
+    short one floated ahead of the face); none (T, 0, 18) without one."""
+    if rig.body.beak <= 0:
         return np.zeros((nose.shape[0], 0, ELLIPSOID_FLOATS))
-    radii = np.array([BEAK_SHAPE[0] * rig.body.head_radius, BEAK_SHAPE[1] * rig.body.head_radius, 0.5 * length])
-    return _ellipsoids((nose - 0.5 * length * head_dir)[:, None], head_dir[:, None], radii, color)
+    face = np.sum((nose - skull) * head_dir, axis=-1, keepdims=True) - BEAK_INTO * rig.body.head_radius
+    length = np.maximum(rig.body.beak, face)  # (T, 1)
+    shape = np.array([BEAK_SHAPE[0] * rig.body.head_radius, BEAK_SHAPE[1] * rig.body.head_radius])
+    radii = np.concatenate([np.broadcast_to(shape, length.shape[:-1] + (2,)), 0.5 * length], axis=-1)
+    return _ellipsoids((nose - 0.5 * length * head_dir)[:, None], head_dir[:, None], radii[:, None], color)
 
 
 def _wings(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64], rig: Rig,
@@ -679,7 +685,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     nose = head[:, 1]
     # Long heads (a horse's: over four skull radii) keep a broad muzzle; short ones taper.
     long_head = _long_head(rig)
-    beak = _beak(nose, head_dir, rig, colors.beak)
+    beak = _beak(skull, nose, head_dir, rig, colors.beak)
     muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
                        (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius,
                        neck_color)[:, :0 if beak.shape[1] else 1]  # a beak takes the muzzle's place

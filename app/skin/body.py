@@ -8,8 +8,10 @@ grid cells are thickened to that) and simplified with fast-simplification's quad
 decimation (kept only when the result is still closed). Each vertex follows the joints of
 the parts nearest it, weighted by ``exp(-(d - d_min) / s)`` of its distance to each part
 (a soft nearest part: one joint in the middle of a bone, blended across a joint), the
-four largest kept and normalised. Colours are the creature's coat (``look.body_color``),
-lighter underneath by ``look.countershade`` (countershading).
+four largest kept and normalised. Each vertex takes the colour of the part it lies on
+(the creature's coat, ``look.body_color``, or the look's colour of that part: hooves,
+feet, neck, beak, feathers), blended where colours meet; the coat is lighter underneath
+by ``look.countershade`` (countershading).
 """
 
 from __future__ import annotations
@@ -38,7 +40,6 @@ INFLUENCES = 4  # joints per vertex
 ROOT_SPREAD = 3.0  # weights this much softer where a leg meets the trunk ...
 ROOT_REACH = 4.0  # ... within this many of the leg's thickest part's radii of its hip ...
 ROOT_BONE = 1.0  # ... and no farther than the next joint down (a horse's thick thigh: four radii reached past the stifle)
-COLOR_SMOOTHING = 2  # times a vertex's colour is averaged with its neighbours' (a soft edge between parts' colours)
 LIMB_BLEND = 0.3  # of the blend width: how softly a leg joins another leg, and an arm the body (no webs)
 
 
@@ -217,9 +218,20 @@ def bound_parts(motion: Motion, clip: SkeletonClip) -> tuple[NDArray[np.float64]
 
 def _bound(motion: Motion, clip: SkeletonClip, capsules: NDArray[np.float64], ellipsoids: NDArray[np.float64]
            ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.int64], tuple[NDArray, NDArray, NDArray]]:
-    """:func:`bound_parts` of parts already gathered."""
+    """:func:`bound_parts` of parts already gathered; the ellipsoids on the trunk but
+    nearer a hip (a bird's wings, :func:`~app.render.scene.trunk_parts`) are bound to the
+    trunk's nearest joint (bound to the hip, a wing swung with the thigh)."""
+    from ..render.scene import trunk_parts
+
+    ell_joint = bind_joints(ellipsoids[:, 0:3], None, clip)
+    on_trunk = trunk_parts(motion)
+    if len(ellipsoids) and len(on_trunk):
+        pick = np.min(np.linalg.norm(ellipsoids[:, None, 0:3] - on_trunk[None], axis=-1), axis=1) < 1e-4
+        trunk = np.flatnonzero(_joint_roles(clip.skeleton.names).trunk)
+        near = np.linalg.norm(ellipsoids[pick, None, 0:3] - clip.world_position[0, trunk][None], axis=-1)
+        ell_joint[pick] = trunk[np.argmin(near, axis=1)]
     part_joint = np.concatenate([_between_limbs(capsules, bind_joints(capsules[:, 0:3], capsules[:, 3:6], clip), clip),
-                                 bind_joints(ellipsoids[:, 0:3], None, clip)]).astype(np.int64)
+                                 ell_joint]).astype(np.int64)
     return capsules, ellipsoids, part_joint, _limbs(part_joint, clip, _tail_parts(capsules, ellipsoids, motion.tail[0]))
 
 
@@ -355,10 +367,12 @@ def _limb_roots(capsules: NDArray[np.float64], part_joint: NDArray[np.int64], cl
 def _colors(normals: NDArray[np.float64], faces: NDArray[np.int64], nearest: NDArray[np.int64],
             part_colors: NDArray[np.float64], coat: NDArray[np.float64], countershade: float) -> NDArray[np.float32]:
     """Each vertex's colour (V, 3), linear: the colour (of ``part_colors`` (P, 3)) of the
-    part ``nearest`` (V,) it, averaged :data:`COLOR_SMOOTHING` times with its neighbours
-    along the mesh's edges (``faces`` (F, 3)), so two colours meet in a soft edge, not a
-    saw-tooth along the triangles; on the ``coat`` (3,), lighter where the surface faces
-    down by ``countershade`` (0 to 1) (bare skin, horn and feathers are not countershaded)."""
+    part ``nearest`` (V,) it; a vertex with a neighbour of another colour (along the mesh's
+    edges, ``faces`` (F, 3)) takes its neighbourhood's mean, so two colours meet in a soft
+    edge, not a saw-tooth along the triangles, while a small part (a hoof, a couple of
+    rings of vertices) keeps its own colour inside; on the ``coat`` (3,), lighter where the
+    surface faces down by ``countershade`` (0 to 1) (bare skin, horn and feathers are not
+    countershaded)."""
     from scipy.sparse import coo_matrix, identity
 
     count = len(normals)
@@ -370,8 +384,9 @@ def _colors(normals: NDArray[np.float64], faces: NDArray[np.int64], nearest: NDA
     near = near.multiply(1.0 / np.asarray(near.sum(axis=1))).tocsr()  # each row averages a vertex's neighbourhood
     on_coat = np.all(np.abs(part_colors - coat[None, :]) < 1e-6, axis=1).astype(np.float64)[nearest]
     values = np.concatenate([part_colors[nearest], on_coat[:, None]], axis=1)
-    for _ in range(COLOR_SMOOTHING):
-        values = near @ values
+    mean = near @ values
+    edge = np.any(np.abs(mean[:, :3] - values[:, :3]) > 1e-9, axis=1)  # a neighbour of another colour
+    values = np.where(edge[:, None], mean, values)
     base, on_coat = values[:, :3], values[:, 3]
     under = (np.clip(-normals[:, 1], 0.0, 1.0) * on_coat)[:, None]
     light = base + (1.0 - base) * 0.5

@@ -91,8 +91,8 @@ BODY_RULES: dict[str, Rule] = {
                     "(0 for none; a horse's: about 0.1)", zero_ok=True),
     "wings": _length("a bird's folded wings: how far each reaches back along the flank from the shoulder "
                      "(0 for none; an ostrich's: about 0.4)", zero_ok=True),
-    "beak": _length("a bird's beak: its length back from the tip of the head, flat and pointed, in "
-                    "look.beak_color (0: a muzzle; at most the head's length)", zero_ok=True),
+    "beak": _length("a bird's beak: its length back from the tip of the head, broad, flat and round-tipped, "
+                    "in look.beak_color (0: a muzzle; at most the head's length)", zero_ok=True),
     "posture": Rule("choice", choices=POSTURES, doc="horizontal: the trunk runs from the hind to the fore legs; "
                     "upright: it rises from the hips (a human; one leg pair)"),
 }
@@ -121,7 +121,8 @@ LEG_RULES: dict[str, Rule] = {
                       "the body: insects, spiders)"),
     "radius": _length("bone radius at the hip; bones taper towards the foot", hi=2.0),
     "toes": Rule("integer", 0, 4, doc="splayed toes instead of a sole, paw or hoof (0: the foot its leg type "
-                 "gives): 2 an ostrich's, 3 a theropod's, 4 a bird's three forward and one back"),
+                 "gives): 2 an ostrich's, 3 a theropod's, 4 a bird's three forward and one back (legs whose "
+                 "knees point forward or back; a sprawled leg's foot is its last segment)"),
     "roll": _num(0, 1, doc="foot roll: heel strike, roll to flat, heel rise, toe-off; scales its angles and "
                  "timing (0 lands and lifts the foot flat)"),
 }
@@ -194,7 +195,7 @@ SPEED_RULES: dict[str, Rule] = {
 }
 
 LOOK_RULES: dict[str, Rule] = {
-    "body_color": Rule("color", doc="body, neck, head and tail colour"),
+    "body_color": Rule("color", doc="the coat: the body, and every part the look gives no colour of its own"),
     "left_color": Rule("color", doc="colour of the left legs"),
     "right_color": Rule("color", doc="colour of the right legs"),
     "leg_color": Rule("color", doc="the lower legs and feet, from the ankle down, on a smooth body (a bird's "
