@@ -41,7 +41,7 @@ from .footfalls import (
     stance_directions,
     swing_apex,
 )
-from .gait import ground_speed
+from .gait import ground_speed, walking_weight
 from .motion import MotionInputs, Pose, check_world, oscillators, solve_motion
 from .oscillator import FootWave
 from .poses import height_jump, reference_foot, settle
@@ -126,9 +126,11 @@ class LiveMotion:
         self._trunk = np.array([g.flex, g.pitch])  # spine flex and trunk pitch amplitudes (rad), eased to the gait's
         self._wave_from = self._wave_to = g.wave
         self._blend = 1.0  # progress of the frequency / bob / wave blend, 0..1
-        # A posed body's height jump being eased away: (m, m/s, when (s)), and the feet's
-        # duty factors at the time they were last seen (see _height_shift).
+        # A posed body's height jump being eased away: (m, m/s, when (s)), a biped's jump in
+        # how far it runs (lean, elbows: (weight, when (s))), and the feet's duty factors at
+        # the time they were last seen (see _shifts).
         self._height_jump: tuple[float, float, float] = (0.0, 0.0, 0.0)
+        self._running_jump: tuple[float, float] = (0.0, 0.0)
         self._height_seen: tuple[NDArray[np.float64], float] | None = None
         self._feet_settled = True
         self._speed_cap = self._steady_swing_speed()  # m/s no swinging foot may exceed
@@ -506,16 +508,19 @@ class LiveMotion:
         return {"clock": self.clock, "time": self.time, "travel": self.travel, "bob": self.bob,
                 "stride": stride, "plan": plan, "wave": self._wave_now(),
                 "trunk": self._trunk.copy(), "frequency": self.frequency,
-                "height_shift": self._height_shift(plan, stride)}
+                **dict(zip(("height_shift", "running_shift"), self._shifts(plan, stride)))}
 
-    def _height_shift(self, plan: FootPlan, stride: NDArray[np.float64]) -> float:
-        """What is left now (m) of the jumps changes of duty factor have made in a posed
-        body's height: a foot takes a new gait's duty at its touchdown or lift-off, and the
-        body's height (a run's flights, a walk's key poses) follows the duty at once; the
-        jump is eased away over :data:`~app.kinematics.poses.HEIGHT_SETTLE` instead, the
-        body keeping its height and speed (inertialization)."""
+    def _shifts(self, plan: FootPlan, stride: NDArray[np.float64]) -> tuple[float, float]:
+        """What is left now of the jumps changes of duty factor have made in a posed body's
+        height (m) and in how far a biped runs (the weight of its run's lean and bent
+        elbows, :func:`~app.kinematics.gait.walking_weight`): a foot takes a new gait's
+        duty at its touchdown or lift-off, and the body's height (a run's flights, a walk's
+        key poses) and its run's lean follow the duty at once (a person's chest moved 4 cm
+        in one frame as they began to run); the jumps are eased away over
+        :data:`~app.kinematics.poses.HEIGHT_SETTLE` instead, the body keeping its height and
+        speed (inertialization)."""
         if self.rig.poses.heights is None:
-            return 0.0
+            return 0.0, 0.0
         ref = reference_foot(self.rig)
         duty = plan.duty[0]
         seen = self._height_seen
@@ -528,9 +533,13 @@ class LiveMotion:
             rate = (left - float(settle(jump, speed, self.time - start - 1e-4))) / 1e-4
             more, faster = height_jump(self.rig, plan.phase[0], seen[0], duty, self.frequency, float(stride[ref]), dt)
             self._height_jump = (left + more, rate + faster, self.time)
+            weight, began = self._running_jump
+            self._running_jump = (float(settle(weight, 0.0, self.time - began)) + float(
+                walking_weight(duty[ref]) - walking_weight(seen[0][ref])), self.time)  # running is 1 - walking
         self._height_seen = (duty.copy(), self.time)
         jump, speed, start = self._height_jump
-        return float(settle(jump, speed, self.time - start))
+        weight, began = self._running_jump
+        return float(settle(jump, speed, self.time - start)), float(settle(weight, 0.0, self.time - began))
 
     @property
     def cross_fading(self) -> bool:
@@ -551,7 +560,8 @@ class LiveMotion:
         inputs = MotionInputs(clock=np.array([self.clock]), times=np.array([self.time]), plan=f["plan"],
                               travel=np.array([self.travel]), stride=f["stride"][None], bob=np.array([self.bob]),
                               wave=f["wave"], waves=self._waves(f["plan"]), trunk=f["trunk"][None],
-                              frequency=np.array([f["frequency"]]), height_shift=np.array([f["height_shift"]]))
+                              frequency=np.array([f["frequency"]]), height_shift=np.array([f["height_shift"]]),
+                              running_shift=np.array([f["running_shift"]]))
         return solve_motion(self.rig, self.world, inputs).pose(0)
 
 
@@ -567,4 +577,5 @@ def stack_inputs(frames: list[dict]) -> MotionInputs:
                         trunk=np.array([f["trunk"] for f in frames]),
                         frequency=np.array([f["frequency"] for f in frames]),
                         height_shift=np.array([f.get("height_shift", 0.0) for f in frames]),
+                        running_shift=np.array([f.get("running_shift", 0.0) for f in frames]),
                         wave=waves.pop() if len(waves) == 1 else frames[-1]["wave"])

@@ -167,7 +167,8 @@ class MotionInputs:
     two shapes: foot wave and bob wave); trunk (T, 2) the spine's flexion and pitch
     amplitudes (default: the gait's); frequency (T,) cycles/s (default: the gait's);
     height_shift (T,) m added to a posed body's height (what is left of a jump a change of
-    duty factor made, :func:`app.kinematics.poses.settle`).
+    duty factor made, :func:`app.kinematics.poses.settle`); running_shift (T,) added to
+    how far a biped runs (0 walking to 1 running: its lean and bent elbows), likewise.
     """
 
     clock: NDArray[np.float64]
@@ -181,6 +182,7 @@ class MotionInputs:
     trunk: NDArray[np.float64] | None = None
     frequency: NDArray[np.float64] | None = None
     height_shift: NDArray[np.float64] | None = None
+    running_shift: NDArray[np.float64] | None = None
 
 
 def trunk_motion(rig: Rig, phase: NDArray[np.float64], wave: FootWave, trunk: NDArray[np.float64] | None
@@ -294,6 +296,8 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
 
     # 3. Spine, neck, head, tail (following through by their overlap).
     running = 1.0 - walking_weight(plan.duty[:, reference_foot(rig)])  # a biped's run: lean in, elbows bent
+    if inputs.running_shift is not None:
+        running = np.clip(running + inputs.running_shift, 0.0, 1.0)
     spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, lag, flex=None if trunk is None else trunk[0],
                           running=running if rig.body.upright else None)
     ear_lag = np.arctan2(lag["ears"], max(rig.body.ear_length, 1e-3)) if "ears" in lag else np.zeros(frames)
