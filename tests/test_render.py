@@ -596,3 +596,30 @@ def test_a_birds_wings_move_with_its_trunk_not_its_thighs() -> None:
     leg = np.array([n.split("_", 1)[0] in ("L", "R") for n in names])  # the legs' joints: L_hip, R_knee, ...
     on_legs = np.sum(np.where(leg[body.joints[on_wing]], body.weights[on_wing], 0.0), axis=1)
     assert on_legs.mean() < 0.1
+
+
+def test_a_person_has_buttocks_that_move_with_the_pelvis() -> None:
+    """A person's side view ran flat from the back into the thighs: two ellipsoids now sit
+    behind the hip joints, and on the skinned body they follow the pelvis, not a thigh."""
+    from app.kinematics.skeleton import skeleton_clip
+    from app.render.bodies import _build
+    from app.render.scene import trunk_parts
+
+    rig = build_rig(load_creature("human"))
+    motion = simulate(rig, 0.2, 30.0, world=IN_PLACE)
+    glutes = trunk_parts(motion)
+    assert len(glutes) == 2
+    hips = motion.joints[0, 0:2, 0]
+    forward = np.cross(hips[0] - hips[1], [0.0, 1.0, 0.0])
+    forward /= np.linalg.norm(forward)
+    assert np.all((glutes - hips) @ forward < -0.03)  # behind the hips
+    assert glutes[0, 0] * glutes[1, 0] < 0 or abs(glutes[0, 0] - glutes[1, 0]) > 0.05  # one each side
+    body = _build(rig, "coarse")
+    names = skeleton_clip(motion, body.layout).skeleton.names
+    leg = np.array([n.split("_", 1)[0] in ("L", "R") and "shoulder" not in n and "elbow" not in n
+                    and "wrist" not in n and "hand" not in n for n in names])
+    behind = ((body.positions - hips.mean(axis=0)) @ forward < -0.1) & (
+        np.abs(body.positions[:, 1] - hips[:, 1].mean()) < 0.08)
+    assert behind.sum() > 5
+    on_legs = np.sum(np.where(leg[body.joints[behind]], body.weights[behind], 0.0), axis=1)
+    assert on_legs.mean() < 0.5

@@ -213,6 +213,8 @@ def palette(rig: Rig) -> Palette:
 ANTENNA_SCAPE = 0.35  # of an arthropod's antenna (ear_length): the first segment, rising before the elbow
 SHANK_MUSCLE = 0.6  # of the lower leg from the knee: how far its muscle reaches before the tendons
 TORSO_WIDTH, TORSO_DEPTH = 1.2, 0.78  # a person's trunk: of its radius, half its width and half its depth
+GLUTE = np.array([0.2, 0.42, 0.22, 0.55, 0.68, 0.5])  # of the pelvis's radius: a buttock's centre from its hip joint
+# (inwards, back, down) and its radii (across, up, back)
 SHOULDER_LINE = 0.42  # of the chest's radius: the thickness of the line from shoulder to shoulder
 THIGH_OUT = 0.2  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
 PERSON_THIGH = 1.6  # of the leg's radius: a person's thigh at its top (the hips ~37 cm across, not a pear)
@@ -241,10 +243,14 @@ def skin_overlays(motion) -> NDArray[np.float64]:
 
 def trunk_parts(motion) -> NDArray[np.float64]:
     """The centres (K, 3), in a clip's first frame, of the ellipsoids that lie on the trunk
-    but nearer a hip than the spine (a bird's folded wings): a skinned body binds them to
-    the spine, not the thigh they would swing with."""
-    return _wings(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig,
-                  np.zeros(3))[0, :, 0:3]
+    but nearer a hip than the spine (a bird's folded wings, a person's buttocks): a skinned
+    body binds them to the spine, not the thigh they would swing with."""
+    wings = _wings(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig, np.zeros(3))[0, :, 0:3]
+    if not (motion.rig.body.upright and motion.arms is not None and motion.joints.shape[1] >= 2):
+        return wings
+    glutes = _glutes(motion.joints[:1, 0:2, 0], motion.spine_tangent[:1, 0], float(motion.spine_radius[0]),
+                     np.zeros(3))[0, :, 0:3]
+    return np.concatenate([wings, glutes])
 
 
 def mane_color(rig: Rig) -> NDArray[np.float64]:
@@ -610,14 +616,36 @@ def leg_instances(joints: NDArray[np.float64], rig: Rig, show_joints: bool = Tru
     return SceneInstances(capsules=caps.astype(np.float32), ellipsoids=ells.astype(np.float32))
 
 
+def _glutes(hips: NDArray[np.float64], tangent: NDArray[np.float64], radius: float,
+            color: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A person's buttocks (T, 2, 18), left and right: ellipsoids behind and a little inside
+    and below each hip joint (``hips`` (T, 2, 3), left then right), :data:`GLUTE` of the
+    pelvis's ``radius`` (m), upright along the trunk's first ``tangent`` (T, 3) (the side
+    view's flat back had run straight down into the thighs)."""
+    middle = hips.mean(axis=1, keepdims=True)
+    inward = _unit(middle - hips)
+    across = _unit(hips[:, 0] - hips[:, 1])
+    back = _unit(cross(tangent, across))[:, None]  # the trunk's frame: across x up = back
+    up = tangent[:, None]
+    at, (r_across, r_up, r_back) = GLUTE[:3], GLUTE[3:]
+    centre = hips + radius * (at[0] * inward + at[1] * back - at[2] * up)
+    x = np.broadcast_to(across[:, None], centre.shape)
+    y = np.broadcast_to(back, centre.shape)
+    z = np.broadcast_to(up, centre.shape)
+    radii = np.broadcast_to(radius * np.array([r_across, r_back, r_up]), centre.shape)
+    return np.concatenate([centre, x, y, z, radii, np.broadcast_to(color, centre.shape)], axis=-1)
+
+
 def _upright_torso(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64],
-                   hips_across: NDArray[np.float64], left_shoulder: NDArray[np.float64],
+                   hips: NDArray[np.float64], left_shoulder: NDArray[np.float64],
                    right_shoulder: NDArray[np.float64], rig: Rig, color: NDArray[np.float64]) -> list:
     """A person's trunk: flattened ellipsoids along the spine (T, S, 3), wider than deep
     (TORSO_WIDTH and TORSO_DEPTH of each segment's radius (S,)), each turned from the hips'
-    line (``hips_across`` (T, 3), right hip to left) to the shoulders' as it rises, and a
-    shoulder line from shoulder to shoulder (T, 3) each; ellipsoid and capsule rows. (A
-    round tube of capsules read as a pill, as deep as it was wide, with domed shoulders.)"""
+    line (``hips`` (T, 2, 3), the left and right hip joints) to the shoulders' as it rises,
+    buttocks behind the hips (:func:`_glutes`), and a shoulder line from shoulder to
+    shoulder (T, 3) each; ellipsoid and capsule rows. (A round tube of capsules read as a
+    pill, as deep as it was wide, with domed shoulders.)"""
+    hips_across = hips[:, 0] - hips[:, 1]
     count = spine.shape[1]
     rise = (np.arange(count) + 0.5) / count
     shoulders_across = left_shoulder - right_shoulder
@@ -631,7 +659,7 @@ def _upright_torso(spine: NDArray[np.float64], tangent: NDArray[np.float64], rad
                            np.broadcast_to(color, spine.shape)], axis=-1)
     line = _capsules(left_shoulder[:, None], right_shoulder[:, None], SHOULDER_LINE * radius[-1],
                      SHOULDER_LINE * radius[-1], color)
-    return [ells, line]
+    return [ells, _glutes(hips, tangent[:, 0], float(radius[0]), color), line]
 
 
 def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig: Rig,
@@ -671,7 +699,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     upright = rig.body.upright  # a human: a slim neck, the skull sitting on it
     torso: list[NDArray[np.float64]] = [_segment_plates(spine, r, rig, body_color)] if segmented else []
     if upright and arms is not None and arms.shape[1] == 2 and joints.shape[1] >= 2:
-        trunk, torso = trunk[:, :0], _upright_torso(spine, spine_tangent, r, joints[:, 0, 0] - joints[:, 1, 0],
+        trunk, torso = trunk[:, :0], _upright_torso(spine, spine_tangent, r, joints[:, 0:2, 0],
                                                     arms[:, 0, 0], arms[:, 1, 0], rig, body_color)
     # A deep neck rising from the chest, narrowing to the head.
     neck_r = _neck_radii(rig, r)
