@@ -188,7 +188,7 @@ def build_rig(spec: CreatureSpec) -> Rig:
                       tail_length=body.tail_length, tail_angle=math.radians(body.tail_angle),
                       tail_segments=body.tail_segments, upright=body.posture == "upright",
                       tail_radius=body.tail_radius, mane=body.mane, tail_curl=math.radians(body.tail_curl),
-                      wings=body.wings, beak=body.beak)
+                      wings=body.wings, beak=body.beak, hump=body.hump)
     hip_height = float(rest_height.mean())
     rig = Rig(
         name=spec.name,

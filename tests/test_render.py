@@ -623,3 +623,24 @@ def test_a_person_has_buttocks_that_move_with_the_pelvis() -> None:
     assert behind.sum() > 5
     on_legs = np.sum(np.where(leg[body.joints[behind]], body.weights[behind], 0.0), axis=1)
     assert on_legs.mean() < 0.5
+
+
+def test_a_bear_has_a_shoulder_hump_that_moves_with_its_trunk() -> None:
+    """``body.hump`` stands an ellipsoid over the back just behind the fore legs, its top the
+    hump's height above the trunk there (the grizzly's); bound to the spine, not a fore leg."""
+    from app.render.scene import trunk_parts
+
+    rig = build_rig(load_creature("bear"))
+    motion = simulate(rig, 0.2, 30.0, world=IN_PLACE)
+    (hump,) = trunk_parts(motion)
+    flat = build_rig(load_creature("bear").with_overrides({"body.hump": 0.0}))
+    assert len(trunk_parts(simulate(flat, 0.2, 30.0, world=IN_PLACE))) == 0
+    ells = motion_instances(motion, show_joints=False, by_side=False).frame(0).ellipsoids.astype(np.float64)
+    row = ells[np.linalg.norm(ells[:, 0:3] - hump, axis=1) < 1e-5][0]
+    top = row[0:3] + row[6:9] * row[13]  # up its y axis
+    spine = motion.spine[0]
+    nearest = np.argmin(np.linalg.norm(spine - hump, axis=1))
+    back = spine[nearest, 1] + motion.spine_radius[nearest]
+    assert top[1] - back == pytest.approx(rig.body.hump, abs=0.03)
+    along = (hump - spine[0]) @ (spine[-1] - spine[0]) / np.linalg.norm(spine[-1] - spine[0]) ** 2
+    assert 0.75 < along < 1.0  # over the shoulders, at the front of the trunk

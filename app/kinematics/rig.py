@@ -85,6 +85,7 @@ class BodyShape:
     tail_curl: float = 0.0  # rad the tail turns up (+) from its first segment to its last
     wings: float = 0.0  # m: how far a bird's folded wings reach back from the shoulders (0: none)
     beak: float = 0.0  # m: a beak's length back from the head's tip (0: a muzzle)
+    hump: float = 0.0  # m: a hump's height over the back behind the shoulders (0: none)
 
     def tail_droop(self, segments: int | None = None) -> NDArray[np.float64]:
         """Each tail segment's droop below the body axis at rest (rad, (K,), base to tip):

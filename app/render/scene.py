@@ -170,6 +170,8 @@ HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
 BEAK_COLOR = np.array([0.66, 0.58, 0.47]) ** 2  # a beak's horn, unless the look gives one (linear)
 BEAK_SHAPE = (0.5, 0.24)  # of the head's radius: a beak's half width and half depth (broad and flat)
 BEAK_INTO = 0.9  # of the head's radius from the skull's centre: as far back as a beak reaches (into the skull)
+HUMP_AT = 0.08  # of the trunk: how far behind the fore legs a hump stands highest
+HUMP_SHAPE = (0.75, 0.55, 0.28)  # a hump's radii: of the trunk's radius across and up (plus half its height), of its length along
 WING_AT = 0.72  # along the trunk (0 rear, 1 front): where a folded wing's shoulder lies
 WING_SHAPE = (0.09, 0.3, 0.5)  # of body.wings: a folded wing's half thickness, half height and half length
 WING_DROOP = 0.3  # rad: a folded wing runs back and down from the shoulder
@@ -243,9 +245,13 @@ def skin_overlays(motion) -> NDArray[np.float64]:
 
 def trunk_parts(motion) -> NDArray[np.float64]:
     """The centres (K, 3), in a clip's first frame, of the ellipsoids that lie on the trunk
-    but nearer a hip than the spine (a bird's folded wings, a person's buttocks): a skinned
-    body binds them to the spine, not the thigh they would swing with."""
-    wings = _wings(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig, np.zeros(3))[0, :, 0:3]
+    but maybe nearer a hip than the spine (a bird's folded wings, a hump over the
+    shoulders, a person's buttocks): a skinned body binds them to the spine, not the leg
+    they would swing with."""
+    wings = np.concatenate([_wings(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig,
+                                   np.zeros(3))[0, :, 0:3],
+                            _hump(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig,
+                                  np.zeros(3))[0, :, 0:3]])
     if not (motion.rig.body.upright and motion.arms is not None and motion.joints.shape[1] >= 2):
         return wings
     glutes = _glutes(motion.joints[:1, 0:2, 0], motion.spine_tangent[:1, 0], float(motion.spine_radius[0]),
@@ -506,19 +512,46 @@ def _segmented(rig: Rig) -> bool:
     return bool(rig.knee_out.all()) and rig.leg_count > 8
 
 
-def _segment_plates(spine: NDArray[np.float64], radius: NDArray[np.float64], rig: Rig,
+def _on_spine(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64],
+              position: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Where the trunk (its points (T, S, 3), tangents, radii (S,), rear to front) is at
+    ``position`` (K,) along it (0 rear, 1 front): points (T, K, 3), unit tangents (T, K, 3)
+    and radii (K,), interpolated."""
+    count = spine.shape[1]
+    at = np.clip(np.asarray(position, dtype=np.float64), 0.0, 1.0) * (count - 1)
+    k = np.clip(np.floor(at).astype(int), 0, count - 2)
+    w = (at - k)[None, :, None]
+    point = (1.0 - w) * spine[:, k] + w * spine[:, k + 1]
+    ahead = _unit((1.0 - w) * tangent[:, k] + w * tangent[:, k + 1])
+    return point, ahead, np.interp(at, np.arange(count), radius)
+
+
+def _hump(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64], rig: Rig,
+          color: NDArray[np.float64]) -> NDArray[np.float64]:
+    """A hump over the shoulders (T, 1, 18): an ellipsoid over the spine just behind the
+    fore legs (:data:`HUMP_AT` of the trunk behind them) whose top stands ``body.hump`` m
+    above the back (a grizzly's muscle, a bison's); none (T, 0, 18) without one."""
+    height = rig.body.hump
+    if height <= 0 or rig.body.upright:
+        return np.zeros((spine.shape[0], 0, ELLIPSOID_FLOATS))
+    fore = float(rig.girdle_position.max()) - HUMP_AT
+    point, ahead, under = _on_spine(spine, tangent, radius, np.array([fore]))
+    _, up, _ = _frame_axes(ahead)
+    across, tall, along = HUMP_SHAPE
+    r = float(under[0])
+    radii = np.array([across * r, tall * r + 0.5 * height, along * rig.body.length])
+    centre = point + up * (r + height - radii[1])  # its top the hump's height over the back
+    return _ellipsoids(centre, ahead, radii, color)
+
+
+def _segment_plates(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64], rig: Rig,
                     color: NDArray[np.float64]) -> NDArray[np.float64]:
     """A segmented trunk's plates (T, G, 18): one flattened ellipsoid a leg pair, centred on
     the spine (T, S, 3) at the pair's place along it, :data:`PLATE_SHAPE` of the trunk's
     radius there (``radius`` (S,)) across and up and of the gap to the next pair along."""
-    count = spine.shape[1]
-    at = rig.girdle_position * (count - 1)  # (G,) on the spine's points, rear 0 to front S - 1
-    k = np.clip(np.floor(at).astype(int), 0, count - 2)
-    w = (at - k)[None, :, None]
-    centre = (1.0 - w) * spine[:, k] + w * spine[:, k + 1]  # (T, G, 3)
-    ahead = spine[:, np.minimum(k + 1, count - 1)] - spine[:, k]
-    r = np.interp(at, np.arange(count), radius)  # (G,)
-    gap = rig.body.length * np.abs(np.gradient(rig.girdle_position)) if len(at) > 1 else np.full(len(at), 0.1)
+    centre, ahead, r = _on_spine(spine, tangent, radius, rig.girdle_position)  # (T, G, 3), (T, G, 3), (G,)
+    gap = rig.body.length * np.abs(np.gradient(rig.girdle_position)) if rig.girdle_position.size > 1 \
+        else np.full(1, 0.1)
     radii = np.stack([PLATE_SHAPE[0] * r, PLATE_SHAPE[1] * r, PLATE_SHAPE[2] * gap], axis=-1)  # (G, 3)
     return _ellipsoids(centre, ahead, radii, color)
 
@@ -547,17 +580,12 @@ def _wings(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDA
     length = rig.body.wings
     if length <= 0:
         return np.zeros((spine.shape[0], 0, ELLIPSOID_FLOATS))
-    count = spine.shape[1]
-    at = WING_AT * (count - 1)
-    k = min(int(at), count - 2)
-    w = at - k
-    shoulder = (1.0 - w) * spine[:, k] + w * spine[:, k + 1]  # (T, 3)
-    forward = _unit((1.0 - w) * tangent[:, k] + w * tangent[:, k + 1])
+    shoulder, forward, _ = (a[:, 0] if a.ndim == 3 else a for a in _on_spine(spine, tangent, radius,
+                                                                            np.array([WING_AT])))
     side, up, _ = _frame_axes(forward)  # side: the body's left
     back = -np.cos(WING_DROOP) * forward - np.sin(WING_DROOP) * up
-    # The trunk's radius under the wing's middle (its profile runs rear to front).
-    middle = np.clip(at - 0.5 * length / max(rig.body.length, 1e-9) * (count - 1), 0, count - 1)
-    under = float(np.interp(middle, np.arange(count), radius))
+    # The trunk's radius under the wing's middle.
+    under = float(_on_spine(spine, tangent, radius, np.array([WING_AT - 0.5 * length / max(rig.body.length, 1e-9)]))[2][0])
     half = np.array(WING_SHAPE) * length
     rows = []
     for sign in (1.0, -1.0):  # left, right
@@ -697,7 +725,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     trunk = _capsules(trunk_pts[:, :-1], trunk_pts[:, 1:], trunk_r[:-1], trunk_r[1:],
                       MEMBRANE_SHADE * body_color if segmented else body_color)
     upright = rig.body.upright  # a human: a slim neck, the skull sitting on it
-    torso: list[NDArray[np.float64]] = [_segment_plates(spine, r, rig, body_color)] if segmented else []
+    torso: list[NDArray[np.float64]] = [_segment_plates(spine, spine_tangent, r, rig, body_color)] if segmented else []
     if upright and arms is not None and arms.shape[1] == 2 and joints.shape[1] >= 2:
         trunk, torso = trunk[:, :0], _upright_torso(spine, spine_tangent, r, joints[:, 0:2, 0],
                                                     arms[:, 0, 0], arms[:, 1, 0], rig, body_color)
@@ -751,8 +779,9 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
         skull_e = np.concatenate([skull_e, _ellipsoids(jowl[:, None], head_dir[:, None],
                                                        long_head * np.array(JOWL[2:]) * head_radius, neck_color)], axis=1)
     wings = _wings(spine, spine_tangent, r, rig, colors.plume)
-    ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), beak, wings, *foot_parts, *arm_ells,
-                       *markers]
+    hump = _hump(spine, spine_tangent, r, rig, body_color)
+    ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), beak, wings, hump, *foot_parts,
+                       *arm_ells, *markers]
     capsule_parts += [part for part in torso if part.shape[-1] == CAPSULE_FLOATS]
     ellipsoid_parts += [part for part in torso if part.shape[-1] == ELLIPSOID_FLOATS]
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),

@@ -45,6 +45,7 @@ class BodySpec:
     mane: float = 0.0
     wings: float = 0.0
     beak: float = 0.0
+    hump: float = 0.0
     posture: Posture = "horizontal"
 
 

@@ -66,7 +66,7 @@ def _length(doc: str, *, zero_ok: bool = False, hi: float = 50.0) -> Rule:
 
 # Body keys that are lengths (m): a fitted or model-driven creature scales them with its legs.
 SCALED_BODY_KEYS = ("length", "neck_length", "head_length", "head_radius", "tail_length", "tail_radius", "ear_length",
-                    "mane", "wings", "beak")
+                    "mane", "wings", "beak", "hump")
 
 BODY_RULES: dict[str, Rule] = {
     "length": _length("distance from the hind hips to the fore shoulders along the spine"),
@@ -93,6 +93,8 @@ BODY_RULES: dict[str, Rule] = {
                      "(0 for none; an ostrich's: about 0.4)", zero_ok=True),
     "beak": _length("a bird's beak: its length back from the tip of the head, broad, flat and round-tipped, "
                     "in look.beak_color (0: a muzzle; at most the head's length)", zero_ok=True),
+    "hump": _length("how far a hump over the shoulders stands above the back (0 for none; a grizzly's "
+                    "muscle: about 0.08, a bison's: 0.3)", zero_ok=True),
     "posture": Rule("choice", choices=POSTURES, doc="horizontal: the trunk runs from the hind to the fore legs; "
                     "upright: it rises from the hips (a human; one leg pair)"),
 }

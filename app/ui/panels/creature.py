@@ -87,6 +87,7 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
         imgui.begin_disabled(model)
         slider(state, pc, "body.wings", "wings", 0.0, 1.0, "%.3f m")
         slider(state, pc, "body.beak", "beak", 0.0, state.spec.body.head_length, "%.3f m")  # at most the head
+        slider(state, pc, "body.hump", "hump", 0.0, 0.5, "%.3f m")
         imgui.end_disabled()
         imgui.end_table()
 
