@@ -170,10 +170,16 @@ def test_the_path_ribbon_lies_under_the_creature_and_is_its_size(gl_ctx, creatur
     alone, scene = int(changed["alone"].sum()), int(changed["scene"].sum())
     assert alone > 50  # the path is drawn
     assert abs(scene - alone) < 0.3 * alone, (alone, scene)  # the walker's size, not the scene's
-    # Where the creature is (shades of its body colour), the path changes nothing.
-    body = np.sqrt(srgb_to_linear(rig.look.body_color)) * 255
-    scale = (bare @ body) / (body @ body)
-    creature_pixels = np.abs(bare - scale[..., None] * body).max(axis=-1) < 14
+    # Where the creature is (shades of its colours: coat, feet, a centipede's membranes),
+    # the path changes nothing.
+    from app.render.scene import MEMBRANE_SHADE, palette
+
+    colors = palette(rig)
+    creature_pixels = np.zeros(bare.shape[:2], dtype=bool)
+    for linear in (colors.coat, colors.legs, MEMBRANE_SHADE * colors.coat):
+        shade = np.sqrt(linear) * 255
+        scale = (bare @ shade) / (shade @ shade)
+        creature_pixels |= np.abs(bare - scale[..., None] * shade).max(axis=-1) < 14
     assert creature_pixels.sum() > 200
     assert (changed["alone"] & creature_pixels).sum() <= 0.002 * creature_pixels.sum() + 2
     assert alone < 0.12 * creature_pixels.sum()  # a line beside the creature, not a band
