@@ -21,7 +21,7 @@ from app.render.camera import frame_points
 from app.render.options import GroundView, RenderOptions
 from app.render.overlays import TARGET_COLOR, Overlays
 from app.render.renderer import SceneRenderer
-from app.render.scene import motion_bounds, motion_instances, srgb_to_linear
+from app.render.scene import motion_bounds, motion_instances
 from app.render.target import OffscreenTarget
 
 
