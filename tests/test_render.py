@@ -144,17 +144,27 @@ def test_a_shadow_cast_ahead_draws_the_same_frame(gl_ctx) -> None:
         renderer.release()
 
 
-@pytest.mark.parametrize("distance", [4.0, 4.5])
-def test_an_eye_just_below_the_floor_beyond_its_edge_sees_the_creature_and_the_sky(renderer, distance) -> None:
+@pytest.mark.parametrize("beyond", [1.2, 1.35])
+def test_an_eye_just_below_the_floor_beyond_its_edge_sees_the_creature_and_the_sky(renderer, beyond) -> None:
     """Orbited down to -5 degrees and zoomed out, the eye sinks below the floor's level just
-    beyond the floor's round edge: it sees the dog and the sky over the edge, with no
-    floor overhead (a square floor's corner reached over such an eye at a diagonal and
-    blanked the view)."""
+    beyond the floor's round edge (``beyond`` times its radius from the creatures' centre,
+    at a diagonal): it sees the dog and the sky over the edge, with no floor overhead (a
+    square floor's corner reached over such an eye at a diagonal and blanked the view)."""
     from dataclasses import replace
 
+    from app.render.options import GroundView
+    from app.render.renderer import SceneRenderer, creature_bounds
+
     motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    scene = renderer._instances(motion, RenderOptions()).frame(4)
+    centre, radius = creature_bounds(scene, GroundView().terrain)
+    reach = radius * SceneRenderer.FOG_END * 1.05  # the floor disc's radius
     base = frame_points(motion_bounds(motion), "three-quarter", aspect=SIZE[0] / SIZE[1])
-    camera = replace(base, elevation=-5.0, azimuth=45.0, distance=distance)
+    distances = np.linspace(1.0, 12.0, 2000)
+    away = [np.hypot(*(np.asarray(replace(base, elevation=-5.0, azimuth=45.0, distance=d).eye)[[0, 2]]
+                       - centre[[0, 2]])) for d in distances]
+    camera = replace(base, elevation=-5.0, azimuth=45.0,
+                     distance=float(distances[np.argmax(np.array(away) > beyond * reach)]))
     assert camera.eye[1] < 0.0
     image = renderer.frame(motion, 4, camera, RenderOptions()).astype(int)
     dog = ((image[..., 0] - image[..., 2]) > 50).sum()  # orange-brown
@@ -644,3 +654,23 @@ def test_a_bear_has_a_shoulder_hump_that_moves_with_its_trunk() -> None:
     assert top[1] - back == pytest.approx(rig.body.hump, abs=0.03)
     along = (hump - spine[0]) @ (spine[-1] - spine[0]) / np.linalg.norm(spine[-1] - spine[0]) ** 2
     assert 0.75 < along < 1.0  # over the shoulders, at the front of the trunk
+
+
+def test_a_mammal_has_a_dark_nose_drawn_on_its_skin() -> None:
+    """A dog's, cat's or bear's muzzle ended in its coat: a dark nose now sits over the
+    tip, drawn on the skinned body as the eyes are (not in its surface); a horse's long
+    head (a soft muzzle) and a bird have none."""
+    from app.render.scene import NOSE_COLOR, Ell, skin_overlays
+
+    for name, has in (("dog", True), ("bear", True), ("horse", False), ("bird", False), ("human", False)):
+        rig = build_rig(load_creature(name))
+        motion = simulate(rig, 0.2, 30.0, world=IN_PLACE)
+        ells = motion_instances(motion, show_joints=False, by_side=False).frame(0).ellipsoids.astype(np.float64)
+        noses = ells[np.all(np.abs(ells[:, Ell.COLOR] - NOSE_COLOR) < 1e-6, axis=1)]
+        assert len(noses) == (1 if has else 0), name
+        if has:
+            assert np.linalg.norm(noses[0, 0:3] - motion.head[0, 1]) < 0.3 * rig.body.head_radius  # at the tip
+            on_skin = skin_overlays(motion)
+            assert np.min(np.linalg.norm(on_skin - noses[0, 0:3], axis=1)) < 1e-6  # left out of the surface
+            skin = motion_instances(motion, show_joints=False, parts=False).frame(0).ellipsoids.astype(np.float64)
+            assert np.any(np.all(np.abs(skin[:, Ell.COLOR] - NOSE_COLOR) < 1e-6, axis=1))  # and drawn over it

@@ -50,6 +50,9 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 # Bone radius along the leg as a fraction of the leg's radius at the hip:
 # hip, knee, ankle, ball, toe tip.
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
+NOSE_COLOR = np.array([0.03, 0.025, 0.025])  # a mammal's bare nose (drawn on a skinned body, like the eyes)
+NOSE_SHAPE = (0.24, 0.17, 0.14)  # of the head's radius: a nose's half width, height and depth
+NOSE_AT = (-0.06, 0.1)  # of the head's radius: its centre from the head's tip, ahead (-: back) and up
 EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (drawn on a skinned body, not in it: skin_overlays)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
 JOWL = (0.45, 0.5, 0.8, 1.1, 1.15)  # of it: a long head's jowl, ahead of and below the skull's centre; its radii
@@ -235,12 +238,13 @@ def hoof_ends(ball: NDArray[np.float64], toe: NDArray[np.float64]) -> tuple[NDAr
 
 def skin_overlays(motion) -> NDArray[np.float64]:
     """The centres (K, 3), in a clip's first frame, of the ellipsoids drawn on a skinned body
-    rather than in its surface: the eyes and the mane."""
+    rather than in its surface: the eyes, a mammal's nose and the mane."""
     rig = motion.rig
     skull, head_dir = _skull(motion.head[:1], rig)
     eyes = _eyes(skull, head_dir, rig)[0, :, 0:3]
+    nose = _nose(motion.head[:1, 1], head_dir, rig)[0, :, 0:3]
     mane = _mane_rows(motion.neck[:1], motion.spine_radius, rig)[0, :, 0:3]
-    return np.concatenate([eyes, mane])
+    return np.concatenate([eyes, nose, mane])
 
 
 def trunk_parts(motion) -> NDArray[np.float64]:
@@ -477,6 +481,20 @@ def _skull(head: NDArray[np.float64], rig: Rig) -> tuple[NDArray[np.float64], ND
     return skull, head_dir
 
 
+def _nose(tip: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -> NDArray[np.float64]:
+    """A four-legged mammal's nose (T, 1, 18): a dark, flattened ellipsoid over the end of
+    its muzzle (the head's tip ``tip`` (T, 3)), wider than tall, a little above its axis
+    (a dog's or a bear's; a long head's, a horse's, is a soft muzzle with no bare nose);
+    none (T, 0, 18) for other creatures."""
+    if not (rig.four_legged_mammal and rig.body.beak <= 0 and _long_head(rig) <= 0):
+        return np.zeros((tip.shape[0], 0, ELLIPSOID_FLOATS))
+    hr = rig.body.head_radius
+    _, up, _ = _frame_axes(head_dir)
+    ahead, above = NOSE_AT
+    centre = tip + head_dir * ahead * hr + up * above * hr
+    return _ellipsoids(centre[:, None], head_dir[:, None], np.array(NOSE_SHAPE) * hr, NOSE_COLOR)
+
+
 def _eye_kind(rig: Rig) -> str:
     """Whose eyes a creature has: a person's (upright), a bird's (a beak) or an animal's."""
     return "person" if rig.body.upright else "bird" if rig.body.beak > 0 else "animal"
@@ -710,7 +728,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
                               ellipsoids=np.zeros((frames, 0, ELLIPSOID_FLOATS), np.float32), ellipsoid_casters=0)
     if not parts:  # a skinned body is drawn instead: only the eyes, the mane and the joint markers
         skull, head_dir = _skull(head, rig)
-        on_skin = [_eyes(skull, head_dir, rig), _mane_rows(neck, spine_radius, rig)] + markers
+        on_skin = [_eyes(skull, head_dir, rig), _nose(head[:, 1], head_dir, rig),
+                   _mane_rows(neck, spine_radius, rig)] + markers
         return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
                               ellipsoids=np.concatenate(on_skin, axis=1).astype(np.float32), ellipsoid_casters=0)
 
@@ -780,8 +799,8 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
                                                        long_head * np.array(JOWL[2:]) * head_radius, neck_color)], axis=1)
     wings = _wings(spine, spine_tangent, r, rig, colors.plume)
     hump = _hump(spine, spine_tangent, r, rig, body_color)
-    ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), beak, wings, hump, *foot_parts,
-                       *arm_ells, *markers]
+    ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), _nose(nose, head_dir, rig), beak, wings,
+                       hump, *foot_parts, *arm_ells, *markers]
     capsule_parts += [part for part in torso if part.shape[-1] == CAPSULE_FLOATS]
     ellipsoid_parts += [part for part in torso if part.shape[-1] == ELLIPSOID_FLOATS]
     return SceneInstances(capsules=np.concatenate(capsule_parts, axis=1).astype(np.float32),
