@@ -190,6 +190,37 @@ def test_a_runner_slowing_to_a_walk_keeps_its_height_and_speed_through_the_switc
         assert accel[near].max() < 3.0
 
 
+def test_a_theropod_slowing_to_a_walk_keeps_its_elbows_through_the_switch() -> None:
+    """A body without key-pose heights (the theropod's [poses] sets only its arm swing) took
+    no easing at all: its elbows opened from a run's bend in one frame (the wrist 49 mm over
+    the hips, 72 g). The run's weight is eased for every body."""
+    from app.kinematics.live import LiveMotion, stack_inputs
+    from app.kinematics.motion import solve_motion
+    from app.kinematics.speed import gait_at_speed
+
+    rig = build_rig(load_creature("theropod"))
+    assert rig.poses.heights is None
+    speeds = np.linspace(4.0, 1.0, 240 * 8)
+    current = gait_at_speed(rig, float(speeds[0]))
+    live, gait, frames = LiveMotion(current), current.gait.preset, []
+    for i, v in enumerate(speeds):
+        if i:
+            target = gait_at_speed(rig, float(v), gait)
+            gait = target.gait.preset
+            live.set_rig(target)
+            live.step(1 / 240)
+        frames.append(live.frame_inputs())
+    inputs = stack_inputs(frames)
+    motion = solve_motion(live.rig, live.world, inputs, fps=240.0)
+    duty = inputs.plan.duty[:, -2]
+    switches = np.nonzero((duty[1:] >= 0.5) & (duty[:-1] < 0.5))[0] + 1
+    assert len(switches) >= 1
+    wrist = motion.arms[:, :, 2] - motion.joints[:, -2:, 0].mean(axis=1)[:, None]
+    accel = np.linalg.norm(np.gradient(np.gradient(wrist, 1 / 240, axis=0), 1 / 240, axis=0), axis=-1).max(axis=1)
+    for switch in switches:
+        assert accel[int(switch) - 24:int(switch) + 24].max() / 9.81 < 5.0
+
+
 def test_a_height_jump_settles_from_its_height_and_speed_to_rest() -> None:
     from app.kinematics.poses import HEIGHT_SETTLE, settle
 

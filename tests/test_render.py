@@ -491,7 +491,7 @@ def test_a_bird_has_a_beak_folded_wings_plumes_and_splayed_toes() -> None:
     assert len(beak) == 1
     nose = motion.head[0, 1]
     assert np.linalg.norm(beak[0, 0:3] + beak[0, 9:12] * beak[0, 14] - nose) < 1e-6  # its tip is the head's
-    assert 2 * beak[0, 14] >= rig.body.beak - 1e-9  # at least body.beak long (on into the skull)
+    assert 2 * beak[0, 14] == pytest.approx(rig.body.beak)
     head_dir = motion.head[0, 1] - motion.head[0, 0]
     assert abs(np.degrees(np.arcsin(head_dir[1] / np.linalg.norm(head_dir)))) < 25  # held about level
     caps = shapes.capsules.astype(np.float64)
@@ -574,18 +574,27 @@ def test_a_centipede_is_a_row_of_plates_and_a_spider_is_not() -> None:
 
 def test_a_short_beak_still_meets_the_face() -> None:
     """A beak shorter than the head's front (``body.beak`` 0.03 on the bird, or its head made
-    longer) floated ahead of the face: it reaches back into the skull now."""
+    longer) floated ahead of the face: a muzzle now bridges it to the skull, and the beak
+    keeps its own length (a longer one, from the skull on, takes the muzzle's place)."""
     from app.render.scene import Ell, palette
 
-    for overrides in ({"body.beak": 0.03}, {"body.head_length": 0.25}):
+    for overrides, bridged in (({"body.beak": 0.03}, True), ({"body.head_length": 0.25}, True), ({}, False)):
         rig = build_rig(load_creature("bird").with_overrides(overrides))
         motion = simulate(rig, 0.2, 30.0, world=IN_PLACE)
-        ells = motion_instances(motion, show_joints=False, by_side=False).frame(0).ellipsoids.astype(np.float64)
+        shapes = motion_instances(motion, show_joints=False, by_side=False).frame(0)
+        ells, caps = shapes.ellipsoids.astype(np.float64), shapes.capsules.astype(np.float64)
         beak = ells[np.all(np.abs(ells[:, Ell.COLOR] - palette(rig).beak) < 1e-5, axis=1)][0]
-        skull = ells[0]  # the skull: the first ellipsoid (it casts the head's shadow)
+        assert 2 * beak[14] == pytest.approx(rig.body.beak)  # its own length
         back = beak[0:3] - beak[9:12] * beak[14]
-        inside = np.sum(((back - skull[0:3]) @ np.stack([skull[3:6], skull[6:9], skull[9:12]]).T / skull[12:15]) ** 2)
-        assert inside < 1.0, overrides  # the beak's back end lies inside the skull
+        skull = ells[0]  # the skull: the first ellipsoid (it casts the head's shadow)
+        muzzle = caps[np.linalg.norm(caps[:, 0:3] - skull[0:3], axis=1) < 1e-5]
+        assert len(muzzle) == (1 if bridged else 0), overrides
+        if bridged:
+            assert np.linalg.norm(muzzle[0, 3:6] - back) < 1e-5  # from the skull to the beak
+        else:
+            inside = np.sum(((back - skull[0:3]) @ np.stack([skull[3:6], skull[6:9], skull[9:12]]).T
+                             / skull[12:15]) ** 2)
+            assert inside < 1.0  # the beak's back end lies in the skull
 
 
 def test_a_birds_wings_move_with_its_trunk_not_its_thighs() -> None:
@@ -620,7 +629,7 @@ def test_a_person_has_buttocks_that_move_with_the_pelvis() -> None:
     glutes = trunk_parts(motion)
     assert len(glutes) == 2
     hips = motion.joints[0, 0:2, 0]
-    forward = np.cross(hips[0] - hips[1], [0.0, 1.0, 0.0])
+    forward = (motion.head[0, 1] - motion.head[0, 0]) * np.array([1.0, 0.0, 1.0])  # where the face looks
     forward /= np.linalg.norm(forward)
     assert np.all((glutes - hips) @ forward < -0.03)  # behind the hips
     assert glutes[0, 0] * glutes[1, 0] < 0 or abs(glutes[0, 0] - glutes[1, 0]) > 0.05  # one each side

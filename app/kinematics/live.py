@@ -518,9 +518,8 @@ class LiveMotion:
         key poses) and its run's lean follow the duty at once (a person's chest moved 4 cm
         in one frame as they began to run); the jumps are eased away over
         :data:`~app.kinematics.poses.HEIGHT_SETTLE` instead, the body keeping its height and
-        speed (inertialization)."""
-        if self.rig.poses.heights is None:
-            return 0.0, 0.0
+        speed (inertialization). A body without key-pose heights has no height to ease, but
+        its arms' run still is (a theropod's elbows)."""
         ref = reference_foot(self.rig)
         duty = plan.duty[0]
         seen = self._height_seen
@@ -528,11 +527,13 @@ class LiveMotion:
             seen = None  # time went back: start afresh
         if seen is not None and self.time > seen[1] and duty[ref] != seen[0][ref]:
             dt = self.time - seen[1]
-            jump, speed, start = self._height_jump
-            left = float(settle(jump, speed, self.time - start))
-            rate = (left - float(settle(jump, speed, self.time - start - 1e-4))) / 1e-4
-            more, faster = height_jump(self.rig, plan.phase[0], seen[0], duty, self.frequency, float(stride[ref]), dt)
-            self._height_jump = (left + more, rate + faster, self.time)
+            if self.rig.poses.heights is not None:
+                jump, speed, start = self._height_jump
+                left = float(settle(jump, speed, self.time - start))
+                rate = (left - float(settle(jump, speed, self.time - start - 1e-4))) / 1e-4
+                more, faster = height_jump(self.rig, plan.phase[0], seen[0], duty, self.frequency,
+                                           float(stride[ref]), dt)
+                self._height_jump = (left + more, rate + faster, self.time)
             weight, began = self._running_jump
             self._running_jump = (float(settle(weight, 0.0, self.time - began)) + float(
                 walking_weight(duty[ref]) - walking_weight(seen[0][ref])), self.time)  # running is 1 - walking

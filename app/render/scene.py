@@ -172,7 +172,7 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
 BEAK_COLOR = np.array([0.66, 0.58, 0.47]) ** 2  # a beak's horn, unless the look gives one (linear)
 BEAK_SHAPE = (0.5, 0.24)  # of the head's radius: a beak's half width and half depth (broad and flat)
-BEAK_INTO = 0.9  # of the head's radius from the skull's centre: as far back as a beak reaches (into the skull)
+BEAK_INTO = 0.9  # of the head's radius from the skull's centre: where a beak meets the face (a shorter one keeps a muzzle)
 HUMP_AT = 0.08  # of the trunk: how far behind the fore legs a hump stands highest
 HUMP_SHAPE = (0.75, 0.55, 0.28)  # a hump's radii: of the trunk's radius across and up (plus half its height), of its length along
 WING_AT = 0.72  # along the trunk (0 rear, 1 front): where a folded wing's shoulder lies
@@ -250,12 +250,15 @@ def skin_overlays(motion) -> NDArray[np.float64]:
 def trunk_parts(motion) -> NDArray[np.float64]:
     """The centres (K, 3), in a clip's first frame, of the ellipsoids that lie on the trunk
     but maybe nearer a hip than the spine (a bird's folded wings, a hump over the
-    shoulders, a person's buttocks): a skinned body binds them to the spine, not the leg
-    they would swing with."""
+    shoulders, a centipede's plates, a person's buttocks): a skinned body binds them to the
+    spine, not the leg they would swing with."""
     wings = np.concatenate([_wings(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig,
                                    np.zeros(3))[0, :, 0:3],
                             _hump(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius, motion.rig,
                                   np.zeros(3))[0, :, 0:3]])
+    if _segmented(motion.rig):  # a centipede's plates: few segments bound them to the hips
+        wings = np.concatenate([wings, _segment_plates(motion.spine[:1], motion.spine_tangent[:1], motion.spine_radius,
+                                                       motion.rig, np.zeros(3))[0, :, 0:3]])
     if not (motion.rig.body.upright and motion.arms is not None and motion.joints.shape[1] >= 2):
         return wings
     glutes = _glutes(motion.joints[:1, 0:2, 0], motion.spine_tangent[:1, 0], float(motion.spine_radius[0]),
@@ -568,25 +571,21 @@ def _segment_plates(spine: NDArray[np.float64], tangent: NDArray[np.float64], ra
     the spine (T, S, 3) at the pair's place along it, :data:`PLATE_SHAPE` of the trunk's
     radius there (``radius`` (S,)) across and up and of the gap to the next pair along."""
     centre, ahead, r = _on_spine(spine, tangent, radius, rig.girdle_position)  # (T, G, 3), (T, G, 3), (G,)
-    gap = rig.body.length * np.abs(np.gradient(rig.girdle_position)) if rig.girdle_position.size > 1 \
-        else np.full(1, 0.1)
+    gap = rig.body.length * np.abs(np.gradient(rig.girdle_position))  # (a segmented trunk has many pairs)
     radii = np.stack([PLATE_SHAPE[0] * r, PLATE_SHAPE[1] * r, PLATE_SHAPE[2] * gap], axis=-1)  # (G, 3)
     return _ellipsoids(centre, ahead, radii, color)
 
 
-def _beak(skull: NDArray[np.float64], nose: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig,
-          color: NDArray[np.float64]) -> NDArray[np.float64]:
+def _beak(nose: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig, color: NDArray[np.float64]
+          ) -> NDArray[np.float64]:
     """A bird's beak (T, 1, 18): broad, flat and round-tipped, ``body.beak`` long back from
-    the head's tip ``nose`` (T, 3), and on back into the skull (centre ``skull`` (T, 3))
-    where the head is longer than its skull and beak (it took the muzzle's place, and a
-    short one floated ahead of the face); none (T, 0, 18) without one."""
-    if rig.body.beak <= 0:
+    the head's tip ``nose`` (T, 3) (a muzzle bridges a short one to the skull); none
+    (T, 0, 18) without one."""
+    length = rig.body.beak
+    if length <= 0:
         return np.zeros((nose.shape[0], 0, ELLIPSOID_FLOATS))
-    face = np.sum((nose - skull) * head_dir, axis=-1, keepdims=True) - BEAK_INTO * rig.body.head_radius
-    length = np.maximum(rig.body.beak, face)  # (T, 1)
-    shape = np.array([BEAK_SHAPE[0] * rig.body.head_radius, BEAK_SHAPE[1] * rig.body.head_radius])
-    radii = np.concatenate([np.broadcast_to(shape, length.shape[:-1] + (2,)), 0.5 * length], axis=-1)
-    return _ellipsoids((nose - 0.5 * length * head_dir)[:, None], head_dir[:, None], radii[:, None], color)
+    radii = np.array([BEAK_SHAPE[0] * rig.body.head_radius, BEAK_SHAPE[1] * rig.body.head_radius, 0.5 * length])
+    return _ellipsoids((nose - 0.5 * length * head_dir)[:, None], head_dir[:, None], radii, color)
 
 
 def _wings(spine: NDArray[np.float64], tangent: NDArray[np.float64], radius: NDArray[np.float64], rig: Rig,
@@ -675,7 +674,7 @@ def _glutes(hips: NDArray[np.float64], tangent: NDArray[np.float64], radius: flo
     up = tangent[:, None]
     at, (r_across, r_up, r_back) = GLUTE[:3], GLUTE[3:]
     centre = hips + radius * (at[0] * inward + at[1] * back - at[2] * up)
-    x = np.broadcast_to(across[:, None], centre.shape)
+    x = np.broadcast_to(cross(back, up), centre.shape)  # the hips' line, square to the trunk
     y = np.broadcast_to(back, centre.shape)
     z = np.broadcast_to(up, centre.shape)
     radii = np.broadcast_to(radius * np.array([r_across, r_back, r_up]), centre.shape)
@@ -760,10 +759,14 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     nose = head[:, 1]
     # Long heads (a horse's: over four skull radii) keep a broad muzzle; short ones taper.
     long_head = _long_head(rig)
-    beak = _beak(skull, nose, head_dir, rig, colors.beak)
-    muzzle = _capsules(skull[:, None], (nose - head_dir * 0.3 * head_radius)[:, None],
+    beak = _beak(nose, head_dir, rig, colors.beak)
+    # A beak takes the muzzle's place; a muzzle still bridges a short one to the skull (a
+    # feathered face), or it floated ahead of the face.
+    face = float(np.min(np.sum((nose - skull) * head_dir, axis=-1))) - BEAK_INTO * head_radius
+    end = max(0.3 * head_radius, rig.body.beak)
+    muzzle = _capsules(skull[:, None], (nose - head_dir * end)[:, None],
                        (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius,
-                       neck_color)[:, :0 if beak.shape[1] else 1]  # a beak takes the muzzle's place
+                       neck_color)[:, :0 if beak.shape[1] and rig.body.beak >= face - 1e-6 else 1]
     tail_base = 0.32 * r[0] if rig.body.tail_radius is None else rig.body.tail_radius
     hair = rig.body.mane > 0 and rig.four_legged_mammal  # a maned animal's tail is hair, full to its end
     plumes = rig.body.wings > 0  # a bird's tail is feathers, in a tuft

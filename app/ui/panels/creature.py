@@ -69,7 +69,9 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
             slider(state, pc, f"{p}.ankle_lift", "ankle lift", 0.0, 90.0, "%.1f deg")
             imgui.begin_disabled(model)  # a rigged model's bones are its own
             slider(state, pc, f"{p}.toe", "toe", 0.0, 0.3, "%.3f m")
+            imgui.begin_disabled(state.get(f"{p}.knee") == "out")  # a sprawled leg's foot is its last segment
             int_slider(state, pc, f"{p}.toes", "splayed toes", 0, 4)
+            imgui.end_disabled()
             slider(state, pc, f"{p}.femur", "femur", 0.02, 1.0, "%.3f m")
             slider(state, pc, f"{p}.tibia", "tibia", 0.02, 1.0, "%.3f m")
             slider(state, pc, f"{p}.metatarsus", "metatarsus", 0.01, 0.6, "%.3f m")
@@ -87,7 +89,9 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
         imgui.begin_disabled(model)
         slider(state, pc, "body.wings", "wings", 0.0, 1.0, "%.3f m")
         slider(state, pc, "body.beak", "beak", 0.0, state.spec.body.head_length, "%.3f m")  # at most the head
+        imgui.begin_disabled(state.spec.body.posture == "upright")  # a person has no hump
         slider(state, pc, "body.hump", "hump", 0.0, 0.5, "%.3f m")
+        imgui.end_disabled()
         imgui.end_disabled()
         imgui.end_table()
 
