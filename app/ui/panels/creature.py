@@ -85,7 +85,7 @@ def creature_panel(state: ViewerState, pc: PanelContext) -> None:
         slider(state, pc, "body.length", "length", 0.1, 2.5, "%.3f m")
         slider(state, pc, "body.width", "width", 0.03, 1.0, "%.3f m")
         imgui.end_disabled()
-        int_slider(state, pc, "body.segments", "segments", 2, 24)
+        int_slider(state, pc, "body.segments", "segments", 2, 64)  # the schema's range: a centipede has 30
         imgui.begin_disabled(model)
         slider(state, pc, "body.wings", "wings", 0.0, 1.0, "%.3f m")
         slider(state, pc, "body.beak", "beak", 0.0, state.spec.body.head_length, "%.3f m")  # at most the head
