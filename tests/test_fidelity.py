@@ -221,6 +221,27 @@ def test_a_theropod_slowing_to_a_walk_keeps_its_elbows_through_the_switch() -> N
         assert accel[int(switch) - 24:int(switch) + 24].max() / 9.81 < 5.0
 
 
+def test_a_horse_walking_before_it_gallops_nods_as_a_walker() -> None:
+    """A clip whose gait changes is solved in one pass with its last gait's rig: the nod was
+    timed by that gait's offsets, so a horse that walked and then galloped swung its neck
+    once a stride all through (a gallop's swing, 9 degrees, on a walk). The nod follows the
+    fore feet's own phases now: twice a walking stride."""
+    from numpy.fft import rfft
+
+    from app.kinematics.speed import gait_at_speed, simulate_speed
+
+    rig = build_rig(load_creature("horse"))
+    fps = 60.0
+    motion, gaits = simulate_speed(rig, np.concatenate([np.full(240, 1.6), np.linspace(1.6, 9.0, 240)]), fps)
+    assert gaits[100] == "walk" and gaits[-1] == "gallop"
+    d = motion.head[:, 1] - motion.head[:, 0]
+    pitch = np.arctan2(d[:, 1], np.linalg.norm(d[:, [0, 2]], axis=-1))[60:240]  # the steady walk
+    spectrum = np.abs(rfft(pitch - pitch.mean()))
+    period = len(pitch) / (np.argmax(spectrum[1:]) + 1)  # frames
+    stride = fps / gait_at_speed(rig, 1.6).gait.frequency
+    assert period == pytest.approx(stride / 2, rel=0.15)
+
+
 def test_a_height_jump_settles_from_its_height_and_speed_to_rest() -> None:
     from app.kinematics.poses import HEIGHT_SETTLE, settle
 

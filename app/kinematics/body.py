@@ -290,9 +290,12 @@ def _knots(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64]):
     return pos, points, heading, yaw
 
 
-def head_nod(rig: Rig, clock: NDArray[np.float64]) -> NDArray[np.float64] | float:
+def head_nod(rig: Rig, clock: NDArray[np.float64], phase: NDArray[np.float64] | None = None
+             ) -> NDArray[np.float64] | float:
     """How far (rad, + down) a quadruped bows its neck and head at cycle time ``clock``
-    (T,). Where the fore feet alternate (walk, trot) it nods twice a stride, lowest
+    (T,), timed by its fore feet's phases ``phase`` (T, L) when given (else by the gait's
+    offsets: a clip whose gait changes, a speed ramp, nodded all through with its last
+    gait's timing, a walk with a gallop's swing). Where the fore feet alternate (walk, trot) it nods twice a stride, lowest
     :data:`NOD_DELAY` of a cycle after each fore foot lands (as it takes the weight), by up
     to :data:`NOD`; where they land together or in quick succession (gallops, canter,
     bounds) the neck swings once a stride, lowest :data:`SWING_DELAY` after the fore feet
@@ -302,21 +305,26 @@ def head_nod(rig: Rig, clock: NDArray[np.float64]) -> NDArray[np.float64] | floa
     front = np.nonzero(rig.girdle == 0)[0]  # the fore pair
     if rig.body.upright or len(front) != 2 or np.any(rig.knee_out[front]) or rig.leg_count < 4:
         return 0.0
-    left, right = rig.gait.offsets[front]
-    apart = abs(np.mod(right - left, 1.0) - 0.5)  # 0 when the fore feet alternate
-    alternate = float(np.clip(1.0 - apart / 0.15, 0.0, 1.0))
+    if phase is None:
+        left, right = rig.gait.offsets[front]
+        since_left = np.asarray(clock) - left  # cycles since the left fore foot landed
+        behind = np.mod(right - left, 1.0)  # the right fore foot's landing after the left's (cycles)
+    else:
+        since_left = phase[:, front[0]]
+        behind = np.mod(phase[:, front[0]] - phase[:, front[1]], 1.0)
+    apart = np.abs(behind - 0.5)  # 0 when the fore feet alternate
+    alternate = np.clip(1.0 - apart / 0.15, 0.0, 1.0)
     size = float(np.clip(rig.body.neck_length / max(rig.hip_height, 1e-6), 0.0, 1.0))
-    t = np.asarray(clock)
-    nod = NOD * alternate * np.cos(4.0 * np.pi * (t - left - NOD_DELAY))
-    # The fore feet's mean touchdown, on the circle (they may straddle the cycle's start).
-    together = left + 0.5 * (np.mod(right - left + 0.5, 1.0) - 0.5)
-    swing = SWING * (1.0 - alternate) * np.cos(2.0 * np.pi * (t - together - SWING_DELAY))
+    nod = NOD * alternate * np.cos(4.0 * np.pi * (since_left - NOD_DELAY))
+    # Since the fore feet's mean touchdown, on the circle (they may straddle the cycle's start).
+    since_both = since_left - 0.5 * (np.mod(behind + 0.5, 1.0) - 0.5)
+    swing = SWING * (1.0 - alternate) * np.cos(2.0 * np.pi * (since_both - SWING_DELAY))
     return size * (nod + swing)
 
 
 def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float64], rear: NDArray[np.float64],
                 d_rear: NDArray[np.float64], yaw_rear: NDArray[np.float64], clock: NDArray[np.float64],
-                lag: Mapping[str, NDArray[np.float64]] | None):
+                lag: Mapping[str, NDArray[np.float64]] | None, phase: NDArray[np.float64] | None = None):
     """Neck (T, 2, 3) and head (T, 2, 3) off the trunk's front end (T, 3) along its tangent
     there, tail (T, K+1, 3) off the rear end. ``lag`` gives, per part (head, neck, tail),
     how far (m) the body stood higher (+) a delay ago than now: the part follows through,
@@ -328,7 +336,7 @@ def _appendages(rig: Rig, front: NDArray[np.float64], d_front: NDArray[np.float6
         value = lag.get(part)
         return 0.0 if value is None else np.arctan2(value, max(length, 1e-3))
 
-    bow = head_nod(rig, clock)
+    bow = head_nod(rig, clock, phase)
     neck_dir = pitch(d_front, body.neck_angle + follow("neck", body.neck_length) - bow)
     neck_top = front + body.neck_length * neck_dir
     head_dir = pitch(d_front, -body.head_angle + follow("head", body.head_length) - bow)
@@ -431,12 +439,14 @@ def _equal_arc_segments(ctrl: NDArray[np.float64], ext_rear: float, ext_front: f
 
 def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float64],
                   clock: NDArray[np.float64], lag: Mapping[str, NDArray[np.float64]] | None = None,
-                  flex: NDArray[np.float64] | None = None, running: NDArray[np.float64] | None = None) -> Spine:
+                  flex: NDArray[np.float64] | None = None, running: NDArray[np.float64] | None = None,
+                  phase: NDArray[np.float64] | None = None) -> Spine:
     """The trunk, neck, head and tail for girdles placed by :func:`place_girdles` (``lag``:
     see :func:`_appendages`). ``flex`` (T,) rad arches the spine up (+) or hollows it (-):
     the tangents at its knots turn by ``flex * (0.5 - position)``, so the rear end's and
     the front end's directions differ by ``flex``. ``running`` (T,) in [0, 1]: how far an
-    upright trunk takes a runner's extra lean (:data:`RUN_LEAN`)."""
+    upright trunk takes a runner's extra lean (:data:`RUN_LEAN`). ``phase`` (T, L): the feet's
+    phases, which time a quadruped's nod (:func:`head_nod`)."""
     if rig.body.upright:
         return _upright_spine(rig, girdles, clock, lag, running)
     body = rig.body
@@ -476,7 +486,7 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
     rear = bezier(ctrl[:, 0], np.full((frames, 1), -0.6 * ext_rear))[:, 0]
     if rig.four_legged_mammal:  # a mammal's tail is set high, at the top of the croup
         rear = rear + UP * TAIL_SET * body.radius[0]
-    neck, head, tail = _appendages(rig, front, tangent[:, -1], rear, tangent[:, 0], yaw[:, 0], clock, lag)
+    neck, head, tail = _appendages(rig, front, tangent[:, -1], rear, tangent[:, 0], yaw[:, 0], clock, lag, phase)
 
     # The root: the middle of the trunk (position 0.5) and its direction there, on the
     # spine as the path shapes it (the girdles' yaw, a sway of the trunk about the root,

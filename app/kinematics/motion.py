@@ -299,7 +299,7 @@ def solve_motion(rig: Rig, world: World, inputs: MotionInputs, fps: float = 60.0
     if inputs.running_shift is not None:
         running = np.clip(running + inputs.running_shift, 0.0, 1.0)
     spine = spine_through(rig, world, girdles, inputs.travel, inputs.clock, lag, flex=None if trunk is None else trunk[0],
-                          running=running if rig.body.upright else None)
+                          running=running if rig.body.upright else None, phase=plan.phase)
     ear_lag = np.arctan2(lag["ears"], max(rig.body.ear_length, 1e-3)) if "ears" in lag else np.zeros(frames)
 
     # 4. Hips beside the girdle centres, then the legs in their own frames.
