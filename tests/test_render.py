@@ -163,6 +163,7 @@ def test_an_eye_just_below_the_floor_beyond_its_edge_sees_the_creature_and_the_s
     distances = np.linspace(1.0, 12.0, 2000)
     away = [np.hypot(*(np.asarray(replace(base, elevation=-5.0, azimuth=45.0, distance=d).eye)[[0, 2]]
                        - centre[[0, 2]])) for d in distances]
+    assert np.max(away) > beyond * reach
     camera = replace(base, elevation=-5.0, azimuth=45.0,
                      distance=float(distances[np.argmax(np.array(away) > beyond * reach)]))
     assert camera.eye[1] < 0.0
@@ -590,7 +591,10 @@ def test_a_short_beak_still_meets_the_face() -> None:
         muzzle = caps[np.linalg.norm(caps[:, 0:3] - skull[0:3], axis=1) < 1e-5]
         assert len(muzzle) == (1 if bridged else 0), overrides
         if bridged:
-            assert np.linalg.norm(muzzle[0, 3:6] - back) < 1e-5  # from the skull to the beak
+            # From the skull to the beak: its round end (as deep as the beak) reaches into the
+            # beak's back, not over the beak itself.
+            gap = np.linalg.norm(muzzle[0, 3:6] - back)
+            assert muzzle[0, 7] <= beak[13] + 1e-6 and 0.0 < gap < muzzle[0, 7]
         else:
             inside = np.sum(((back - skull[0:3]) @ np.stack([skull[3:6], skull[6:9], skull[9:12]]).T
                              / skull[12:15]) ** 2)
@@ -667,11 +671,13 @@ def test_a_bear_has_a_shoulder_hump_that_moves_with_its_trunk() -> None:
 
 def test_a_mammal_has_a_dark_nose_drawn_on_its_skin() -> None:
     """A dog's, cat's or bear's muzzle ended in its coat: a dark nose now sits over the
-    tip, drawn on the skinned body as the eyes are (not in its surface); a horse's long
-    head (a soft muzzle) and a bird have none."""
+    tip, drawn on the skinned body as the eyes are (not in its surface), smaller on a
+    deer's longer head; a horse's long head (a soft muzzle) and a bird have none, and a
+    head lengthened towards a horse's shrinks the nose away rather than dropping it."""
     from app.render.scene import NOSE_COLOR, Ell, skin_overlays
 
-    for name, has in (("dog", True), ("bear", True), ("horse", False), ("bird", False), ("human", False)):
+    for name, has in (("dog", True), ("bear", True), ("deer", True), ("horse", False), ("bird", False),
+                      ("human", False)):
         rig = build_rig(load_creature(name))
         motion = simulate(rig, 0.2, 30.0, world=IN_PLACE)
         ells = motion_instances(motion, show_joints=False, by_side=False).frame(0).ellipsoids.astype(np.float64)
@@ -683,3 +689,10 @@ def test_a_mammal_has_a_dark_nose_drawn_on_its_skin() -> None:
             assert np.min(np.linalg.norm(on_skin - noses[0, 0:3], axis=1)) < 1e-6  # left out of the surface
             skin = motion_instances(motion, show_joints=False, parts=False).frame(0).ellipsoids.astype(np.float64)
             assert np.any(np.all(np.abs(skin[:, Ell.COLOR] - NOSE_COLOR) < 1e-6, axis=1))  # and drawn over it
+    sizes = []
+    for length in np.linspace(0.2, 0.4, 41):  # the dog's head lengthened step by step
+        rig = build_rig(load_creature("dog").with_overrides({"body.head_length": float(length)}))
+        ells = motion_instances(simulate(rig, 0.1, 30.0, world=IN_PLACE), show_joints=False).frame(0).ellipsoids
+        noses = ells[np.all(np.abs(ells[:, Ell.COLOR] - NOSE_COLOR) < 1e-6, axis=1)]
+        sizes.append(float(noses[0, 12] / rig.body.head_radius) if len(noses) else 0.0)
+    assert sizes[0] > 0.2 and sizes[-1] == 0.0 and np.abs(np.diff(sizes)).max() < 0.02  # shrinks, never drops

@@ -52,6 +52,7 @@ ELLIPSOID_FLOATS = Ell.FLOATS
 _LEG_TAPER = np.array([1.15, 0.78, 0.55, 0.5, 0.38])
 NOSE_COLOR = np.array([0.03, 0.025, 0.025])  # a mammal's bare nose (drawn on a skinned body, like the eyes)
 NOSE_SHAPE = (0.24, 0.17, 0.14)  # of the head's radius: a nose's half width, height and depth
+NOSE_GONE = 0.7  # of a long head's measure (_long_head: 0 up to 3.5 head radii long, 1 from 5): no nose from here
 NOSE_AT = (-0.06, 0.1)  # of the head's radius: its centre from the head's tip, ahead (-: back) and up
 EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (drawn on a skinned body, not in it: skin_overlays)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
@@ -487,15 +488,17 @@ def _skull(head: NDArray[np.float64], rig: Rig) -> tuple[NDArray[np.float64], ND
 def _nose(tip: NDArray[np.float64], head_dir: NDArray[np.float64], rig: Rig) -> NDArray[np.float64]:
     """A four-legged mammal's nose (T, 1, 18): a dark, flattened ellipsoid over the end of
     its muzzle (the head's tip ``tip`` (T, 3)), wider than tall, a little above its axis
-    (a dog's or a bear's; a long head's, a horse's, is a soft muzzle with no bare nose);
-    none (T, 0, 18) for other creatures."""
-    if not (rig.four_legged_mammal and rig.body.beak <= 0 and _long_head(rig) <= 0):
+    (a dog's, a bear's, smaller on a deer's longer head; a horse's long head is a soft
+    muzzle with no bare nose: the nose shrinks away as the head lengthens, so a head's
+    length slider never makes it vanish at once); none (T, 0, 18) for other creatures."""
+    size = 1.0 - _long_head(rig) / NOSE_GONE
+    if not (rig.four_legged_mammal and rig.body.beak <= 0 and size > 0):
         return np.zeros((tip.shape[0], 0, ELLIPSOID_FLOATS))
     hr = rig.body.head_radius
     _, up, _ = _frame_axes(head_dir)
     ahead, above = NOSE_AT
     centre = tip + head_dir * ahead * hr + up * above * hr
-    return _ellipsoids(centre[:, None], head_dir[:, None], np.array(NOSE_SHAPE) * hr, NOSE_COLOR)
+    return _ellipsoids(centre[:, None], head_dir[:, None], np.array(NOSE_SHAPE) * hr * size, NOSE_COLOR)
 
 
 def _eye_kind(rig: Rig) -> str:
@@ -725,7 +728,7 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     if not parts and rig.model:  # the user's model is drawn instead, with its own eyes
         return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
                               ellipsoids=np.zeros((frames, 0, ELLIPSOID_FLOATS), np.float32), ellipsoid_casters=0)
-    if not parts:  # a skinned body is drawn instead: only the eyes, the mane and the joint markers
+    if not parts:  # a skinned body is drawn instead: only the eyes, the nose, the mane and the joint markers
         skull, head_dir = _skull(head, rig)
         on_skin = [_eyes(skull, head_dir, rig), _nose(head[:, 1], head_dir, rig),
                    _mane_rows(neck, spine_radius, rig)] + markers
@@ -763,10 +766,13 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     # A beak takes the muzzle's place; a muzzle still bridges a short one to the skull (a
     # feathered face), or it floated ahead of the face.
     face = float(np.min(np.sum((nose - skull) * head_dir, axis=-1))) - BEAK_INTO * head_radius
-    end = max(0.3 * head_radius, rig.body.beak)
-    muzzle = _capsules(skull[:, None], (nose - head_dir * end)[:, None],
-                       (0.62 + 0.1 * long_head) * head_radius, (0.34 + 0.22 * long_head) * head_radius,
-                       neck_color)[:, :0 if beak.shape[1] and rig.body.beak >= face - 1e-6 else 1]
+    tip_r = (0.34 + 0.22 * long_head) * head_radius
+    end = 0.3 * head_radius
+    if beak.shape[1]:  # a bridge as deep as the beak, its round end short of it (it buried a short beak)
+        tip_r = BEAK_SHAPE[1] * head_radius
+        end = rig.body.beak + 0.5 * tip_r
+    muzzle = _capsules(skull[:, None], (nose - head_dir * end)[:, None], (0.62 + 0.1 * long_head) * head_radius,
+                       tip_r, neck_color)[:, :0 if beak.shape[1] and rig.body.beak >= face - 1e-6 else 1]
     tail_base = 0.32 * r[0] if rig.body.tail_radius is None else rig.body.tail_radius
     hair = rig.body.mane > 0 and rig.four_legged_mammal  # a maned animal's tail is hair, full to its end
     plumes = rig.body.wings > 0  # a bird's tail is feathers, in a tuft

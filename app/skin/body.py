@@ -107,7 +107,7 @@ def bind_joints(starts: NDArray[np.float64], ends: NDArray[np.float64] | None, c
 
 def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The first frame's capsules (C, 8: a, b, r0, r1) and ellipsoids (E, 15: centre,
-    axes, radii), without joint markers, eyes or mane, and each part's colour (C + E, 3;
+    axes, radii), without joint markers, eyes, nose or mane, and each part's colour (C + E, 3;
     linear): the coat, or the look's colour of a part that differs from it (hooves, feet,
     neck, beak, feathers)."""
     from ..render.scene import Cap, Ell, motion_instances, skin_overlays
@@ -115,7 +115,7 @@ def _parts(motion: Motion) -> tuple[NDArray[np.float64], NDArray[np.float64], ND
     frame = motion_instances(motion, show_joints=False, by_side=False).frame(0)
     caps = np.asarray(frame.capsules, np.float64)
     ells = np.asarray(frame.ellipsoids, np.float64)
-    on_skin = skin_overlays(motion)  # the eyes and the mane sit on the skin (found by where they are)
+    on_skin = skin_overlays(motion)  # the eyes, nose and mane sit on the skin (found by where they are)
     if len(ells) and len(on_skin):
         ells = ells[np.min(np.linalg.norm(ells[:, None, Ell.CENTRE] - on_skin[None], axis=-1), axis=1) > 1e-4]
     capsules = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], caps[:, Cap.RADII]], axis=1) if len(caps) \
