@@ -152,18 +152,14 @@ def test_a_run_at_any_speed_flies_without_a_jolt(speed: float) -> None:
     assert np.abs(accel[10:]).max() < 3.0
 
 
-def test_a_runner_slowing_to_a_walk_keeps_its_height_and_speed_through_the_switch() -> None:
-    """A foot takes the walk's duty factor at its touchdown, and the body's height follows
-    the duty at once: from the run's last flight to the walk's contact pose it dropped 2.4 cm
-    in one 240 fps frame (41 g); the run's forward lean went at once too, the chest and head
-    moving 4 cm over the hips in one frame (80 g). Both jumps are now eased away
-    (inertialization): within 0.1 s of every change of duty the hips' height, and the chest
-    and head about the hips, accelerate under 3 g."""
+def _slowing_to_a_walk(rig):
+    """The live motion of ``rig`` slowing from 4 to 1 m/s over 8 s at 240 fps (each frame
+    with the gait its speed calls for), and the frames at which the reference foot took a
+    walk's duty factor."""
     from app.kinematics.live import LiveMotion, stack_inputs
     from app.kinematics.motion import solve_motion
     from app.kinematics.speed import gait_at_speed
 
-    rig = build_rig(load_creature("human"))
     speeds = np.linspace(4.0, 1.0, 240 * 8)
     current = gait_at_speed(rig, float(speeds[0]))
     live, gait, frames = LiveMotion(current), current.gait.preset, []
@@ -177,7 +173,17 @@ def test_a_runner_slowing_to_a_walk_keeps_its_height_and_speed_through_the_switc
     inputs = stack_inputs(frames)
     motion = solve_motion(live.rig, live.world, inputs, fps=240.0)
     duty = inputs.plan.duty[:, -2]
-    switches = np.nonzero((duty[1:] >= 0.5) & (duty[:-1] < 0.5))[0] + 1
+    return motion, np.nonzero((duty[1:] >= 0.5) & (duty[:-1] < 0.5))[0] + 1
+
+
+def test_a_runner_slowing_to_a_walk_keeps_its_height_and_speed_through_the_switch() -> None:
+    """A foot takes the walk's duty factor at its touchdown, and the body's height follows
+    the duty at once: from the run's last flight to the walk's contact pose it dropped 2.4 cm
+    in one 240 fps frame (41 g); the run's forward lean went at once too, the chest and head
+    moving 4 cm over the hips in one frame (80 g). Both jumps are now eased away
+    (inertialization): within 0.1 s of every change of duty the hips' height, and the chest
+    and head about the hips, accelerate under 3 g."""
+    motion, switches = _slowing_to_a_walk(build_rig(load_creature("human")))
     assert len(switches) == 1
     pelvis = motion.joints[:, -2:, 0, 1].mean(axis=1)
     accel = np.gradient(np.gradient(pelvis, 1 / 240), 1 / 240) / 9.81
@@ -194,26 +200,9 @@ def test_a_theropod_slowing_to_a_walk_keeps_its_elbows_through_the_switch() -> N
     """A body without key-pose heights (the theropod's [poses] sets only its arm swing) took
     no easing at all: its elbows opened from a run's bend in one frame (the wrist 49 mm over
     the hips, 72 g). The run's weight is eased for every body."""
-    from app.kinematics.live import LiveMotion, stack_inputs
-    from app.kinematics.motion import solve_motion
-    from app.kinematics.speed import gait_at_speed
-
     rig = build_rig(load_creature("theropod"))
     assert rig.poses.heights is None
-    speeds = np.linspace(4.0, 1.0, 240 * 8)
-    current = gait_at_speed(rig, float(speeds[0]))
-    live, gait, frames = LiveMotion(current), current.gait.preset, []
-    for i, v in enumerate(speeds):
-        if i:
-            target = gait_at_speed(rig, float(v), gait)
-            gait = target.gait.preset
-            live.set_rig(target)
-            live.step(1 / 240)
-        frames.append(live.frame_inputs())
-    inputs = stack_inputs(frames)
-    motion = solve_motion(live.rig, live.world, inputs, fps=240.0)
-    duty = inputs.plan.duty[:, -2]
-    switches = np.nonzero((duty[1:] >= 0.5) & (duty[:-1] < 0.5))[0] + 1
+    motion, switches = _slowing_to_a_walk(rig)
     assert len(switches) >= 1
     wrist = motion.arms[:, :, 2] - motion.joints[:, -2:, 0].mean(axis=1)[:, None]
     accel = np.linalg.norm(np.gradient(np.gradient(wrist, 1 / 240, axis=0), 1 / 240, axis=0), axis=-1).max(axis=1)
