@@ -15,7 +15,7 @@ from app.render.camera import Camera, frame_points
 from app.render.clip import ClipRenderer
 from app.render.framing import clip_camera, loop_grid_spacing
 from app.render.lighting import SKY_FADE, sky_band
-from app.render.options import RenderOptions, ViewSettings
+from app.render.options import GroundView, RenderOptions, ViewSettings
 from app.render.scene import motion_bounds, motion_instances, srgb_to_linear
 from app.spec import SpecError
 
@@ -171,6 +171,36 @@ def test_an_eye_just_below_the_floor_beyond_its_edge_sees_the_creature_and_the_s
     dog = ((image[..., 0] - image[..., 2]) > 50).sum()  # orange-brown
     sky = ((image[..., 2] - image[..., 0]) > 8).sum()  # bluish
     assert dog > 100 and sky > 0.25 * image.shape[0] * image.shape[1], (dog, sky)
+
+
+def test_the_creatures_bounds_count_a_skinned_body_drawn_without_joint_markers(renderer) -> None:
+    """The fog and the floor are centred on the creatures' bounds: without joint markers a
+    skinned dog's bounds came from its eyes and nose alone (centred near its head)."""
+    from app.render.renderer import creature_bounds
+
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    flat = GroundView().terrain
+    with_joints = creature_bounds(renderer._instances(motion, RenderOptions()).frame(4), flat)
+    bare = creature_bounds(renderer._instances(motion, RenderOptions(joints=False)).frame(4), flat)
+    hip, shoulder = motion.joints[4, 2:, 0].mean(axis=0), motion.joints[4, :2, 0].mean(axis=0)
+    assert abs(bare[0][2] - 0.5 * (hip + shoulder)[2]) < 0.15  # between the girdles, not at the head
+    assert np.allclose(bare[0], with_joints[0], atol=0.05) and abs(bare[1] - with_joints[1]) < 0.05
+
+
+def test_an_eye_below_the_floor_sees_through_it(renderer) -> None:
+    """An eye orbited under the floor's level, inside the floor's disc, sees the dog from
+    below against the sky, not the floor's underside painted as its top (which hid all
+    but its feet)."""
+    from dataclasses import replace
+
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    base = frame_points(motion_bounds(motion), "three-quarter", aspect=SIZE[0] / SIZE[1])
+    camera = replace(base, elevation=-10.0, azimuth=45.0, distance=3.0)
+    assert camera.eye[1] < 0.0
+    image = renderer.frame(motion, 4, camera, RenderOptions()).astype(int)
+    dog = ((image[..., 0] - image[..., 2]) > 50).sum()  # orange-brown (its hooves alone, under a drawn floor)
+    sky = ((image[..., 2] - image[..., 0]) > 8).sum()  # bluish (none, under a drawn floor)
+    assert dog > 400 and sky > 0.25 * image.shape[0] * image.shape[1], (dog, sky)
 
 
 def test_frames_differ_as_the_creature_walks(renderer) -> None:

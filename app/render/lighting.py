@@ -22,13 +22,10 @@ LIGHT_DIR = np.array([-0.45, -1.0, -0.35]) / np.linalg.norm([-0.45, -1.0, -0.35]
 
 
 def creature_bounds(scene: SceneInstances, terrain: Terrain) -> tuple[np.ndarray, float]:
-    """The creatures' box down to the ground: its centre (3,) and half diagonal (m)."""
-    caps, ells = scene.capsules, scene.ellipsoids
-    from .scene import Cap, Ell
-
-    pts = np.concatenate([caps[:, Cap.A], caps[:, Cap.B], ells[:, Ell.CENTRE]])
-    if not len(pts):  # only skinned bodies (a user's model): their joints
-        pts = scene.spheres()[0]
+    """The creatures' box down to the ground: its centre (3,) and half diagonal (m), from
+    the centres of every shape drawn (capsules, ellipsoids and the joints of skinned
+    bodies: a skinned body drawn without joint markers otherwise leaves only its eyes)."""
+    pts = scene.spheres()[0]  # every shape's centre, skinned bodies' joints included
     lo, hi = pts.min(axis=0), pts.max(axis=0)
     lo[1] = 0.0 if terrain.flat else min(float(lo[1]), float(terrain.height(0.5 * (lo + hi)[[0, 2]])))
     centre = 0.5 * (lo + hi)

@@ -342,7 +342,8 @@ class SceneRenderer:
         reach = radius * self.FOG_END * 1.05
         self.ground.set_fog_and_grid(centre, radius, (self.FOG_START, self.FOG_END), ground, options)
         if terrain.flat:
-            self.ground.draw_floor(scene, centre, reach, cast.texel, radius, options)
+            if camera.eye[1] > 0.0:  # an eye under the floor's level sees through it (its underside is not drawn)
+                self.ground.draw_floor(scene, centre, reach, cast.texel, radius, options)
         else:
             self.ground.draw_terrain(terrain, centre, reach, options)
         if options.path and ground.path is not None:
