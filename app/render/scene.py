@@ -171,6 +171,8 @@ def leg_colors(rig: Rig) -> NDArray[np.float64]:
 
 
 HOOF_COLOR = np.array([0.23, 0.2, 0.18]) ** 2  # dark horn (linear)
+HOOF_FROM = 0.1  # of the toe (pastern and hoof) from the fetlock: where the hoof's horn begins
+FETLOCK_UP = 0.8  # of the toe's radius at the fetlock: how far up the cannon the fetlock's (coat) bulge lies
 BEAK_COLOR = np.array([0.66, 0.58, 0.47]) ** 2  # a beak's horn, unless the look gives one (linear)
 BEAK_SHAPE = (0.5, 0.24)  # of the head's radius: a beak's half width and half depth (broad and flat)
 BEAK_INTO = 0.9  # of the head's radius from the skull's centre: where a beak meets the face (a shorter one keeps a muzzle)
@@ -225,16 +227,19 @@ SHOULDER_LINE = 0.42  # of the chest's radius: the thickness of the line from sh
 THIGH_OUT = 0.2  # of its top radius: how far out of the hip joint a person's thigh begins (the femur's neck)
 PERSON_THIGH = 1.6  # of the leg's radius: a person's thigh at its top (the hips ~37 cm across, not a pear)
 NECK_SECTIONS = np.array([0.22, 0.48, 0.72])  # along a mammal's neck, base to head: its deep, flattened sections
+NECK_TAPER = 1.6  # how fast a neck slims from the chest's depth to the head's (1: evenly)
 NECK_WIDTH = 0.6  # of a section's depth: a mammal's neck is deeper than wide
 CREST_DROP = 0.3  # of a section's depth beyond the head's radius: how far it hangs below the crest
 MANE_SHADE = 0.3  # of the body's colour (linear): a mane's darker hair
 MANE_TUFTS = 14  # flattened ellipsoids along the crest, poll to withers, overlapping into one ridge
+MANE_RISE = 0.4  # of the neck from the withers: where a mane reaches its full height (it grows from the back) ...
+MANE_POLL = 0.3  # ... and from the poll, where it falls to a short tuft between the ears
 
 
 def hoof_ends(ball: NDArray[np.float64], toe: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Where a hoof's capsule starts and ends (..., 3) each: from a third of the way along
-    the toe (pastern) to its tip."""
-    return ball + 0.35 * (toe - ball), toe
+    """Where a hoof's capsule starts and ends (..., 3) each: from just below the fetlock
+    (:data:`HOOF_FROM` of the toe) to the toe's tip."""
+    return ball + HOOF_FROM * (toe - ball), toe
 
 
 def skin_overlays(motion) -> NDArray[np.float64]:
@@ -276,8 +281,14 @@ def _neck_top(s: NDArray[np.float64], capsule: tuple[float, float], chest: float
               ) -> NDArray[np.float64]:
     """How far above its axis a mammal's neck's crest runs (m) at fractions ``s`` of it from
     the base: the neck capsule's radius or a deep section's top, whichever is higher."""
-    depth = head_radius + (chest - head_radius) * (1.0 - s)
+    depth = _neck_depth(s, chest, head_radius)
     return np.maximum(capsule[0] + (capsule[1] - capsule[0]) * s, depth - CREST_DROP * (depth - head_radius))
+
+
+def _neck_depth(s: NDArray[np.float64], chest: float, head_radius: float) -> NDArray[np.float64]:
+    """A mammal's neck's half depth (m) at fractions ``s`` of it from the base: the chest's
+    radius there, the head's at the throat, slimming fast out of the breast."""
+    return head_radius + (chest - head_radius) * (1.0 - s) ** NECK_TAPER
 
 
 def _deep_neck(neck: NDArray[np.float64], chest: float, head_radius: float, color: NDArray[np.float64]
@@ -291,7 +302,7 @@ def _deep_neck(neck: NDArray[np.float64], chest: float, head_radius: float, colo
     axis = top - base
     length = np.linalg.norm(axis, axis=-1, keepdims=True)
     s = NECK_SECTIONS[None, :, None]
-    depth = head_radius + (chest - head_radius) * (1.0 - s)
+    depth = _neck_depth(s, chest, head_radius)
     _, y, _ = _frame_axes(np.broadcast_to(axis, (axis.shape[0], s.shape[1], 3)))
     centre = base + s * axis - y * CREST_DROP * (depth - head_radius)
     shape = (axis.shape[0], s.shape[1], 1)
@@ -338,14 +349,16 @@ def _mane(neck: NDArray[np.float64], capsule: tuple[float, float], chest: float,
     base, top = neck[:, :1], neck[:, -1:]
     axis = top - base
     length = np.linalg.norm(axis, axis=-1, keepdims=True)
-    s = np.linspace(0.08, 1.0, MANE_TUFTS)
+    s = np.linspace(0.08, 0.97, MANE_TUFTS)
     _, y, _ = _frame_axes(np.broadcast_to(axis, (axis.shape[0], MANE_TUFTS, 3)))
     crest = _neck_top(s, capsule, chest, head_radius)[None, :, None]
-    centre = base + s[None, :, None] * axis + y * (crest + 0.1 * height)
-    spacing = length / (MANE_TUFTS - 1)
-    radii = np.concatenate([np.full(spacing.shape, 0.15 * height + 0.01), np.full(spacing.shape, 0.55 * height),
-                            1.6 * spacing], axis=-1)
-    return _ellipsoids(centre, axis, np.broadcast_to(radii, centre.shape), color)
+    rise = np.clip(np.minimum((s - s[0]) / MANE_RISE, 0.45 + (1.0 - s) / MANE_POLL), 0.0, 1.0)
+    tall = (height * rise * rise * (3.0 - 2.0 * rise))[None, :, None]  # (1, K, 1): low over the withers and the poll
+    centre = base + s[None, :, None] * axis + y * (crest + 0.1 * tall - 0.25 * (height - tall))
+    spacing = np.broadcast_to(length / (MANE_TUFTS - 1), centre.shape[:-1] + (1,))
+    radii = np.concatenate([np.broadcast_to(0.15 * height + 0.01, spacing.shape),
+                            np.broadcast_to(0.55 * tall + 0.2 * height, spacing.shape), 1.6 * spacing], axis=-1)
+    return _ellipsoids(centre, axis, radii, color)
 
 
 def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Rig,
@@ -410,7 +423,8 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
         else:  # a hoof below the fetlock
             capsules.append(_capsules(*hoof_ends(b, t), 1.25 * rb[:, 3], 1.45 * rb[:, 3], HOOF_COLOR))
             radii_e = np.broadcast_to(1.3 * rb[:, 3:4], b.shape)
-            ellipsoids.append(_ellipsoids(b, t - b, radii_e, c))
+            up = _unit(ankle[:, pick] - b)  # the fetlock's hair sits above the joint, the horn below it
+            ellipsoids.append(_ellipsoids(b + FETLOCK_UP * rb[:, 3:4] * up, t - b, radii_e, c))
     return capsules, ellipsoids
 
 

@@ -40,6 +40,7 @@ INFLUENCES = 4  # joints per vertex
 ROOT_SPREAD = 3.0  # weights this much softer where a leg meets the trunk ...
 ROOT_REACH = 4.0  # ... within this many of the leg's thickest part's radii of its hip ...
 ROOT_BONE = 1.0  # ... and no farther than the next joint down (a horse's thick thigh: four radii reached past the stifle)
+PART_BLEND = 0.5  # of its neighbourhood's mean colour: what a part's vertex beside the coat takes (the coat's: all of it)
 LIMB_BLEND = 0.3  # of the blend width: how softly a leg joins another leg, and an arm the body (no webs)
 
 
@@ -369,8 +370,9 @@ def _colors(normals: NDArray[np.float64], faces: NDArray[np.int64], nearest: NDA
     """Each vertex's colour (V, 3), linear: the colour (of ``part_colors`` (P, 3)) of the
     part ``nearest`` (V,) it; a vertex with a neighbour of another colour (along the mesh's
     edges, ``faces`` (F, 3)) takes its neighbourhood's mean, so two colours meet in a soft
-    edge, not a saw-tooth along the triangles, while a small part (a hoof, a couple of
-    rings of vertices) keeps its own colour inside; on the ``coat`` (3,), lighter where the
+    edge, not a saw-tooth along the triangles; where a part meets the coat its vertices
+    take only :data:`PART_BLEND` of the mean, so a small part (a hoof, a couple of rings
+    of vertices) keeps its own colour however coarsely it was simplified; on the ``coat`` (3,), lighter where the
     surface faces down by ``countershade`` (0 to 1) (bare skin, horn and feathers are not
     countershaded)."""
     from scipy.sparse import coo_matrix, identity
@@ -386,7 +388,11 @@ def _colors(normals: NDArray[np.float64], faces: NDArray[np.int64], nearest: NDA
     values = np.concatenate([part_colors[nearest], on_coat[:, None]], axis=1)
     mean = near @ values
     edge = np.any(np.abs(mean[:, :3] - values[:, :3]) > 1e-9, axis=1)  # a neighbour of another colour
-    values = np.where(edge[:, None], mean, values)
+    # Where a part meets the coat, the coat's side of the edge takes the mean and the part's
+    # side only some of it (a hoof two rings of vertices deep stays horn, whatever the
+    # simplification left).
+    share = np.where((values[:, 3] < 0.5) & (mean[:, 3] > 1e-9), PART_BLEND, 1.0)[:, None]
+    values = np.where(edge[:, None], values + share * (mean - values), values)
     base, on_coat = values[:, :3], values[:, 3]
     under = (np.clip(-normals[:, 1], 0.0, 1.0) * on_coat)[:, None]
     light = base + (1.0 - base) * 0.5
