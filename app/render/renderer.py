@@ -341,14 +341,17 @@ class SceneRenderer:
         self.ctx.disable(moderngl.CULL_FACE)
         reach = radius * self.FOG_END * 1.05
         self.ground.set_fog_and_grid(centre, radius, (self.FOG_START, self.FOG_END), ground, options)
+        # An eye under a flat floor's level sees through it: the floor, its shadow and what
+        # lies on it (the path, footprints) are not drawn from below.
+        on_floor = not terrain.flat or camera.eye[1] > 0.0
         if terrain.flat:
-            if camera.eye[1] > 0.0:  # an eye under the floor's level sees through it (its underside is not drawn)
+            if on_floor:
                 self.ground.draw_floor(scene, centre, reach, cast.texel, radius, options)
         else:
             self.ground.draw_terrain(terrain, centre, reach, options)
-        if options.path and ground.path is not None:
+        if options.path and ground.path is not None and on_floor:
             self.ground.draw_path(ground, reach, radius, options)
-        if overlays is not None:
+        if overlays is not None and on_floor:
             self.ground.draw_overlays(overlays, terrain, options)
         self.ground.draw_sky(camera, aspect, centre, reach, cast.ground_level, options)
         self.ctx.enable_direct(GL_MULTISAMPLE)

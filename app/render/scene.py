@@ -352,12 +352,15 @@ def _mane(neck: NDArray[np.float64], capsule: tuple[float, float], chest: float,
     s = np.linspace(0.08, 0.97, MANE_TUFTS)
     _, y, _ = _frame_axes(np.broadcast_to(axis, (axis.shape[0], MANE_TUFTS, 3)))
     crest = _neck_top(s, capsule, chest, head_radius)[None, :, None]
-    rise = np.clip(np.minimum((s - s[0]) / MANE_RISE, 0.45 + (1.0 - s) / MANE_POLL), 0.0, 1.0)
+    rise = np.clip(np.minimum((s - s[0]) / MANE_RISE, 0.2 + (s[-1] - s) / MANE_POLL), 0.0, 1.0)
     tall = (height * rise * rise * (3.0 - 2.0 * rise))[None, :, None]  # (1, K, 1): low over the withers and the poll
-    centre = base + s[None, :, None] * axis + y * (crest + 0.1 * tall - 0.25 * (height - tall))
+    # Each tuft from 0.45 of the height under the crest (inside the neck) to 0.65 of its own
+    # height above it.
+    reach, root = 0.65 * tall, 0.45 * height
+    centre = base + s[None, :, None] * axis + y * (crest + 0.5 * (reach - root))
     spacing = np.broadcast_to(length / (MANE_TUFTS - 1), centre.shape[:-1] + (1,))
     radii = np.concatenate([np.broadcast_to(0.15 * height + 0.01, spacing.shape),
-                            np.broadcast_to(0.55 * tall + 0.2 * height, spacing.shape), 1.6 * spacing], axis=-1)
+                            np.broadcast_to(0.5 * (reach + root), spacing.shape), 1.6 * spacing], axis=-1)
     return _ellipsoids(centre, axis, radii, color)
 
 

@@ -40,7 +40,8 @@ INFLUENCES = 4  # joints per vertex
 ROOT_SPREAD = 3.0  # weights this much softer where a leg meets the trunk ...
 ROOT_REACH = 4.0  # ... within this many of the leg's thickest part's radii of its hip ...
 ROOT_BONE = 1.0  # ... and no farther than the next joint down (a horse's thick thigh: four radii reached past the stifle)
-PART_BLEND = 0.5  # of its neighbourhood's mean colour: what a part's vertex beside the coat takes (the coat's: all of it)
+PART_BLEND = 0.5  # of its neighbourhood's mean colour: what a small patch's vertex beside the coat takes ...
+SMALL_PATCH = 160  # ... in a patch of one colour of fewer vertices than this (a hoof; a bird's wing or legs blend fully)
 LIMB_BLEND = 0.3  # of the blend width: how softly a leg joins another leg, and an arm the body (no webs)
 
 
@@ -370,9 +371,10 @@ def _colors(normals: NDArray[np.float64], faces: NDArray[np.int64], nearest: NDA
     """Each vertex's colour (V, 3), linear: the colour (of ``part_colors`` (P, 3)) of the
     part ``nearest`` (V,) it; a vertex with a neighbour of another colour (along the mesh's
     edges, ``faces`` (F, 3)) takes its neighbourhood's mean, so two colours meet in a soft
-    edge, not a saw-tooth along the triangles; where a part meets the coat its vertices
-    take only :data:`PART_BLEND` of the mean, so a small part (a hoof, a couple of rings
-    of vertices) keeps its own colour however coarsely it was simplified; on the ``coat`` (3,), lighter where the
+    edge, not a saw-tooth along the triangles; where a small patch of one colour
+    (:data:`SMALL_PATCH`: a hoof, a couple of rings of vertices) meets the coat its
+    vertices take only :data:`PART_BLEND` of the mean, so it keeps its own colour however
+    coarsely it was simplified; on the ``coat`` (3,), lighter where the
     surface faces down by ``countershade`` (0 to 1) (bare skin, horn and feathers are not
     countershaded)."""
     from scipy.sparse import coo_matrix, identity
@@ -388,15 +390,31 @@ def _colors(normals: NDArray[np.float64], faces: NDArray[np.int64], nearest: NDA
     values = np.concatenate([part_colors[nearest], on_coat[:, None]], axis=1)
     mean = near @ values
     edge = np.any(np.abs(mean[:, :3] - values[:, :3]) > 1e-9, axis=1)  # a neighbour of another colour
-    # Where a part meets the coat, the coat's side of the edge takes the mean and the part's
-    # side only some of it (a hoof two rings of vertices deep stays horn, whatever the
-    # simplification left).
-    share = np.where((values[:, 3] < 0.5) & (mean[:, 3] > 1e-9), PART_BLEND, 1.0)[:, None]
+    # Where a small patch of one colour (a hoof, a beak: two rings of vertices deep) meets
+    # the coat, the coat's side of the edge takes the mean and the patch's only some of it,
+    # so it keeps its colour whatever the simplification left; larger ones blend fully.
+    small = _small_patches(pairs, values[:, :3], SMALL_PATCH)
+    share = np.where(small & (values[:, 3] < 0.5) & (mean[:, 3] > 1e-9), PART_BLEND, 1.0)[:, None]
     values = np.where(edge[:, None], values + share * (mean - values), values)
     base, on_coat = values[:, :3], values[:, 3]
     under = (np.clip(-normals[:, 1], 0.0, 1.0) * on_coat)[:, None]
     light = base + (1.0 - base) * 0.5
     return (base * (1.0 - countershade * under) + light * countershade * under).astype(np.float32)
+
+
+def _small_patches(pairs: NDArray[np.int64], colors: NDArray[np.float64], limit: int) -> NDArray[np.bool_]:
+    """Whether each vertex lies in a patch of fewer than ``limit`` vertices of its own colour
+    (``colors`` (V, 3); a patch: vertices of one colour joined by the mesh's edges,
+    ``pairs`` (E, 2))."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    count = len(colors)
+    same = np.all(np.abs(colors[pairs[:, 0]] - colors[pairs[:, 1]]) < 1e-9, axis=1)
+    linked = pairs[same]
+    graph = coo_matrix((np.ones(len(linked)), (linked[:, 0], linked[:, 1])), shape=(count, count))
+    _, label = connected_components(graph, directed=False)
+    return np.bincount(label)[label] < limit
 
 
 def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> SkinnedBody:
