@@ -313,6 +313,9 @@ def test_usd_skeleton_animation_reads_back(tmp_path: Path, creature: str, suffix
         position = np.array([[m[3][0], m[3][1], m[3][2]] for m in world_xf])
         assert np.abs(position - clip.world_position[t]).max() < 1e-4
     assert sorted(p.name for p in tmp_path.iterdir()) == [path.name]
+    features = UsdGeom.Mesh(stage.GetPrimAtPath("/Creature/Features"))  # the eyes (and a dog's nose)
+    assert len(features.GetPointsAttr().Get()) >= 2 * 42
+    assert UsdSkel.BindingAPI(features.GetPrim()).GetSkeletonRel().GetTargets() == ["/Creature/Skeleton"]
 
 
 def test_a_clip_of_no_frames_is_refused_and_nothing_written(tmp_path: Path, monkeypatch) -> None:
@@ -372,3 +375,76 @@ def test_the_glb_carries_the_skinned_body_the_viewer_draws(tmp_path: Path, creat
         in_viewer = skinned(body.positions.astype(np.float64), drawn.skin.astype(np.float64), body.joints,
                             body.weights.astype(np.float64))
         assert np.abs(in_file - in_viewer).max() < 1e-4, (creature, frame)
+
+
+@pytest.mark.parametrize("creature", ["horse", "dog", "bird"])
+def test_the_glb_carries_the_eyes_nose_and_mane_where_the_viewer_draws_them(tmp_path: Path, creature: str) -> None:
+    """The features drawn on the skin (eyes, a mammal's nose, a mane) were missing from
+    exports: an eyeless horse with a bare neck in Blender. They are the mesh's second
+    primitive, skinned to the same joints, each feature (an icosphere) centred where the
+    viewer draws its ellipsoid, at the first frame and mid-clip."""
+    import pygltflib
+
+    from app.export import write_glb
+    from app.export.mesh import export_layout
+    from app.render.scene import Ell, _unit, motion_instances
+
+    motion = motion_of(creature, fps=30.0)
+    clip = skeleton_clip(motion, export_layout(motion))
+    path = write_glb(tmp_path / f"{creature}.glb", motion, clip)
+    doc = pygltflib.GLTF2().load(str(path))
+    blob = doc.binary_blob()
+    assert len(doc.meshes) == 1 and len(doc.meshes[0].primitives) == 2
+    attributes = doc.meshes[0].primitives[1].attributes
+
+    def read(index: int, dtype, width: int) -> np.ndarray:
+        view = doc.bufferViews[doc.accessors[index].bufferView]
+        count = doc.accessors[index].count
+        start = view.byteOffset + (doc.accessors[index].byteOffset or 0)
+        return np.frombuffer(blob, dtype=dtype, count=count * width, offset=start).reshape(count, width)
+
+    positions = read(attributes.POSITION, np.float32, 3).astype(np.float64)
+    colors = read(attributes.COLOR_0, np.float32, 3).astype(np.float64)
+    weights = read(attributes.WEIGHTS_0, np.float32, 4).astype(np.float64)
+    joints = read(attributes.JOINTS_0, np.uint16, 4).astype(np.int64)
+    _, world_p, world_r, inverse_bind = glb_world_positions(path, motion.times - motion.times[0], True)
+    drawn = motion_instances(motion, show_joints=False, parts=False)
+    count = len(drawn.frame(0).ellipsoids)
+    assert count == {"horse": 2 + 14, "dog": 3, "bird": 2}[creature]  # eyes, a nose (not the horse's), the mane
+    per = len(positions) // count
+    assert len(positions) == per * count
+    for frame in (0, motion.frame_count // 2):
+        world = np.tile(np.eye(4), (len(world_p[frame]), 1, 1))
+        world[:, :3, :3], world[:, :3, 3] = world_r[frame], world_p[frame]
+        matrices = world @ inverse_bind
+        blended = np.einsum("vk,vkij->vij", weights, matrices[joints])
+        skinned = np.einsum("vij,vj->vi", blended[:, :3, :3], positions) + blended[:, :3, 3]
+        centres = skinned.reshape(count, per, 3).mean(axis=1)
+        rows = np.asarray(drawn.frame(frame).ellipsoids, np.float64)
+        apart = np.linalg.norm(centres - rows[:, Ell.CENTRE], axis=1)
+        assert apart[:2].max() < 0.005 and apart.max() < 0.02, (creature, frame, apart)  # eyes to 5 mm
+        assert np.allclose(colors.reshape(count, per, 3)[:, 0], rows[:, Ell.COLOR], atol=1e-5)
+        # each eye's long axis still runs across the head (its shape turned with it)
+        spread = skinned.reshape(count, per, 3)[0] - centres[0]
+        widest = _unit(spread[np.argmax(np.linalg.norm(spread, axis=1))])
+        across = rows[0, Ell.AXES[0]]
+        assert abs(float(np.dot(widest, across))) > 0.9, (creature, frame)
+
+
+def test_a_glb_export_reads_back_in_its_own_colours(tmp_path: Path) -> None:
+    """Gaitlab read its own export white: the loader took the material's colour and not the
+    vertex colours (COLOR_0) that carry the coat, the hooves and the features. Read back,
+    the horse is chestnut with dark hooves, eyes and mane."""
+    from app.export import write_glb
+    from app.export.mesh import export_layout
+    from app.render.scene import EYE_COLOR, HOOF_COLOR, mane_color, srgb_to_linear
+    from app.rigged.gltf import load_rigged_model
+
+    motion = motion_of("horse", fps=30.0, cycles=0.5)
+    path = write_glb(tmp_path / "horse.glb", motion, skeleton_clip(motion, export_layout(motion)))
+    model = load_rigged_model(path)
+    display = model.colors  # display RGB: the square roots of the linear colours written
+    coat = np.sqrt(srgb_to_linear(motion.rig.look.body_color))
+    for color in (coat, np.sqrt(HOOF_COLOR), np.sqrt(EYE_COLOR), np.sqrt(mane_color(motion.rig))):
+        assert (np.abs(display - color).max(axis=1) < 0.02).sum() > 20, color
+    assert np.median(np.abs(display - coat).max(axis=1)) < 0.15  # mostly coat (lighter below: countershaded)

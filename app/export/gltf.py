@@ -3,7 +3,8 @@ animation with root motion.
 
 The mesh is the creature's skinned body (:mod:`app.skin`: one closed smooth surface,
 what the renderer draws) in the first frame, each vertex bound to up to four joints,
-with vertex colours. Joints are nodes
+with vertex colours, and a second primitive of its features (eyes, nose, mane) skinned
+to the same joints. Joints are nodes
 with their first frame's local transform; the animation moves every joint's rotation and
 the translation of the joints whose offset changes (the root carries the travel).
 Written with pygltflib; checked by the Khronos validator in the tests.
@@ -23,7 +24,8 @@ from ..errors import OutputError
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import SkeletonClip
 from ..output import AtomicPath
-from .mesh import creature_mesh
+from ..skin import SkinnedBody
+from .mesh import creature_features, creature_mesh
 
 
 def continuous_quaternions(rotation: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -96,22 +98,27 @@ def _skinned_mesh(motion: Motion, clip: SkeletonClip, name: str, blob: _Blob, do
     """The creature's skinned body in its bind pose, each vertex bound to up to four
     joints; the index of the mesh and the joints' bind matrices (J, 4, 4)."""
     mesh = creature_mesh(motion, clip)
+    features = creature_features(motion, clip)
+    if not doc.materials or doc.materials[0].name != "creature":
+        doc.materials.insert(0, gl.Material(name="creature", pbrMetallicRoughness=gl.PbrMetallicRoughness(
+            baseColorFactor=[1.0, 1.0, 1.0, 1.0], metallicFactor=0.0, roughnessFactor=0.7)))
+    primitives = [_primitive(part, blob) for part in (mesh, features) if part is not None]
+    doc.meshes.append(gl.Mesh(name=name, primitives=primitives))
+    return len(doc.meshes) - 1, mesh.bind
+
+
+def _primitive(mesh: SkinnedBody, blob: _Blob) -> gl.Primitive:
+    """A skinned mesh's triangles with vertex colours, joints and weights (material 0)."""
     position, normal, color = (a.astype(np.float32) for a in (mesh.positions, mesh.normals, mesh.colors))
-    joints0 = mesh.joints.astype(np.uint16)
-    weights0 = mesh.weights.astype(np.float32)
-    indices = mesh.faces.astype(np.uint32).reshape(-1)
     attributes = gl.Attributes(
         POSITION=blob.add(position, gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER, bounds=True),
         NORMAL=blob.add(normal, gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER),
         COLOR_0=blob.add(color, gl.VEC3, gl.FLOAT, gl.ARRAY_BUFFER),
-        JOINTS_0=blob.add(joints0, gl.VEC4, gl.UNSIGNED_SHORT, gl.ARRAY_BUFFER),
-        WEIGHTS_0=blob.add(weights0, gl.VEC4, gl.FLOAT, gl.ARRAY_BUFFER))
-    if not doc.materials or doc.materials[0].name != "creature":
-        doc.materials.insert(0, gl.Material(name="creature", pbrMetallicRoughness=gl.PbrMetallicRoughness(
-            baseColorFactor=[1.0, 1.0, 1.0, 1.0], metallicFactor=0.0, roughnessFactor=0.7)))
-    doc.meshes.append(gl.Mesh(name=name, primitives=[gl.Primitive(attributes=attributes, material=0, indices=blob.add(
-        indices, gl.SCALAR, gl.UNSIGNED_INT, gl.ELEMENT_ARRAY_BUFFER))]))
-    return len(doc.meshes) - 1, mesh.bind
+        JOINTS_0=blob.add(mesh.joints.astype(np.uint16), gl.VEC4, gl.UNSIGNED_SHORT, gl.ARRAY_BUFFER),
+        WEIGHTS_0=blob.add(mesh.weights.astype(np.float32), gl.VEC4, gl.FLOAT, gl.ARRAY_BUFFER))
+    indices = mesh.faces.astype(np.uint32).reshape(-1)
+    return gl.Primitive(attributes=attributes, material=0,
+                        indices=blob.add(indices, gl.SCALAR, gl.UNSIGNED_INT, gl.ELEMENT_ARRAY_BUFFER))
 
 
 def _skeleton(clip: SkeletonClip, prefix: str, bind: NDArray[np.float64], blob: _Blob, doc: gl.GLTF2

@@ -4,7 +4,8 @@ The stage is Y up in metres at the clip's frame rate. ``/Creature`` is a SkelRoo
 the Skeleton (joints as paths, bind transforms from the body's bind pose, rest transforms
 from the first frame), its SkelAnimation (every joint's local translation and rotation at
 every frame) and the creature's skinned body (the viewer's, up to four joints a vertex)
-with vertex colours.
+with vertex colours, and its features (eyes, nose, mane: ``/Creature/Features``) skinned
+to the same skeleton.
 Needs Pixar's ``usd-core`` package (``pip install usd-core``, an optional dependency).
 """
 
@@ -20,8 +21,9 @@ from ..errors import OutputError
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import SkeletonClip
 from ..output import AtomicPath
+from ..skin import SkinnedBody
 from .gltf import continuous_quaternions
-from .mesh import creature_mesh
+from .mesh import creature_features, creature_mesh
 
 
 def _pxr():
@@ -100,7 +102,7 @@ def _prim_name(name: str) -> str:
 
 def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
     """One creature's SkelRoot at ``where``: skeleton, animation and skinned mesh."""
-    Gf, Sdf, _Usd, UsdGeom, UsdSkel, Vt = _pxr()
+    Gf, _Sdf, _Usd, _UsdGeom, UsdSkel, Vt = _pxr()
     root = UsdSkel.Root.Define(stage, where)
     skeleton = UsdSkel.Skeleton.Define(stage, f"{where}/Skeleton")
     paths = joint_paths(clip)
@@ -122,7 +124,17 @@ def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
                                      for q in quat[t]]), t)
     UsdSkel.BindingAPI.Apply(skeleton.GetPrim()).CreateAnimationSourceRel().SetTargets([animation.GetPath()])
 
-    mesh = UsdGeom.Mesh.Define(stage, f"{where}/Body")
+    _skinned_prim(stage, f"{where}/Body", mesh_data, skeleton)
+    features = creature_features(motion, clip)
+    if features is not None:
+        _skinned_prim(stage, f"{where}/Features", features, skeleton)
+    return root
+
+
+def _skinned_prim(stage, where: str, mesh_data: SkinnedBody, skeleton) -> None:
+    """A mesh prim at ``where`` with vertex colours, skinned to ``skeleton``."""
+    Gf, Sdf, _Usd, UsdGeom, UsdSkel, Vt = _pxr()
+    mesh = UsdGeom.Mesh.Define(stage, where)
     mesh.CreatePointsAttr(Vt.Vec3fArray.FromNumpy(mesh_data.positions.astype(np.float32)))
     mesh.CreateFaceVertexCountsAttr(Vt.IntArray([3] * len(mesh_data.faces)))
     mesh.CreateFaceVertexIndicesAttr(Vt.IntArray.FromNumpy(mesh_data.faces.reshape(-1).astype(np.int32)))
@@ -140,7 +152,6 @@ def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
     binding.CreateJointWeightsPrimvar(False, influences).Set(
         Vt.FloatArray.FromNumpy(mesh_data.weights.reshape(-1).astype(np.float32)))
     binding.CreateGeomBindTransformAttr(Gf.Matrix4d(1.0))
-    return root
 
 
 def usd_error_text(exc: BaseException) -> str:

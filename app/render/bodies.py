@@ -203,12 +203,18 @@ def bind_rig(rig: Rig) -> Rig:
     return replace(rig.with_gait(gait), motion=SecondaryMotion(), overlap=Overlap(), poses=KeyPoses())
 
 
-def _build(rig: Rig, detail: Detail) -> SkinnedBody:
-    """A rig's body, bound standing in place (:func:`bind_rig`: the bind pose)."""
+def bind_motion(rig: Rig) -> Motion:
+    """The one-frame clip a rig's body is built and bound in: :func:`bind_rig` standing in
+    place."""
     from ..kinematics.motion import simulate
     from ..kinematics.world import World
 
-    rest = simulate(bind_rig(rig), 0.0, 30.0, world=World(in_place=True))
+    return simulate(bind_rig(rig), 0.0, 30.0, world=World(in_place=True))
+
+
+def _build(rig: Rig, detail: Detail) -> SkinnedBody:
+    """A rig's body, bound standing in place (:func:`bind_motion`: the bind pose)."""
+    rest = bind_motion(rig)
     return build_body(rest, skeleton_clip(rest), detail)
 
 

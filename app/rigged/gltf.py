@@ -253,6 +253,10 @@ def _primitive(reader: _Reader, prim, gltf, path: Path) -> tuple:
     else:
         normals = _vertex_normals(positions, faces)
     colors = _colors(reader, prim, gltf, len(positions))
+    if attrs.COLOR_0 is not None:  # vertex colours (linear) multiply the material's (a Gaitlab export's coat)
+        shade = reader.accessor(attrs.COLOR_0).astype(np.float64)[:, :3]
+        if len(shade) == len(positions):
+            colors = colors * np.sqrt(np.clip(shade, 0.0, 1.0))
     return (positions, normals, colors, faces, reader.accessor(attrs.JOINTS_0).astype(np.int64),
             reader.accessor(attrs.WEIGHTS_0).astype(np.float64))
 
@@ -267,7 +271,8 @@ def _vertex_normals(positions: NDArray[np.float64], faces: NDArray[np.int64]) ->
 
 def _colors(reader: _Reader, prim, gltf, count: int) -> NDArray[np.float64]:
     """Per-vertex display colours: the base colour texture at each vertex's texture
-    coordinate (nearest texel), times the base colour factor; grey without a material."""
+    coordinate (nearest texel), times the base colour factor; grey without a material
+    (vertex colours, ``COLOR_0``, multiply these afterwards)."""
     if prim.material is None:
         return np.full((count, 3), 0.7)
     pbr = gltf.materials[prim.material].pbrMetallicRoughness
