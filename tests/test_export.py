@@ -379,15 +379,17 @@ def test_the_glb_carries_the_skinned_body_the_viewer_draws(tmp_path: Path, creat
 
 @pytest.mark.parametrize("creature", ["horse", "dog", "bird"])
 def test_the_glb_carries_the_eyes_nose_and_mane_where_the_viewer_draws_them(tmp_path: Path, creature: str) -> None:
-    """The features drawn on the skin (eyes, a mammal's nose, a mane) were missing from
-    exports: an eyeless horse with a bare neck in Blender. They are the mesh's second
-    primitive, skinned to the same joints, each feature (an icosphere) centred where the
-    viewer draws its ellipsoid, at the first frame and mid-clip."""
+    """The features on the skin (eyes, a mammal's nose, a mane) were missing from exports:
+    an eyeless horse with a bare neck in Blender. They are the mesh's second primitive,
+    the body's own features mesh, skinned by the file's joints exactly where the viewer
+    skins them, at the first frame and mid-clip; each eye stays on the head (within 1 cm
+    of the skull's eye as the parts place it, every frame)."""
     import pygltflib
 
     from app.export import write_glb
     from app.export.mesh import export_layout
-    from app.render.scene import Ell, _unit, motion_instances
+    from app.render.bodies import pose_body, shared_body_cache
+    from app.render.scene import EYE_COLOR, Ell, mane_color, motion_instances
 
     motion = motion_of(creature, fps=30.0)
     clip = skeleton_clip(motion, export_layout(motion))
@@ -407,28 +409,33 @@ def test_the_glb_carries_the_eyes_nose_and_mane_where_the_viewer_draws_them(tmp_
     colors = read(attributes.COLOR_0, np.float32, 3).astype(np.float64)
     weights = read(attributes.WEIGHTS_0, np.float32, 4).astype(np.float64)
     joints = read(attributes.JOINTS_0, np.uint16, 4).astype(np.int64)
-    _, world_p, world_r, inverse_bind = glb_world_positions(path, motion.times - motion.times[0], True)
-    drawn = motion_instances(motion, show_joints=False, parts=False)
-    count = len(drawn.frame(0).ellipsoids)
-    assert count == {"horse": 2 + 14, "dog": 3, "bird": 2}[creature]  # eyes, a nose (not the horse's), the mane
+    features = shared_body_cache().get(motion.rig).features
+    assert features is not None and len(positions) == len(features.positions)
+    count = {"horse": 2 + 14, "dog": 3, "bird": 2}[creature]  # eyes, a nose (not the horse's), the mane
     per = len(positions) // count
-    assert len(positions) == per * count
+    assert per * count == len(positions)
+    eye = np.all(np.abs(colors - EYE_COLOR) < 1e-5, axis=1)
+    assert eye.sum() == 2 * per and eye[:2 * per].all()
+    assert (np.all(np.abs(colors - mane_color(motion.rig)) < 1e-5, axis=1).sum() == 14 * per) == (creature == "horse")
+    _, world_p, world_r, inverse_bind = glb_world_positions(path, motion.times - motion.times[0], True)
+
+    def skinned(vertices, matrices, vertex_joints, vertex_weights) -> np.ndarray:
+        blended = np.einsum("vk,vkij->vij", vertex_weights, matrices[vertex_joints])
+        return np.einsum("vij,vj->vi", blended[:, :3, :3], vertices) + blended[:, :3, 3]
+
+    parts = motion_instances(motion, show_joints=False)
     for frame in (0, motion.frame_count // 2):
         world = np.tile(np.eye(4), (len(world_p[frame]), 1, 1))
         world[:, :3, :3], world[:, :3, 3] = world_r[frame], world_p[frame]
-        matrices = world @ inverse_bind
-        blended = np.einsum("vk,vkij->vij", weights, matrices[joints])
-        skinned = np.einsum("vij,vj->vi", blended[:, :3, :3], positions) + blended[:, :3, 3]
-        centres = skinned.reshape(count, per, 3).mean(axis=1)
-        rows = np.asarray(drawn.frame(frame).ellipsoids, np.float64)
-        apart = np.linalg.norm(centres - rows[:, Ell.CENTRE], axis=1)
-        assert apart[:2].max() < 0.005 and apart.max() < 0.02, (creature, frame, apart)  # eyes to 5 mm
-        assert np.allclose(colors.reshape(count, per, 3)[:, 0], rows[:, Ell.COLOR], atol=1e-5)
-        # each eye's long axis still runs across the head (its shape turned with it)
-        spread = skinned.reshape(count, per, 3)[0] - centres[0]
-        widest = _unit(spread[np.argmax(np.linalg.norm(spread, axis=1))])
-        across = rows[0, Ell.AXES[0]]
-        assert abs(float(np.dot(widest, across))) > 0.9, (creature, frame)
+        in_file = skinned(positions, world @ inverse_bind, joints, weights)
+        drawn = pose_body(motion.pose(frame), motion.rig, shared_body_cache())
+        in_viewer = skinned(features.positions.astype(np.float64), drawn.skin.astype(np.float64), features.joints,
+                            features.weights.astype(np.float64))
+        assert np.abs(in_file - in_viewer).max() < 1e-4, (creature, frame)
+        rows = np.asarray(parts.frame(frame).ellipsoids, np.float64)
+        skull_eyes = rows[np.all(np.abs(rows[:, Ell.COLOR] - EYE_COLOR) < 1e-5, axis=1), 0:3]
+        eyes = in_file[:2 * per].reshape(2, per, 3).mean(axis=1)
+        assert np.linalg.norm(eyes - skull_eyes, axis=1).max() < 0.01, (creature, frame)
 
 
 def test_a_glb_export_reads_back_in_its_own_colours(tmp_path: Path) -> None:

@@ -465,20 +465,26 @@ def test_a_mammal_s_neck_is_deeper_than_wide_and_a_horse_s_is_maned() -> None:
     and as the head at the throat (a round tube read as a hose into the chest); the
     horse's crest carries a dark mane (``body.mane``), drawn on the skinned body as the
     eyes are and left out of the skin's surface, low over the withers and the poll."""
-    from app.render.scene import NECK_SECTIONS, NECK_WIDTH, Ell, mane_color, motion_instances
+    from app.render.bodies import _build
+    from app.render.scene import NECK_SECTIONS, NECK_WIDTH, Ell, mane_color, motion_instances, skin_features
     from app.skin.body import _parts
 
     def rows(name: str, **keys: float):
         rig = build_rig(load_creature(name).with_overrides({f"body.{k}": v for k, v in keys.items()}))
         motion, _ = clip_motion(rig, 30.0, cycles=0.25)
         ells = np.asarray(motion_instances(motion, show_joints=False).frame(0).ellipsoids, np.float64)
-        skin = np.asarray(motion_instances(motion, show_joints=False, parts=False).frame(0).ellipsoids, np.float64)
+        skin = skin_features(motion)  # what the skinned body carries on its surface
         maned = np.all(np.abs(ells[:, Ell.COLOR] - mane_color(rig)) < 1e-3, axis=1)
         return rig, motion, ells, skin, maned
 
     rig, motion, ells, skin, maned = rows("horse")
     assert rig.body.mane > 0 and maned.sum() > 4
     assert np.all(np.abs(skin[:, Ell.COLOR] - mane_color(rig)) < 1e-3, axis=1).sum() == maned.sum()
+    features = _build(rig, "coarse").features  # skinned with the body, not drawn over it
+    assert features is not None
+    assert np.all(np.abs(features.colors - mane_color(rig)) < 1e-3, axis=1).sum() == maned.sum() * 42
+    overlays = np.asarray(motion_instances(motion, show_joints=False, parts=False).frame(0).ellipsoids)
+    assert len(overlays) == 0
     _, skin_parts, _ = _parts(motion)
     assert len(skin_parts) == len(ells) - maned.sum() - 2  # neither the mane nor the eyes
     base, top = motion.neck[0, 0], motion.neck[0, -1]
@@ -751,9 +757,10 @@ def test_a_bear_has_a_shoulder_hump_that_moves_with_its_trunk() -> None:
 
 def test_a_mammal_has_a_dark_nose_drawn_on_its_skin() -> None:
     """A dog's, cat's or bear's muzzle ended in its coat: a dark nose now sits over the
-    tip, drawn on the skinned body as the eyes are (not in its surface), smaller on a
+    tip, carried on the skinned body as the eyes are (not in its surface), smaller on a
     deer's longer head; a horse's long head (a soft muzzle) and a bird have none, and a
     head lengthened towards a horse's shrinks the nose away rather than dropping it."""
+    from app.render.bodies import _build
     from app.render.scene import NOSE_COLOR, Ell, skin_overlays
 
     for name, has in (("dog", True), ("bear", True), ("deer", True), ("horse", False), ("bird", False),
@@ -767,8 +774,8 @@ def test_a_mammal_has_a_dark_nose_drawn_on_its_skin() -> None:
             assert np.linalg.norm(noses[0, 0:3] - motion.head[0, 1]) < 0.3 * rig.body.head_radius  # at the tip
             on_skin = skin_overlays(motion)
             assert np.min(np.linalg.norm(on_skin - noses[0, 0:3], axis=1)) < 1e-6  # left out of the surface
-            skin = motion_instances(motion, show_joints=False, parts=False).frame(0).ellipsoids.astype(np.float64)
-            assert np.any(np.all(np.abs(skin[:, Ell.COLOR] - NOSE_COLOR) < 1e-6, axis=1))  # and drawn over it
+            features = _build(rig, "coarse").features  # and carried on it, skinned with it
+            assert features is not None and np.all(np.abs(features.colors - NOSE_COLOR) < 1e-6, axis=1).sum() == 42
     sizes = []
     for length in np.linspace(0.2, 0.4, 41):  # the dog's head lengthened step by step
         rig = build_rig(load_creature("dog").with_overrides({"body.head_length": float(length)}))

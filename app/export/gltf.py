@@ -96,7 +96,8 @@ def _ground(motions: list[Motion], blob: _Blob, doc: gl.GLTF2) -> int:
 def _skinned_mesh(motion: Motion, clip: SkeletonClip, name: str, blob: _Blob, doc: gl.GLTF2
                   ) -> tuple[int, NDArray[np.float64]]:
     """The creature's skinned body in its bind pose, each vertex bound to up to four
-    joints; the index of the mesh and the joints' bind matrices (J, 4, 4)."""
+    joints, and its features (eyes, nose, mane) as a second primitive; the index of the
+    mesh and the joints' bind matrices (J, 4, 4)."""
     mesh = creature_mesh(motion, clip)
     features = creature_features(motion, clip)
     if not doc.materials or doc.materials[0].name != "creature":

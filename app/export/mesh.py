@@ -7,18 +7,14 @@ go with it as a second mesh on the same skeleton."""
 from __future__ import annotations
 
 from dataclasses import replace
-from functools import lru_cache
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..kinematics.motion import Motion
 from ..kinematics.skeleton import SkeletonClip, SkeletonLayout, skeleton_clip
-from ..render.bodies import bind_motion, shared_body_cache
+from ..render.bodies import shared_body_cache
 from ..skin import SkinnedBody
 from ..skin.body import joint_matrices
-
-FEATURE_DETAIL = 1  # icosphere subdivisions of each feature's ellipsoid (42 vertices, 80 triangles: 14 mane tufts)
 
 
 def export_layout(motion: Motion) -> SkeletonLayout | None:
@@ -39,13 +35,12 @@ def creature_mesh(motion: Motion, clip: SkeletonClip) -> SkinnedBody:
 
 
 def creature_features(motion: Motion, clip: SkeletonClip) -> SkinnedBody | None:
-    """The creature's eyes, nose and mane as one skinned mesh on the body's skeleton, bound
-    as :func:`creature_mesh` is; each feature moves with the joints of the body's vertex
-    nearest its centre (an eye with the head, a mane's tuft with the neck's skin under
-    it). None for a creature without any (a user's model has its own)."""
+    """The creature's eyes, nose and mane as one skinned mesh on the body's skeleton (the
+    body's :attr:`~app.skin.SkinnedBody.features`, drawn with it in the viewer), bound as
+    :func:`creature_mesh` is. None for a creature without any (a user's model has its
+    own)."""
     body = shared_body_cache().get(motion.rig)
-    features = _features(motion.rig, body)
-    return None if features is None else _for_clip(features, body, motion, clip)
+    return None if body.features is None else _for_clip(body.features, body, motion, clip)
 
 
 def _for_clip(mesh: SkinnedBody, body: SkinnedBody, motion: Motion, clip: SkeletonClip) -> SkinnedBody:
@@ -61,38 +56,3 @@ def _for_clip(mesh: SkinnedBody, body: SkinnedBody, motion: Motion, clip: Skelet
     normals /= np.maximum(np.linalg.norm(normals, axis=-1, keepdims=True), 1e-12)
     return replace(mesh, positions=positions.astype(np.float32), normals=normals.astype(np.float32),
                    bind=joint_matrices(clip, 0), shadow=None, far=None)
-
-
-def _features(rig, body: SkinnedBody) -> SkinnedBody | None:
-    """The features' mesh in the body's bind pose (None without any)."""
-    from scipy.spatial import cKDTree
-
-    from ..render.scene import Ell, motion_instances
-
-    rows = np.asarray(motion_instances(bind_motion(rig), show_joints=False, parts=False).frame(0).ellipsoids,
-                      np.float64)  # (K, 18): what a skinned body is drawn with
-    if not len(rows):
-        return None
-    unit, faces = _unit_sphere()
-    axes = np.stack([rows[:, a] for a in Ell.AXES], axis=1)  # (K, 3, 3): rows x, y, z
-    radii = rows[:, Ell.RADII]
-    positions = rows[:, None, Ell.CENTRE] + np.einsum("vi,ki,kij->kvj", unit, radii, axes)
-    normals = np.einsum("vi,ki,kij->kvj", unit, 1.0 / radii, axes)
-    normals /= np.linalg.norm(normals, axis=-1, keepdims=True)
-    count = len(unit)
-    _, nearest = cKDTree(body.positions.astype(np.float64)).query(rows[:, Ell.CENTRE])
-    return replace(body, positions=positions.reshape(-1, 3).astype(np.float32),
-                   normals=normals.reshape(-1, 3).astype(np.float32),
-                   colors=np.repeat(rows[:, Ell.COLOR], count, axis=0).astype(np.float32),
-                   faces=(faces[None] + count * np.arange(len(rows))[:, None, None]).reshape(-1, 3).astype(np.int32),
-                   joints=np.repeat(body.joints[nearest], count, axis=0),
-                   weights=np.repeat(body.weights[nearest], count, axis=0), shadow=None, far=None)
-
-
-@lru_cache(maxsize=1)
-def _unit_sphere() -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """A unit icosphere's vertices (V, 3) and triangles (F, 3), wound outwards."""
-    import trimesh
-
-    sphere = trimesh.creation.icosphere(subdivisions=FEATURE_DETAIL)
-    return np.asarray(sphere.vertices, np.float64), np.asarray(sphere.faces, np.int64)

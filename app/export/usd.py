@@ -101,7 +101,8 @@ def _prim_name(name: str) -> str:
 
 
 def _creature(stage, where: str, motion: Motion, clip: SkeletonClip):
-    """One creature's SkelRoot at ``where``: skeleton, animation and skinned mesh."""
+    """One creature's SkelRoot at ``where``: skeleton, animation, skinned mesh and its
+    features (eyes, nose, mane) as a second skinned mesh."""
     Gf, _Sdf, _Usd, _UsdGeom, UsdSkel, Vt = _pxr()
     root = UsdSkel.Root.Define(stage, where)
     skeleton = UsdSkel.Skeleton.Define(stage, f"{where}/Skeleton")

@@ -109,7 +109,8 @@ class CreaturePass:
 
 
 class BodyPass:
-    """Skinned bodies: each body's mesh uploaded once (kept while it is drawn), every
+    """Skinned bodies: each body's mesh (with its features: eyes, nose, mane) uploaded once
+    (kept while it is drawn), every
     frame's skinning matrices in one float texture (a row per joint: the matrix's top
     three rows, a texel each), one instanced draw call for each run of draws of the same
     body (a herd)."""
@@ -128,10 +129,13 @@ class BodyPass:
     def _mesh(self, body) -> tuple[moderngl.VertexArray, moderngl.VertexArray]:
         entry = self._meshes.get(id(body))
         if entry is None or entry[0] is not body:
-            data = np.concatenate([body.positions, body.normals, body.colors, body.joints.astype(np.float32),
-                                   body.weights], axis=1).astype("f4")
+            meshes = [body] if getattr(body, "features", None) is None else [body, body.features]  # eyes, nose, mane
+            data = np.concatenate([np.concatenate([m.positions, m.normals, m.colors, m.joints.astype(np.float32),
+                                                   m.weights], axis=1) for m in meshes]).astype("f4")
+            starts = np.cumsum([0] + [len(m.positions) for m in meshes[:-1]])
+            faces = np.concatenate([m.faces.astype(np.int64) + start for m, start in zip(meshes, starts)])
             vbo = self.ctx.buffer(data.tobytes())
-            ibo = self.ctx.buffer(body.faces.astype("u4").tobytes())
+            ibo = self.ctx.buffer(faces.astype("u4").tobytes())
             layout = (vbo, "3f 3f 3f 4f 4f", "in_pos", "in_normal", "in_color", "in_joints", "in_weights")
             lit = self.ctx.vertex_array(self.lit, [layout], index_buffer=ibo, index_element_size=4)
             depth = self.ctx.vertex_array(self.depth, [layout], index_buffer=ibo, index_element_size=4,

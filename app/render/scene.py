@@ -54,7 +54,7 @@ NOSE_COLOR = np.array([0.03, 0.025, 0.025])  # a mammal's bare nose (drawn on a 
 NOSE_SHAPE = (0.24, 0.17, 0.14)  # of the head's radius: a nose's half width, height and depth
 NOSE_GONE = 0.7  # of a long head's measure (_long_head: 0 up to 3.5 head radii long, 1 from 5): no nose from here
 NOSE_AT = (-0.06, 0.1)  # of the head's radius: its centre from the head's tip, ahead (-: back) and up
-EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (drawn on a skinned body, not in it: skin_overlays)
+EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (on a skinned body, not in it: skin_features)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
 JOWL = (0.45, 0.5, 0.8, 1.1, 1.15)  # of it: a long head's jowl, ahead of and below the skull's centre; its radii
 # Eyes by kind, of the head's radius: their shape (across, up, along), where they look out
@@ -242,15 +242,23 @@ def hoof_ends(ball: NDArray[np.float64], toe: NDArray[np.float64]) -> tuple[NDAr
     return ball + HOOF_FROM * (toe - ball), toe
 
 
-def skin_overlays(motion) -> NDArray[np.float64]:
-    """The centres (K, 3), in a clip's first frame, of the ellipsoids drawn on a skinned body
-    rather than in its surface: the eyes, a mammal's nose and the mane."""
+def skin_features(motion) -> NDArray[np.float64]:
+    """The ellipsoid rows (K, 18), in a clip's first frame, of the features that sit on a
+    skinned body rather than in its surface: the eyes, a mammal's nose and the mane (the
+    body carries them as a second mesh, :attr:`app.skin.SkinnedBody.features`)."""
     rig = motion.rig
+    if rig.model:  # a user's model has its own
+        return np.zeros((0, ELLIPSOID_FLOATS))
     skull, head_dir = _skull(motion.head[:1], rig)
-    eyes = _eyes(skull, head_dir, rig)[0, :, 0:3]
-    nose = _nose(motion.head[:1, 1], head_dir, rig)[0, :, 0:3]
-    mane = _mane_rows(motion.neck[:1], motion.spine_radius, rig)[0, :, 0:3]
-    return np.concatenate([eyes, nose, mane])
+    eyes = _eyes(skull, head_dir, rig)[0]
+    nose = _nose(motion.head[:1, 1], head_dir, rig)[0]
+    mane = _mane_rows(motion.neck[:1], motion.spine_radius, rig)[0]
+    return np.concatenate([eyes, nose, mane]).astype(np.float64)
+
+
+def skin_overlays(motion) -> NDArray[np.float64]:
+    """The centres (K, 3) of :func:`skin_features`."""
+    return skin_features(motion)[:, Ell.CENTRE]
 
 
 def trunk_parts(motion) -> NDArray[np.float64]:
@@ -732,9 +740,9 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
                ear_lag: NDArray[np.float64] | None = None, parts: bool = True, by_side: bool = True,
                legs: bool = True) -> SceneInstances:
     """The shared body of :func:`motion_instances` / :func:`pose_instances`; every pose
-    array has a leading frame axis T. ``parts`` False leaves only what sits on a skinned
-    body (the eyes, the joint markers); ``by_side`` colours legs and arms by side;
-    ``legs`` False leaves the legs out (see :func:`leg_instances`)."""
+    array has a leading frame axis T. ``parts`` False leaves only the joint markers (a
+    skinned body carries its eyes, nose and mane); ``by_side`` colours legs and arms by
+    side; ``legs`` False leaves the legs out (see :func:`leg_instances`)."""
     head_radius = rig.body.head_radius
     ear_length = rig.body.ear_length
     frames = joints.shape[0]
@@ -745,12 +753,10 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     if not parts and rig.model:  # the user's model is drawn instead, with its own eyes
         return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
                               ellipsoids=np.zeros((frames, 0, ELLIPSOID_FLOATS), np.float32), ellipsoid_casters=0)
-    if not parts:  # a skinned body is drawn instead: only the eyes, the nose, the mane and the joint markers
-        skull, head_dir = _skull(head, rig)
-        on_skin = [_eyes(skull, head_dir, rig), _nose(head[:, 1], head_dir, rig),
-                   _mane_rows(neck, spine_radius, rig)] + markers
+    if not parts:  # a skinned body is drawn instead, its eyes, nose and mane skinned with it: only the joint markers
         return SceneInstances(capsules=np.zeros((frames, 0, CAPSULE_FLOATS), np.float32),
-                              ellipsoids=np.concatenate(on_skin, axis=1).astype(np.float32), ellipsoid_casters=0)
+                              ellipsoids=np.concatenate([np.zeros((frames, 0, ELLIPSOID_FLOATS)), *markers],
+                                                        axis=1).astype(np.float32), ellipsoid_casters=0)
 
     # Trunk: a tube of tapered capsules through the segment centres, capped past both ends.
     r = spine_radius

@@ -256,7 +256,8 @@ def _primitive(reader: _Reader, prim, gltf, path: Path) -> tuple:
     if attrs.COLOR_0 is not None:  # vertex colours (linear) multiply the material's (a Gaitlab export's coat)
         shade = reader.accessor(attrs.COLOR_0).astype(np.float64)[:, :3]
         if len(shade) == len(positions):
-            colors = colors * np.sqrt(np.clip(shade, 0.0, 1.0))
+            base = colors if prim.material is not None else np.ones_like(colors)  # glTF's default material is white
+            colors = base * np.sqrt(np.clip(shade, 0.0, 1.0))
     return (positions, normals, colors, faces, reader.accessor(attrs.JOINTS_0).astype(np.int64),
             reader.accessor(attrs.WEIGHTS_0).astype(np.float64))
 

@@ -5,7 +5,8 @@ simplified, with skin weights to the export skeleton's joints.
 
 - :mod:`app.skin.sdf`: signed distances of the parts and their smooth union;
 - :mod:`app.skin.body`: :func:`build_body` (the mesh, its colours and weights) and
-  :class:`SkinnedBody` (linear blend skinning to any frame of a skeleton clip).
+  :class:`SkinnedBody` (linear blend skinning to any frame of a skeleton clip);
+- :mod:`app.skin.features`: the eyes, nose and mane the body carries as a second mesh.
 
 Pure numpy, scipy, scikit-image and fast-simplification; no GL.
 """

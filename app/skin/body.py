@@ -62,6 +62,7 @@ class SkinnedBody:
     layout: SkeletonLayout | None = None  # the bind skeleton's (pose others alike: skeleton_clip(m, layout))
     detail: Detail = "full"
     shadow: SkinnedBody | None = field(default=None, compare=False)  # a coarser body for the shadow pass
+    features: SkinnedBody | None = field(default=None, compare=False)  # its eyes, nose and mane (app.skin.features)
     far: SkinnedBody | None = field(default=None, compare=False)  # a much coarser one, drawn far away
     # (whose own ``shadow`` is coarser still: a shadow a few shadow-map texels long)
     seconds: float = field(default=0.0, compare=False)
@@ -422,7 +423,8 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     from :func:`app.kinematics.skeleton.skeleton_clip`), in their first frame."""
     import trimesh
 
-    from ..render.scene import mane_color, srgb_to_linear
+    from ..render.scene import mane_color, skin_features, srgb_to_linear
+    from .features import feature_mesh
 
     start = time.perf_counter()
     capsules, ellipsoids, part_colors = _parts(motion)
@@ -433,7 +435,8 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     tail_joints = np.array([k for k, name in enumerate(clip.skeleton.names) if name.startswith("tail")], dtype=np.int64)
 
     def skinned(verts: NDArray[np.float64], faces: NDArray[np.int64], detail: Detail,
-                shadow: SkinnedBody | None = None, far: SkinnedBody | None = None) -> SkinnedBody:
+                shadow: SkinnedBody | None = None, far: SkinnedBody | None = None,
+                carries_features: bool = False) -> SkinnedBody:
         mesh = trimesh.Trimesh(verts, faces, process=False)
         mesh.fix_normals()
         verts, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces, dtype=np.int64)
@@ -452,16 +455,27 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
         if motion.rig.body.mane > 0 and motion.rig.four_legged_mammal:  # a maned animal's tail is hair of the mane's colour
             hair = np.sum(np.where(np.isin(joints, tail_joints), weights, 0.0), axis=1)[:, None]
             colors = (colors * (1.0 - hair) + mane_color(motion.rig)[None, :] * hair).astype(np.float32)
+        bind = joint_matrices(clip, 0)
+        features = None
+        if carries_features:  # the eyes, nose and mane, skinned as the vertices nearest them
+            on_skin = feature_mesh(skin_features(motion), verts, joints, weights)
+            if on_skin is not None:
+                f_positions, f_normals, f_colors, f_faces, f_joints, f_weights = on_skin
+                features = SkinnedBody(positions=f_positions, normals=f_normals, colors=f_colors, faces=f_faces,
+                                       joints=f_joints, weights=f_weights, bind=bind, layout=clip.layout,
+                                       detail=detail)
         return SkinnedBody(positions=verts.astype(np.float32), normals=normals.astype(np.float32),
                            colors=colors,
                            faces=faces.astype(np.int32),
-                           joints=joints, weights=weights, bind=joint_matrices(clip, 0), layout=clip.layout,
-                           detail=detail, shadow=shadow, far=far, seconds=time.perf_counter() - start)
+                           joints=joints, weights=weights, bind=bind, layout=clip.layout,
+                           detail=detail, shadow=shadow, features=features, far=far,
+                           seconds=time.perf_counter() - start)
 
     shown = _simplify(verts, faces, FACES[detail])
     if detail != "full":
-        return skinned(*shown, detail)
+        return skinned(*shown, detail, carries_features=True)
     stand_in = _simplify(*shown, SHADOW_FACES)
     far = _simplify(*stand_in, FAR_FACES)
     speck = skinned(*_simplify(*far, SPECK_FACES), "coarse")  # the far body's shadow
-    return skinned(*shown, detail, skinned(*stand_in, "coarse"), skinned(*far, "coarse", shadow=speck))
+    return skinned(*shown, detail, skinned(*stand_in, "coarse"), skinned(*far, "coarse", shadow=speck),
+                   carries_features=True)
