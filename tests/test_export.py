@@ -331,6 +331,20 @@ def test_a_clip_of_no_frames_is_refused_and_nothing_written(tmp_path: Path, monk
     assert list(tmp_path.iterdir()) == []
 
 
+def _accessor(doc, index: int, dtype, width: int) -> np.ndarray:
+    """A glb's accessor ``index`` as a (count, width) array of ``dtype``."""
+    view = doc.bufferViews[doc.accessors[index].bufferView]
+    count = doc.accessors[index].count
+    start = view.byteOffset + (doc.accessors[index].byteOffset or 0)
+    return np.frombuffer(doc.binary_blob(), dtype=dtype, count=count * width, offset=start).reshape(count, width)
+
+
+def _skinned(vertices, matrices, vertex_joints, vertex_weights) -> np.ndarray:
+    """Linear blend skinning: vertices (V, 3) by joint matrices (J, 4, 4), joints and weights (V, 4)."""
+    blended = np.einsum("vk,vkij->vij", vertex_weights, matrices[vertex_joints])
+    return np.einsum("vij,vj->vi", blended[:, :3, :3], vertices) + blended[:, :3, 3]
+
+
 @pytest.mark.parametrize("creature", ["dog", "human", "spider"])
 def test_the_glb_carries_the_skinned_body_the_viewer_draws(tmp_path: Path, creature: str) -> None:
     """The file's mesh, skinned by the file's own joints, weights and inverse binds, stands
@@ -346,33 +360,22 @@ def test_the_glb_carries_the_skinned_body_the_viewer_draws(tmp_path: Path, creat
     clip = skeleton_clip(motion, export_layout(motion))  # as `gaitlab export` lays it out
     path = write_glb(tmp_path / f"{creature}.glb", motion, clip)
     doc = pygltflib.GLTF2().load(str(path))
-    blob = doc.binary_blob()
     attributes = doc.meshes[0].primitives[0].attributes
 
-    def read(index: int, dtype, width: int) -> np.ndarray:
-        view = doc.bufferViews[doc.accessors[index].bufferView]
-        count = doc.accessors[index].count
-        start = view.byteOffset + (doc.accessors[index].byteOffset or 0)
-        return np.frombuffer(blob, dtype=dtype, count=count * width, offset=start).reshape(count, width)
-
-    positions = read(attributes.POSITION, np.float32, 3).astype(np.float64)
-    weights = read(attributes.WEIGHTS_0, np.float32, 4).astype(np.float64)
-    joints = read(attributes.JOINTS_0, np.uint16, 4).astype(np.int64)
+    positions = _accessor(doc, attributes.POSITION, np.float32, 3).astype(np.float64)
+    weights = _accessor(doc, attributes.WEIGHTS_0, np.float32, 4).astype(np.float64)
+    joints = _accessor(doc, attributes.JOINTS_0, np.uint16, 4).astype(np.int64)
     assert np.allclose(weights.sum(axis=1), 1.0, atol=1e-5) and (weights >= 0).all()
     _, world_p, world_r, inverse_bind = glb_world_positions(path, motion.times - motion.times[0], True)
     body = shared_body_cache().get(motion.rig)
     assert np.array_equal(joints, body.joints) and len(positions) == len(body.positions)
 
-    def skinned(vertices, matrices, vertex_joints, vertex_weights) -> np.ndarray:
-        blended = np.einsum("vk,vkij->vij", vertex_weights, matrices[vertex_joints])
-        return np.einsum("vij,vj->vi", blended[:, :3, :3], vertices) + blended[:, :3, 3]
-
     for frame in (0, motion.frame_count // 2):
         world = np.tile(np.eye(4), (len(world_p[frame]), 1, 1))
         world[:, :3, :3], world[:, :3, 3] = world_r[frame], world_p[frame]
-        in_file = skinned(positions, world @ inverse_bind, joints, weights)
+        in_file = _skinned(positions, world @ inverse_bind, joints, weights)
         drawn = pose_body(motion.pose(frame), motion.rig, shared_body_cache())
-        in_viewer = skinned(body.positions.astype(np.float64), drawn.skin.astype(np.float64), body.joints,
+        in_viewer = _skinned(body.positions.astype(np.float64), drawn.skin.astype(np.float64), body.joints,
                             body.weights.astype(np.float64))
         assert np.abs(in_file - in_viewer).max() < 1e-4, (creature, frame)
 
@@ -395,20 +398,13 @@ def test_the_glb_carries_the_eyes_nose_and_mane_where_the_viewer_draws_them(tmp_
     clip = skeleton_clip(motion, export_layout(motion))
     path = write_glb(tmp_path / f"{creature}.glb", motion, clip)
     doc = pygltflib.GLTF2().load(str(path))
-    blob = doc.binary_blob()
     assert len(doc.meshes) == 1 and len(doc.meshes[0].primitives) == 2
     attributes = doc.meshes[0].primitives[1].attributes
 
-    def read(index: int, dtype, width: int) -> np.ndarray:
-        view = doc.bufferViews[doc.accessors[index].bufferView]
-        count = doc.accessors[index].count
-        start = view.byteOffset + (doc.accessors[index].byteOffset or 0)
-        return np.frombuffer(blob, dtype=dtype, count=count * width, offset=start).reshape(count, width)
-
-    positions = read(attributes.POSITION, np.float32, 3).astype(np.float64)
-    colors = read(attributes.COLOR_0, np.float32, 3).astype(np.float64)
-    weights = read(attributes.WEIGHTS_0, np.float32, 4).astype(np.float64)
-    joints = read(attributes.JOINTS_0, np.uint16, 4).astype(np.int64)
+    positions = _accessor(doc, attributes.POSITION, np.float32, 3).astype(np.float64)
+    colors = _accessor(doc, attributes.COLOR_0, np.float32, 3).astype(np.float64)
+    weights = _accessor(doc, attributes.WEIGHTS_0, np.float32, 4).astype(np.float64)
+    joints = _accessor(doc, attributes.JOINTS_0, np.uint16, 4).astype(np.int64)
     features = shared_body_cache().get(motion.rig).features
     assert features is not None and len(positions) == len(features.positions)
     count = {"horse": 2 + 14, "dog": 3, "bird": 2}[creature]  # eyes, a nose (not the horse's), the mane
@@ -419,17 +415,13 @@ def test_the_glb_carries_the_eyes_nose_and_mane_where_the_viewer_draws_them(tmp_
     assert (np.all(np.abs(colors - mane_color(motion.rig)) < 1e-5, axis=1).sum() == 14 * per) == (creature == "horse")
     _, world_p, world_r, inverse_bind = glb_world_positions(path, motion.times - motion.times[0], True)
 
-    def skinned(vertices, matrices, vertex_joints, vertex_weights) -> np.ndarray:
-        blended = np.einsum("vk,vkij->vij", vertex_weights, matrices[vertex_joints])
-        return np.einsum("vij,vj->vi", blended[:, :3, :3], vertices) + blended[:, :3, 3]
-
     parts = motion_instances(motion, show_joints=False)
     for frame in (0, motion.frame_count // 2):
         world = np.tile(np.eye(4), (len(world_p[frame]), 1, 1))
         world[:, :3, :3], world[:, :3, 3] = world_r[frame], world_p[frame]
-        in_file = skinned(positions, world @ inverse_bind, joints, weights)
+        in_file = _skinned(positions, world @ inverse_bind, joints, weights)
         drawn = pose_body(motion.pose(frame), motion.rig, shared_body_cache())
-        in_viewer = skinned(features.positions.astype(np.float64), drawn.skin.astype(np.float64), features.joints,
+        in_viewer = _skinned(features.positions.astype(np.float64), drawn.skin.astype(np.float64), features.joints,
                             features.weights.astype(np.float64))
         assert np.abs(in_file - in_viewer).max() < 1e-4, (creature, frame)
         rows = np.asarray(parts.frame(frame).ellipsoids, np.float64)
