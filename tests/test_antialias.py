@@ -69,6 +69,29 @@ def test_screen_tiles_cover_every_shape_and_little_else() -> None:
     assert mask.sum() < 0.75 * w * h
 
 
+def test_screen_tiles_cover_a_skinned_body_drawn_alone() -> None:
+    """A skinned body with no shapes beside it (no joint markers: the skin covers them)
+    is covered by its joints' spheres: FXAA smoothed only the tiles of the shapes, so a
+    smooth dog's outline was left jagged but for its knees and eyes."""
+    from dataclasses import replace
+
+    from app.render.bodies import motion_body, shared_body_cache
+
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    camera = clip_camera(motion, ViewSettings(size=SIZE))
+    parts = motion_instances(motion).frame(3)
+    skinned = replace(motion_instances(motion, show_joints=False, parts=False),
+                      bodies=(motion_body(motion, shared_body_cache()),)).frame(3)
+    assert len(skinned.capsules) == 0 and len(skinned.ellipsoids) == 0
+    covered = _tile_mask(screen_tiles(skinned, camera, SIZE), SIZE)
+    of_parts = _tile_mask(screen_tiles(parts, camera, SIZE), SIZE)
+    # The body's tiles hold nearly all of the parts body's (the same creature, its skin a
+    # little outside its bones; a joint's sphere reaches as far as its skin does, so they
+    # hold more), and far from the whole image.
+    assert (covered & of_parts).sum() > 0.9 * of_parts.sum()
+    assert covered.sum() < min(2.5 * of_parts.sum(), 0.75 * covered.size)
+
+
 def test_screen_tiles_are_the_whole_image_when_a_shape_is_behind_the_eye() -> None:
     motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
     scene = motion_instances(motion).frame(0)
@@ -87,9 +110,9 @@ def test_fxaa_smooths_the_creature_and_leaves_the_rest_alone(gl_ctx) -> None:
         renderer = ClipRenderer(SIZE, mode, ctx=gl_ctx)
         try:
             images[mode] = renderer.frame(motion, 5, camera, options).astype(np.int16)
+            scene = renderer._instances(motion, options).frame(5)  # the skinned body and its features
         finally:
             renderer.release()
-    scene = motion_instances(motion).frame(5)
     outside = ~_tile_mask(screen_tiles(scene, camera, SIZE), SIZE)
     assert 0.3 * outside.size < outside.sum() < outside.size
     changed = np.abs(images["fxaa"] - images["off"]).max(axis=-1) > 0

@@ -515,3 +515,17 @@ def test_an_empty_arms_table_is_an_error(tmp_path) -> None:
     bad.write_text(text[:start] + "[arms]\n\n" + text[end:])
     with pytest.raises(SpecError, match="missing key arms.upper"):
         load_creature(str(bad))
+
+
+def test_the_walker_curves_are_built_once() -> None:
+    """The walker's five curves are kept (a cache of four thrashed: every solve rebuilt
+    them, 40 % of a person's one-frame solve in the viewer)."""
+    from app.kinematics.motion import simulate
+    from app.kinematics.walker import _curve
+
+    rig = build_rig(load_creature("human"))
+    simulate(rig, 0.5, fps=30.0)
+    before = _curve.cache_info().misses
+    for _ in range(3):
+        simulate(rig, 0.1, fps=30.0)
+    assert _curve.cache_info().misses == before

@@ -3,6 +3,8 @@ determinism, framing. All at small sizes with MSAA off."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -176,14 +178,18 @@ def test_an_eye_just_below_the_floor_beyond_its_edge_sees_the_creature_and_the_s
 
 
 def test_the_creatures_bounds_count_a_skinned_body_drawn_without_joint_markers(renderer) -> None:
-    """The fog and the floor are centred on the creatures' bounds: without joint markers a
-    skinned dog's bounds came from its eyes and nose alone (centred near its head)."""
+    """The fog and the floor are centred on the creatures' bounds: without joint markers (a
+    skinned body draws none) a skinned dog's bounds came from its eyes and nose alone
+    (centred near its head); now they match the bounds with the markers."""
     from app.render.renderer import creature_bounds
 
     motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
     flat = GroundView().terrain
-    with_joints = creature_bounds(renderer._instances(motion, RenderOptions()).frame(4), flat)
-    bare = creature_bounds(renderer._instances(motion, RenderOptions(joints=False)).frame(4), flat)
+    bare_scene = renderer._instances(motion, RenderOptions()).frame(4)
+    assert len(bare_scene.ellipsoids) == 0  # no markers over a skinned body
+    markers = motion_instances(motion, show_joints=True, parts=False).frame(4)
+    with_joints = creature_bounds(replace(markers, bodies=bare_scene.bodies), flat)
+    bare = creature_bounds(bare_scene, flat)
     hip, shoulder = motion.joints[4, 2:, 0].mean(axis=0), motion.joints[4, :2, 0].mean(axis=0)
     assert abs(bare[0][2] - 0.5 * (hip + shoulder)[2]) < 0.15  # between the girdles, not at the head
     assert np.allclose(bare[0], with_joints[0], atol=0.05) and abs(bare[1] - with_joints[1]) < 0.05
@@ -783,3 +789,26 @@ def test_a_mammal_has_a_dark_nose_drawn_on_its_skin() -> None:
         noses = ells[np.all(np.abs(ells[:, Ell.COLOR] - NOSE_COLOR) < 1e-6, axis=1)]
         sizes.append(float(noses[0, 12] / rig.body.head_radius) if len(noses) else 0.0)
     assert sizes[0] > 0.2 and sizes[-1] == 0.0 and np.abs(np.diff(sizes)).max() < 0.02  # shrinks, never drops
+
+
+def test_the_floor_mesh_covers_its_disc_once_with_rings_through_the_fog() -> None:
+    """The floor's fog is worked out at its corners (a software rasteriser's floor costs per
+    pixel): its mesh must cover the polygon once (no gaps, no overlaps, one winding) and
+    have its rings from the fog's start to its end, so the fog is linear enough between."""
+    from app.render.ground import floor_mesh
+
+    sides, start, end, rings = 16, 0.42, 0.95, 5
+    corners, triangles = floor_mesh(sides, start, end, rings)
+    assert corners.shape == ((rings + 2) * sides, 2) and triangles.shape == (sides - 2 + 2 * (rings + 1) * sides, 3)
+    a, b, c = (corners[triangles[:, k]] for k in range(3))
+    signed = 0.5 * ((b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0]))
+    assert np.all(signed > 0) or np.all(signed < 0)  # one winding
+    polygon = 0.5 * sides * np.sin(2.0 * np.pi / sides)  # the unit 16-gon's area
+    assert abs(np.abs(signed).sum() - polygon) < 1e-9  # covered exactly once
+    radii = np.unique(np.round(np.linalg.norm(corners, axis=1), 9))
+    assert np.allclose(radii, [*np.linspace(start, end, rings + 1), 1.0])
+    # The smoothstep fog, linear between the rings (and exact at them), is within 3 %.
+    t = np.linspace(0.0, 1.0, 1001)
+    ring_t = np.linspace(0.0, 1.0, rings + 1)
+    smooth = t * t * (3.0 - 2.0 * t)
+    assert np.abs(np.interp(t, ring_t, ring_t * ring_t * (3.0 - 2.0 * ring_t)) - smooth).max() < 0.03

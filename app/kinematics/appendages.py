@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from .body import pitch, unit
+from .body import cross, pitch, unit
 from .frames import UP
 from .herd import rotation_between
 from .rig import Rig
@@ -40,7 +40,7 @@ def heading_frames(root: NDArray[np.float64]) -> NDArray[np.float64]:
     """Rotations (T, 3, 3) whose columns are the body's side, up and level forward, from
     body transforms ``root`` (T, 4, 4) (forward is their third column)."""
     forward = unit(root[:, :3, 2] * np.array([1.0, 0.0, 1.0]) + np.array([0.0, 0.0, 1e-12]))
-    side = np.cross(UP, forward)
+    side = cross(UP, forward)
     return np.stack([side, np.broadcast_to(UP, forward.shape), forward], axis=-1)
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from .body import cross
 from .frames import UP
 from .rig import ArmShape
 
@@ -43,7 +44,7 @@ def arm_chains(arms: ArmShape, centre: NDArray[np.float64], lateral: NDArray[np.
     body's middle (:data:`RUN_ARM_IN`) and the hand turns in across the body (a loose fist, :data:`RUN_FIST`)."""
     lateral = lateral - np.sum(lateral * UP, axis=-1, keepdims=True) * UP
     lateral = lateral / np.maximum(np.linalg.norm(lateral, axis=-1, keepdims=True), 1e-12)
-    forward = np.cross(lateral, UP)  # (T, 3): left x up = forward
+    forward = cross(lateral, UP)  # (T, 3): left x up = forward
     side = np.array([1.0, -1.0])[None, :, None]
     shoulder = centre[:, None, :] + side * 0.5 * arms.shoulder_width * lateral[:, None, :]
     out = side * np.sin(ARM_SPREAD) * lateral[:, None, :]

@@ -504,7 +504,7 @@ def spine_through(rig: Rig, world: World, girdles: Girdles, s: NDArray[np.float6
         w = where - i
         shoulder = segments[:, i] * (1.0 - w) + segments[:, i + 1] * w
         d = unit(tangents[:, i] * (1.0 - w) + tangents[:, i + 1] * w)
-        lateral = unit(np.cross(UP, d))
+        lateral = unit(cross(UP, d))
     return Spine(segments=segments, tangents=tangents, radius=spine_radius, neck=neck, head=head, tail=tail,
                  middle=middle, direction=direction, shoulder=shoulder, shoulder_lateral=lateral)
 
@@ -513,9 +513,9 @@ def root_frames(spine: Spine) -> NDArray[np.float64]:
     """Body transforms (T, 4, 4): at the middle of the trunk, Z along it, Y up-ish."""
     frames = spine.middle.shape[0]
     root = np.zeros((frames, 4, 4))
-    x_axis = unit(np.cross(UP, spine.direction))
+    x_axis = unit(cross(UP, spine.direction))
     root[:, :3, 0] = x_axis
-    root[:, :3, 1] = np.cross(spine.direction, x_axis)
+    root[:, :3, 1] = cross(spine.direction, x_axis)
     root[:, :3, 2] = spine.direction
     root[:, :3, 3] = spine.middle
     root[:, 3, 3] = 1.0

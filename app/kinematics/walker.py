@@ -45,7 +45,7 @@ Pure numpy and scipy, no GL.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -85,7 +85,7 @@ SWING_KNEE_RANGE = (55.0, 90.0)
 NORMATIVE_DUTY = 0.60  # the curves' toe-off (Schwartz et al.'s free speed): their clocks scale to a walker's swing
 
 
-@lru_cache(maxsize=4)
+@cache  # one per curve name (five; an lru_cache of four thrashed, building a curve every call)
 def _curve(name: str) -> PchipInterpolator:
     if name == "knee":
         return PchipInterpolator(KNEE_FROM_TOE_OFF, np.radians(KNEE_NEAR_TOE_OFF), extrapolate=False)

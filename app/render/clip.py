@@ -46,7 +46,7 @@ class ClipRenderer:
         cached = self._cache.get(id(motion))
         if cached is None or cached[0] is not motion or cached[1] != key:
             skin = options.body == "skin"
-            shapes = motion_instances(motion, show_joints=options.joints, parts=not skin, by_side=options.side_colors)
+            shapes = motion_instances(motion, show_joints=options.joint_markers, parts=not skin, by_side=options.side_colors)
             if skin:
                 shapes = replace(shapes, bodies=(motion_body(motion, self.scene.body_cache),))
             cached = self._cache[id(motion)] = (motion, key, shapes)

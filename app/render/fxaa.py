@@ -87,15 +87,6 @@ def screen_region(lo: NDArray[np.float64], hi: NDArray[np.float64], camera: Came
     return (x0, y0, max(0, x1 - x0), max(0, y1 - y0))
 
 
-def shape_spheres(scene: SceneInstances) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Bounding spheres of every shape of a frame: centres (N, 3) and radii (N,), metres
-    (a capsule gives one per end; their boxes' union holds the capsule)."""
-    caps, ells = scene.capsules.astype(np.float64), scene.ellipsoids.astype(np.float64)
-    centres = np.concatenate([caps[:, 0:3], caps[:, 3:6], ells[:, 0:3]])
-    radii = np.concatenate([caps[:, 6], caps[:, 7], ells[:, 12:15].max(axis=1)])
-    return centres, radii
-
-
 def sphere_boxes(centres: NDArray[np.float64], radii: NDArray[np.float64], camera: Camera,
                  size: tuple[int, int], pad: float = FXAA_REACH) -> NDArray[np.float64] | None:
     """Screen boxes (N, 4: x0, y0, x1, y1 in pixels from the bottom left) holding each
@@ -126,7 +117,7 @@ def screen_tiles(scene: SceneInstances, camera: Camera, size: tuple[int, int], t
     on screen, padded by ``pad`` pixels; the whole image when a shape reaches behind the
     eye. Each row of tiles gives one rectangle per run of covered tiles."""
     w, h = size
-    boxes = sphere_boxes(*shape_spheres(scene), camera, size, pad)
+    boxes = sphere_boxes(*scene.spheres(), camera, size, pad)  # skinned bodies' joints included
     if boxes is None:
         return np.array([[0, 0, w, h]], dtype=np.int64)
     cols, rows = -(-w // tile), -(-h // tile)

@@ -22,22 +22,42 @@ from .shaders import ShaderLibrary
 from .uniforms import Uniforms
 
 FLOOR_SIDES = 16  # corners of the floor's polygon (its edges stay past where the fog ends)
+FOG_RINGS = 5  # rings of the floor through the fog (linear between them: within 3 % of its smoothstep)
 TERRAIN_CELLS = 72  # the terrain patch around the creature is this many cells across
 PATH_DEPTH_OFFSET = (-2.0, -8.0)  # the path ribbon pulled towards the eye (polygon offset factor, units)
 ELLIPSOID_LAYOUT = ("3f", ("in_pos",), "3f 3f 3f 3f 3f 3f/i",
                     ("in_center", "in_axis_x", "in_axis_y", "in_axis_z", "in_radii", "in_color"), ELLIPSOID_FLOATS)
 
 
-def floor_strip(sides: int) -> np.ndarray:
-    """A regular polygon of ``sides`` corners on the unit circle as a triangle strip
-    zig-zagging across it (sides - 2 triangles): (sides, 2) xz corners."""
+def _zigzag_order(sides: int) -> list[int]:
+    """A polygon's corners in the order a strip zig-zagging across it takes them."""
     order = [0]
     for k in range(1, sides // 2 + 1):
         order.append(k)
         if sides - k > k:
             order.append(sides - k)
-    angles = np.array(order) * (2.0 * np.pi / sides)
-    return np.stack([np.cos(angles), np.sin(angles)], axis=1)
+    return order
+
+
+def floor_mesh(sides: int, fog_from: float, fog_to: float, rings: int) -> tuple[np.ndarray, np.ndarray]:
+    """The floor's disc (unit radius) as a mesh the fog can be computed on per vertex:
+    a polygon of ``sides`` corners on the circle of radius ``fog_from`` (where the fog
+    starts: none inside it), zig-zagged across (a fan of thin wedges meeting under the
+    creature costs a software rasteriser more: it shades the blocks along every edge once
+    for each triangle on it), then ``rings`` rings out to ``fog_to`` (where the fog is
+    whole) and one more to the rim, each of ``sides`` quads. Returns xz corners (V, 2) and
+    triangles (F, 3) of vertex indices."""
+    radii = np.append(np.linspace(fog_from, fog_to, rings + 1), 1.0)  # (C,) circles
+    angles = np.arange(sides) * (2.0 * np.pi / sides)
+    corners = (radii[:, None, None] * np.stack([np.cos(angles), np.sin(angles)], axis=-1)[None]).reshape(-1, 2)
+    order = _zigzag_order(sides)
+    inner = [(order[i], order[i + 1], order[i + 2]) if i % 2 == 0 else (order[i + 1], order[i], order[i + 2])
+             for i in range(len(order) - 2)]
+    circle, j = np.meshgrid(np.arange(len(radii) - 1), np.arange(sides), indexing="ij")
+    a = circle * sides + j  # each quad's corners: this circle's j and j + 1, the next circle's likewise
+    b = circle * sides + (j + 1) % sides
+    quads = np.stack([a, a + sides, b, b, a + sides, b + sides], axis=-1).reshape(-1, 3)  # counter-clockwise
+    return corners, np.concatenate([np.array(inner, dtype=np.int64).reshape(-1, 3), quads])
 
 
 class StreamBuffer:
@@ -64,17 +84,22 @@ class StreamBuffer:
 class GroundPass:
     """Everything under and around the creatures."""
 
-    def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary, uniforms: Uniforms) -> None:
+    def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary, uniforms: Uniforms,
+                 fog: tuple[float, float]) -> None:
+        """``fog``: where the fog starts and where it is whole, as fractions of the floor's
+        radius."""
         self.ctx = ctx
         self.uniforms = uniforms
         self.floor_prog = shaders.program("ground.vert", "ground.frag")
         # The floor is a disc out to where the fog has reached the horizon colour (no farther:
         # an eye just beyond it, below the floor's level, must not find the floor overhead),
-        # a polygon of FLOOR_SIDES corners on that circle drawn as a zig-zag strip. A software
-        # rasteriser shades the blocks along every edge once for each triangle on it, so a
-        # fan of thin wedges meeting under the creature, in the middle of the view, costs more.
-        self.floor_vbo = ctx.buffer(floor_strip(FLOOR_SIDES).astype("f4").tobytes())
-        self.floor_vao = ctx.vertex_array(self.floor_prog, [(self.floor_vbo, "2f", "in_xz")])
+        # with rings through the fog, which is computed at its corners (floor_mesh): a
+        # software rasteriser's floor costs per pixel, and it is most of the picture.
+        corners, triangles = floor_mesh(FLOOR_SIDES, *fog, FOG_RINGS)
+        self.floor_vbo = ctx.buffer(corners.astype("f4").tobytes())
+        self.floor_ibo = ctx.buffer(triangles.astype("u4").tobytes())
+        self.floor_vao = ctx.vertex_array(self.floor_prog, [(self.floor_vbo, "2f", "in_xz")],
+                                          index_buffer=self.floor_ibo, index_element_size=4)
         self.shadow_prog = shaders.program("ground.vert", "ground_shadow.frag")
         # The shadow's outline on the floor (world xz corners; ground.vert's rectangle set to
         # the identity), rewritten every frame.
@@ -129,7 +154,7 @@ class GroundPass:
         set_(g, "u_center", (float(centre[0]), float(centre[2])))
         set_(g, "u_half_size", (reach, reach))
         set_(g, "u_lift", 0.0)
-        self.floor_vao.render(moderngl.TRIANGLE_STRIP)
+        self.floor_vao.render(moderngl.TRIANGLES)
         if options.shadow:
             floor_ambient, floor_sun = floor_light(options)
             # The shadow on the floor, over the polygon holding it only, lifted a hair above the floor.
@@ -230,7 +255,7 @@ class GroundPass:
         self.ctx.depth_func = "<"
 
     def release(self) -> None:
-        for obj in (*self._terrain_objects, self.floor_vao, self.shadow_vao, self.shadow_vbo, self.floor_vbo,
+        for obj in (*self._terrain_objects, self.floor_vao, self.shadow_vao, self.shadow_vbo, self.floor_vbo, self.floor_ibo,
                     self.sky_vao, self.sky_vbo):
             obj.release()
         self.path.release()

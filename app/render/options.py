@@ -17,7 +17,7 @@ class RenderOptions:
 
     grid: bool = True
     shadow: bool = True
-    joints: bool = True
+    joints: bool = True  # markers at the knees, ankles and balls (with the parts body: see joint_markers)
     grid_spacing: float = 0.25  # metres between minor grid lines
     sky_color: str = "#cfd9e6"
     horizon_color: str = "#eef0ee"
@@ -32,6 +32,13 @@ class RenderOptions:
     arcs: tuple[str, ...] = ()  # joints whose paths over the last cycle are drawn (viewer; see kinematics.arcs)
     body: BodyStyle = "skin"  # one smooth skinned body, or the capsules and ellipsoids it is made from
     side_colors: bool = False  # colour legs and arms by side (left / right), as a diagnostic
+
+    @property
+    def joint_markers(self) -> bool:
+        """Whether the joint markers are drawn: with the parts body only. A skinned body
+        covers them (a spider's thin legs let a few pixels through), and hidden they still
+        cost a software rasteriser a few percent of the frame."""
+        return self.joints and self.body == "parts"
 
 
 @dataclass(frozen=True)

@@ -247,6 +247,7 @@ class SceneRenderer:
     # sky shader gives the same colour below the horizon beyond it.
     FOG_START = 2.2  # x the creatures' bounding radius
     FOG_END = 5.0
+    FLOOR_PAST_FOG = 1.05  # the floor's radius: a little past the fog's end
 
     def __init__(self, ctx: moderngl.Context, shaders: ShaderLibrary | None = None,
                  soft_self_shadow: bool = False) -> None:
@@ -263,7 +264,8 @@ class SceneRenderer:
         self.creatures = CreaturePass(ctx, self.shaders)
         self.bodies = BodyPass(ctx, self.shaders)
         self.body_cache = shared_body_cache()
-        self.ground = GroundPass(ctx, self.shaders, self.uniforms)
+        self.ground = GroundPass(ctx, self.shaders, self.uniforms,
+                                 (self.FOG_START / (self.FOG_END * self.FLOOR_PAST_FOG), 1.0 / self.FLOOR_PAST_FOG))
         self.shadow_maps = tuple(self._shadow_map() for _ in range(2))  # (texture, framebuffer): they take turns
         self._next_map = 0
         self._latest: ShadowCast | None = None  # the last cast: its shapes are the ones uploaded
@@ -281,7 +283,7 @@ class SceneRenderer:
         """Draw ``pose`` of creature ``rig`` seen by ``camera`` into ``target`` (cleared first)."""
         options = options or RenderOptions()
         skin = options.body == "skin"
-        scene = pose_instances(pose, rig, show_joints=options.joints, parts=not skin, by_side=options.side_colors)
+        scene = pose_instances(pose, rig, show_joints=options.joint_markers, parts=not skin, by_side=options.side_colors)
         if skin:
             scene = replace(scene, bodies=(pose_body(pose, rig, self.body_cache),))
         self.draw_instances(scene, GroundView(offset=pose.ground_offset), camera, target, options, viewport)
@@ -343,7 +345,7 @@ class SceneRenderer:
             self.creatures.draw()
         self.ctx.disable_direct(GL_MULTISAMPLE)
         self.ctx.disable(moderngl.CULL_FACE)
-        reach = radius * self.FOG_END * 1.05
+        reach = radius * self.FOG_END * self.FLOOR_PAST_FOG
         self.ground.set_fog_and_grid(centre, radius, (self.FOG_START, self.FOG_END), ground, options)
         # An eye under a flat floor's level sees through it: the floor, its shadow and what
         # lies on it (the path, footprints) are not drawn from below.

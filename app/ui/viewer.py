@@ -337,7 +337,7 @@ class Viewer:
         the selected one's key-pose ghosts and arcs (one set, as recordings draw)."""
         state = self.state
         options = state.options
-        joints, skin, by_side = options.joints, options.body == "skin", options.side_colors
+        joints, skin, by_side = options.joint_markers, options.body == "skin", options.side_colors
         creatures = [(pose, state.live.rig), *((other, session.live.rig) for other, session in state.creature_poses())]
         parts = []
         for p, rig in creatures:

@@ -52,13 +52,16 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     imgui.same_line()
     changed_s, shadow = imgui.checkbox("shadow", options.shadow)
     imgui.same_line()
-    changed_j, joints = imgui.checkbox("joints", options.joints)
-    imgui.same_line()
     changed_p, path = imgui.checkbox("path", options.path)
+    imgui.same_line()
+    imgui.begin_disabled(options.body == "skin")  # what the parts body alone shows
+    changed_j, joints = _checkbox(state, "view.joints", "joints", options.joints,
+                                  "Markers at the knees, ankles and balls (with the smooth body off: it covers them).")
     imgui.same_line()
     changed_c, by_side = _checkbox(state, "view.side_colors", "sides", options.side_colors,
                                    "Colour legs and arms by side: left in the look's left colour, right in its\n"
                                    "right colour (with the smooth body off).")
+    imgui.end_disabled()
     if changed_g or changed_s or changed_j or changed_p or changed_b or changed_c:
         state.options = replace(options, grid=grid, shadow=shadow, joints=joints, path=path,
                                 body="skin" if smooth else "parts", side_colors=by_side)

@@ -162,7 +162,7 @@ def _checkbox(state: ViewerState, key: str, label: str, value: bool, tooltip: st
     tooltip; returns (changed, value)."""
     changed, value = imgui.checkbox(label, value)
     _remember(state, key)
-    if tooltip and imgui.is_item_hovered():
+    if tooltip and imgui.is_item_hovered(imgui.HoveredFlags_.allow_when_disabled):
         imgui.set_tooltip(tooltip)
     return changed, value
 
