@@ -812,3 +812,24 @@ def test_the_floor_mesh_covers_its_disc_once_with_rings_through_the_fog() -> Non
     ring_t = np.linspace(0.0, 1.0, rings + 1)
     smooth = t * t * (3.0 - 2.0 * t)
     assert np.abs(np.interp(t, ring_t, ring_t * ring_t * (3.0 - 2.0 * ring_t)) - smooth).max() < 0.03
+
+
+def test_a_bird_s_drumsticks_are_bare_below_its_feathered_thighs() -> None:
+    """An ostrich's legs are bare from the plumage down: its drumstick (the tibiotarsus,
+    knee to ankle) was drawn in the black plumage to the ankle, as if feathered. On the
+    skinned body the middle of the drumstick is the legs' colour, as the shank below it."""
+    from app.render.bodies import _build, bind_motion
+    from app.render.scene import palette
+
+    rig = build_rig(load_creature("bird"))
+    body = _build(rig, "coarse")
+    joints = bind_motion(rig).joints[0]  # (L, 5, 3): hip, knee, ankle, ball, toe in the bind pose
+    colors = palette(rig)
+
+    def colour_near(point: np.ndarray) -> np.ndarray:
+        return body.colors[np.argmin(np.linalg.norm(body.positions - point, axis=1))]
+
+    for leg in range(rig.leg_count):
+        knee, ankle, ball = joints[leg, 1], joints[leg, 2], joints[leg, 3]
+        assert np.allclose(colour_near(knee + 0.5 * (ankle - knee)), colors.legs, atol=0.02), leg
+        assert np.allclose(colour_near(ankle + 0.5 * (ball - ankle)), colors.legs, atol=0.02), leg

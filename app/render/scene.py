@@ -373,10 +373,11 @@ def _mane(neck: NDArray[np.float64], capsule: tuple[float, float], chest: float,
 
 
 def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Rig,
-                leg_color: NDArray[np.float64], foot_color: NDArray[np.float64]) -> tuple[list, list]:
+                leg_color: NDArray[np.float64], foot_color: NDArray[np.float64],
+                shin_color: NDArray[np.float64]) -> tuple[list, list]:
     """Muscle and feet for mammal legs (not sprawled insect or spider legs): a thigh or
-    upper arm thick at the top and tapering down the femur, in ``leg_color`` (L, 3); feet
-    in ``foot_color`` (L, 3) by leg type, a flat sole (plantigrade), a round paw
+    upper arm thick at the top and tapering down the femur, in ``leg_color`` (L, 3); the
+    lower leg's muscle in ``shin_color`` (L, 3); feet in ``foot_color`` (L, 3) by leg type, a flat sole (plantigrade), a round paw
     (digitigrade) or a dark hoof with a fetlock (unguligrade), or splayed toes
     (``legs.NAME.toes``). Returns capsule and ellipsoid row arrays (T, K, 11 / 18)."""
     from ..choices import leg_type
@@ -404,7 +405,7 @@ def _leg_volume(joints: NDArray[np.float64], radii: NDArray[np.float64], rig: Ri
     # tapering into the tendons above the ankle (the bare bone was a stick).
     ankle = j[:, :, 2]
     shank = _capsules(knee + 0.08 * (ankle - knee), knee + SHANK_MUSCLE * (ankle - knee), 1.35 * r[:, 1],
-                      r[:, 1], color)
+                      r[:, 1], shin_color[legs])
     toes = np.zeros(len(legs), dtype=np.int64) if rig.toes is None else rig.toes[legs]
     kinds = ["toes" if n > 0 else leg_type(float(np.degrees(a))) for a, n in zip(rig.ankle_lift[legs], toes)]
     capsules, ellipsoids = [muscle, shank], []
@@ -671,10 +672,13 @@ def _leg_rows(joints: NDArray[np.float64], rig: Rig, show_joints: bool, parts: b
         return [], [], markers
     # Four tapered bones each (the lower two, from the ankle down, in the feet's colour),
     # then muscle and feet.
-    bone_color = np.stack([leg_color, leg_color, foot_color, foot_color], axis=1)  # (L, 4, 3)
+    # A bird's drumstick (the tibiotarsus, knee to ankle) is bare as its shank is (an
+    # ostrich's pink-grey legs from the plumage down): only the thigh in the coat's colour.
+    shin_color = foot_color if _eye_kind(rig) == "bird" and not by_side else leg_color
+    bone_color = np.stack([leg_color, shin_color, foot_color, foot_color], axis=1)  # (L, 4, 3)
     legs = _capsules(joints[:, :, :-1], joints[:, :, 1:], radii[:, :-1], radii[:, 1:],
                      bone_color).reshape(frames, -1, CAPSULE_FLOATS)
-    leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color, foot_color)
+    leg_parts, foot_parts = _leg_volume(joints, radii, rig, leg_color, foot_color, shin_color)
     return [legs, *leg_parts], list(foot_parts), markers
 
 
