@@ -833,3 +833,29 @@ def test_a_bird_s_drumsticks_are_bare_below_its_feathered_thighs() -> None:
         knee, ankle, ball = joints[leg, 1], joints[leg, 2], joints[leg, 3]
         assert np.allclose(colour_near(knee + 0.5 * (ankle - knee)), colors.legs, atol=0.02), leg
         assert np.allclose(colour_near(ankle + 0.5 * (ball - ankle)), colors.legs, atol=0.02), leg
+
+
+def test_a_horse_s_face_is_a_deep_wedge_to_the_chin() -> None:
+    """A horse's head was a round skull with a thin snout off it (an anteater's): the jaw
+    now runs on from the jowl to the chin. Through the lower half of the face the skinned
+    head is as deep as a horse's (~0.17 m; it was ~0.10) and no wider than deep."""
+    from app.render.bodies import _build, bind_motion
+    from app.render.scene import _frame_axes, _skull
+
+    rig = build_rig(load_creature("horse"))
+    body = _build(rig, "full")
+    head = bind_motion(rig).head[:1]
+    skull, along = (v[0] for v in _skull(head, rig))
+    face = float(np.linalg.norm(head[0, 1] - skull))
+    across, up, _ = (v[0] for v in _frame_axes(along[None]))
+    rel = body.positions - skull
+    a, x, y = rel @ along, rel @ across, rel @ up
+    on_head = (np.abs(x) < 0.12) & (np.abs(y) < 0.2)
+    depths, widths = [], []
+    for f in (0.6, 0.7, 0.8):
+        ring = on_head & (np.abs(a - f * face) < 0.015)
+        assert ring.sum() >= 3, f
+        depths.append(float(np.ptp(y[ring])))
+        widths.append(float(2.0 * np.abs(x[ring]).max()))
+    assert np.mean(depths) > 0.15, depths
+    assert np.all(np.array(widths) < np.array(depths) + 0.01), (widths, depths)

@@ -57,6 +57,10 @@ NOSE_AT = (-0.06, 0.1)  # of the head's radius: its centre from the head's tip, 
 EYE_COLOR = np.array([0.02, 0.02, 0.025])  # the eyes (on a skinned body, not in it: skin_features)
 SKULL = (0.9, 0.85, 1.0)  # of the head's radius: the skull's (across, up, along)
 JOWL = (0.45, 0.5, 0.8, 1.1, 1.15)  # of it: a long head's jowl, ahead of and below the skull's centre; its radii
+# A long head's face below the muzzle, jowl to chin: its centre along the face (of the
+# skull-to-nose length) and below its axis (of the head's radius, x how long the head is),
+# and its radii across and deep (of the head's radius; deep x how long) and along (of the face)
+FACE = (0.52, 0.45, 0.5, 0.75, 0.36)
 # Eyes by kind, of the head's radius: their shape (across, up, along), where they look out
 # of the skull (ahead, up, apart: a direction from its centre) and how far out of it they
 # sit, over the skin's blend (a bird's large eyes bulge from a small head).
@@ -831,8 +835,18 @@ def _instances(joints, spine, spine_tangent, spine_radius, neck, head, tail, rig
     skull_e = _ellipsoids(skull[:, None], head_dir[:, None], np.array(SKULL) * head_radius, neck_color)
     if long_head > 0:  # a long head (a horse's) is deepest at the jowl, below and behind the eyes
         jowl = skull + head_dir * JOWL[0] * head_radius - hy * JOWL[1] * head_radius
+        # ... and its jaw runs on from there to the chin (a wedge, not a thin snout off a
+        # round skull): the face's lower half, deeper than wide, along the muzzle.
+        face_length = np.linalg.norm(nose - skull, axis=-1, keepdims=True)  # (T, 1)
+        along, drop, across, deep, reach = FACE
+        face = skull + head_dir * along * face_length - hy * drop * long_head * head_radius
+        face_radii = np.concatenate([np.full_like(face_length, across * head_radius),
+                                     np.full_like(face_length, deep * long_head * head_radius),
+                                     reach * face_length], axis=-1)
         skull_e = np.concatenate([skull_e, _ellipsoids(jowl[:, None], head_dir[:, None],
-                                                       long_head * np.array(JOWL[2:]) * head_radius, neck_color)], axis=1)
+                                                       long_head * np.array(JOWL[2:]) * head_radius, neck_color),
+                                  _ellipsoids(face[:, None], head_dir[:, None], face_radii[:, None], neck_color)],
+                                 axis=1)
     wings = _wings(spine, spine_tangent, r, rig, colors.plume)
     hump = _hump(spine, spine_tangent, r, rig, body_color)
     ellipsoid_parts = [skull_e, neck_e, mane, _eyes(skull, head_dir, rig), _nose(nose, head_dir, rig), beak, wings,
