@@ -85,11 +85,18 @@ def test_screen_tiles_cover_a_skinned_body_drawn_alone() -> None:
     assert len(skinned.capsules) == 0 and len(skinned.ellipsoids) == 0
     covered = _tile_mask(screen_tiles(skinned, camera, SIZE), SIZE)
     of_parts = _tile_mask(screen_tiles(parts, camera, SIZE), SIZE)
-    # The body's tiles hold nearly all of the parts body's (the same creature, its skin a
-    # little outside its bones; a joint's sphere reaches as far as its skin does, so they
-    # hold more), and far from the whole image.
-    assert (covered & of_parts).sum() > 0.9 * of_parts.sum()
-    assert covered.sum() < min(2.5 * of_parts.sum(), 0.75 * covered.size)
+    # The body's tiles and the parts body's are nearly the same (the same creature, its
+    # skin a little outside its bones; its joints' bounding spheres, each as far as its
+    # farthest vertex every way, made twice as many).
+    assert (covered & of_parts).sum() > 0.85 * of_parts.sum()
+    assert covered.sum() < 1.25 * of_parts.sum()
+    # Every vertex of the skin lies on a tile.
+    body = skinned.bodies[0]
+    boxes = sphere_boxes(body.surface_points(), np.zeros(len(body.body.positions)), camera, SIZE, 0.0)
+    assert boxes is not None
+    x, y = boxes[:, 0].astype(int), boxes[:, 1].astype(int)
+    inside = (x >= 0) & (x < SIZE[0]) & (y >= 0) & (y < SIZE[1])
+    assert inside.all() and covered[SIZE[1] - 1 - y, x].all()
 
 
 def test_screen_tiles_are_the_whole_image_when_a_shape_is_behind_the_eye() -> None:
@@ -124,3 +131,21 @@ def test_fxaa_smooths_the_creature_and_leaves_the_rest_alone(gl_ctx) -> None:
     err_off = np.abs(images["off"] - images["msaa"])[edges].mean()
     err_fxaa = np.abs(images["fxaa"] - images["msaa"])[edges].mean()
     assert err_fxaa < 0.8 * err_off
+
+
+def test_a_body_s_surface_points_are_its_vertices_skinned() -> None:
+    """FXAA's tiles come from the skin's vertices skinned on the CPU: linear blend skinning,
+    each vertex by its four joints' matrices, as skinned.vert does on the GL."""
+    from app.render.bodies import motion_body, shared_body_cache
+
+    motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
+    draw = motion_body(motion, shared_body_cache()).frame(5)
+    points = draw.surface_points()
+    body = draw.body
+    assert points.shape == body.positions.shape
+    for v in range(0, len(points), 97):
+        matrix = sum(float(w) * draw.skin[j].astype(np.float64) for j, w in zip(body.joints[v], body.weights[v]))
+        expected = (matrix @ np.append(body.positions[v], 1.0))[:3]
+        assert np.allclose(points[v], expected, atol=1e-5), v
+    # Away from the bind pose: the feet have moved from where they were bound.
+    assert np.abs(points - body.positions).max() > 0.05

@@ -162,7 +162,7 @@ def test_an_eye_just_below_the_floor_beyond_its_edge_sees_the_creature_and_the_s
     motion, _ = clip_motion(build_rig(load_creature("dog")), 25.0, cycles=1.0, world=IN_PLACE)
     scene = renderer._instances(motion, RenderOptions()).frame(4)
     centre, radius = creature_bounds(scene, GroundView().terrain)
-    reach = radius * SceneRenderer.FOG_END * 1.05  # the floor disc's radius
+    reach = radius * SceneRenderer.FOG_END * SceneRenderer.FLOOR_PAST_FOG  # the floor disc's radius
     base = frame_points(motion_bounds(motion), "three-quarter", aspect=SIZE[0] / SIZE[1])
     distances = np.linspace(1.0, 12.0, 2000)
     away = [np.hypot(*(np.asarray(replace(base, elevation=-5.0, azimuth=45.0, distance=d).eye)[[0, 2]]
@@ -795,9 +795,13 @@ def test_the_floor_mesh_covers_its_disc_once_with_rings_through_the_fog() -> Non
     """The floor's fog is worked out at its corners (a software rasteriser's floor costs per
     pixel): its mesh must cover the polygon once (no gaps, no overlaps, one winding) and
     have its rings from the fog's start to its end, so the fog is linear enough between."""
-    from app.render.ground import floor_mesh
+    from app.render.ground import FLOOR_SIDES, FOG_RINGS, floor_mesh
+    from app.render.renderer import SceneRenderer
 
-    sides, start, end, rings = 16, 0.42, 0.95, 5
+    # Where the renderer's fog starts and ends, of the floor's radius (the rings must fall there).
+    start = SceneRenderer.FOG_START / (SceneRenderer.FOG_END * SceneRenderer.FLOOR_PAST_FOG)
+    end = 1.0 / SceneRenderer.FLOOR_PAST_FOG
+    sides, rings = FLOOR_SIDES, FOG_RINGS
     corners, triangles = floor_mesh(sides, start, end, rings)
     assert corners.shape == ((rings + 2) * sides, 2) and triangles.shape == (sides - 2 + 2 * (rings + 1) * sides, 3)
     a, b, c = (corners[triangles[:, k]] for k in range(3))
@@ -807,7 +811,8 @@ def test_the_floor_mesh_covers_its_disc_once_with_rings_through_the_fog() -> Non
     assert abs(np.abs(signed).sum() - polygon) < 1e-9  # covered exactly once
     radii = np.unique(np.round(np.linalg.norm(corners, axis=1), 9))
     assert np.allclose(radii, [*np.linspace(start, end, rings + 1), 1.0])
-    # The smoothstep fog, linear between the rings (and exact at them), is within 3 %.
+    # The smoothstep fog, linear between the rings (and exact at them), is within 3 % along
+    # a ray (4 % between a ring's corners, its sides being chords).
     t = np.linspace(0.0, 1.0, 1001)
     ring_t = np.linspace(0.0, 1.0, rings + 1)
     smooth = t * t * (3.0 - 2.0 * t)

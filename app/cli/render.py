@@ -95,7 +95,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                            f"(smallest); +6 roughly halves the file (default: {DEFAULT_CRF})")
     look.add_argument("--no-grid", action="store_true", help="plain ground without grid lines")
     look.add_argument("--no-shadow", action="store_true", help="no shadow")
-    look.add_argument("--no-joints", action="store_true", help="no joint markers on the legs")
+    look.add_argument("--no-joints", action="store_true", help="no joint markers on the legs (the parts body's: --body parts)")
     look.add_argument("--body", choices=BODY_STYLES, default="skin",
                       help="skin: one smooth skinned body (the default); parts: the capsules and ellipsoids it is "
                            "made from")

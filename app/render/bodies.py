@@ -44,6 +44,17 @@ class BodyDraw:
         centres = np.einsum("jab,jb->ja", self.skin.astype(np.float64), self.body.bind[:, :, 3])[:, :3]
         return centres, joint_reach(self.body)
 
+    def surface_points(self) -> NDArray[np.float64]:
+        """Where a frame's skin is (V, 3), m: its vertices skinned on the CPU (linear blend
+        skinning, as skinned.vert does), for what needs the body's outline on screen (FXAA's
+        tiles; a joint's bounding sphere reaches as far as its farthest vertex every way)."""
+        body = self.body
+        rows = self.skin[:, :3, :].reshape(len(self.skin), 12).astype(np.float64)  # (J, 12): top three rows
+        blended = (body.weights[:, :, None] * rows[body.joints]).sum(axis=1).reshape(-1, 3, 4)  # (V, 3, 4)
+        p = body.positions.astype(np.float64)
+        return (blended[:, :, 0] * p[:, 0:1] + blended[:, :, 1] * p[:, 1:2] + blended[:, :, 2] * p[:, 2:3]
+                + blended[:, :, 3])
+
     def placed(self, matrices: NDArray[np.float64]) -> list[BodyDraw]:
         """The frame's body moved by each of ``matrices`` (N, 4, 4) (a herd's animals)."""
         return [BodyDraw(self.body, (m @ self.skin).astype(np.float32)) for m in matrices]

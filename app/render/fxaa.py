@@ -13,6 +13,8 @@ about half the pixels of the creature's whole bounding rectangle.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import moderngl
 import numpy as np
 from numpy.typing import NDArray
@@ -87,6 +89,16 @@ def screen_region(lo: NDArray[np.float64], hi: NDArray[np.float64], camera: Came
     return (x0, y0, max(0, x1 - x0), max(0, y1 - y0))
 
 
+def outline_spheres(scene: SceneInstances) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """What covers a frame's creatures on screen: the shapes' bounding spheres (centres
+    (N, 3), radii (N,), m) and every skinned body's vertices (radius 0). (A joint's
+    sphere holds all of its skin: the tiles came to twice the body's own.)"""
+    centres, radii = replace(scene, bodies=()).spheres()
+    points = [body.surface_points() for body in scene.bodies]
+    return (np.concatenate([centres, *points]),
+            np.concatenate([radii, *(np.zeros(len(p)) for p in points)]))
+
+
 def sphere_boxes(centres: NDArray[np.float64], radii: NDArray[np.float64], camera: Camera,
                  size: tuple[int, int], pad: float = FXAA_REACH) -> NDArray[np.float64] | None:
     """Screen boxes (N, 4: x0, y0, x1, y1 in pixels from the bottom left) holding each
@@ -117,7 +129,7 @@ def screen_tiles(scene: SceneInstances, camera: Camera, size: tuple[int, int], t
     on screen, padded by ``pad`` pixels; the whole image when a shape reaches behind the
     eye. Each row of tiles gives one rectangle per run of covered tiles."""
     w, h = size
-    boxes = sphere_boxes(*scene.spheres(), camera, size, pad)  # skinned bodies' joints included
+    boxes = sphere_boxes(*outline_spheres(scene), camera, size, pad)
     if boxes is None:
         return np.array([[0, 0, w, h]], dtype=np.int64)
     cols, rows = -(-w // tile), -(-h // tile)

@@ -22,7 +22,7 @@ from .shaders import ShaderLibrary
 from .uniforms import Uniforms
 
 FLOOR_SIDES = 16  # corners of the floor's polygon (its edges stay past where the fog ends)
-FOG_RINGS = 5  # rings of the floor through the fog (linear between them: within 3 % of its smoothstep)
+FOG_RINGS = 5  # rings of the floor through the fog (linear between them: within 4 % of its smoothstep)
 TERRAIN_CELLS = 72  # the terrain patch around the creature is this many cells across
 PATH_DEPTH_OFFSET = (-2.0, -8.0)  # the path ribbon pulled towards the eye (polygon offset factor, units)
 ELLIPSOID_LAYOUT = ("3f", ("in_pos",), "3f 3f 3f 3f 3f 3f/i",

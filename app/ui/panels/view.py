@@ -54,7 +54,7 @@ def view_panel(state: ViewerState, pc: PanelContext) -> None:
     imgui.same_line()
     changed_p, path = imgui.checkbox("path", options.path)
     imgui.same_line()
-    imgui.begin_disabled(options.body == "skin")  # what the parts body alone shows
+    imgui.begin_disabled(smooth)  # what the parts body alone shows (as ticked this frame)
     changed_j, joints = _checkbox(state, "view.joints", "joints", options.joints,
                                   "Markers at the knees, ankles and balls (with the smooth body off: it covers them).")
     imgui.same_line()
