@@ -48,12 +48,7 @@ class BodyDraw:
         """Where a frame's skin is (V, 3), m: its vertices skinned on the CPU (linear blend
         skinning, as skinned.vert does), for what needs the body's outline on screen (FXAA's
         tiles; a joint's bounding sphere reaches as far as its farthest vertex every way)."""
-        body = self.body
-        rows = self.skin[:, :3, :].reshape(len(self.skin), 12).astype(np.float64)  # (J, 12): top three rows
-        blended = (body.weights[:, :, None] * rows[body.joints]).sum(axis=1).reshape(-1, 3, 4)  # (V, 3, 4)
-        p = body.positions.astype(np.float64)
-        return (blended[:, :, 0] * p[:, 0:1] + blended[:, :, 1] * p[:, 1:2] + blended[:, :, 2] * p[:, 2:3]
-                + blended[:, :, 3])
+        return self.body.skinned_by(self.skin)
 
     def placed(self, matrices: NDArray[np.float64]) -> list[BodyDraw]:
         """The frame's body moved by each of ``matrices`` (N, 4, 4) (a herd's animals)."""

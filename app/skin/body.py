@@ -79,10 +79,17 @@ class SkinnedBody:
 
     def posed(self, clip: SkeletonClip, frame: int) -> NDArray[np.float64]:
         """The vertices (V, 3) at ``frame`` of ``clip`` by linear blend skinning."""
-        skin = self.skin_matrices(clip, frame)  # (J, 4, 4)
-        p = np.concatenate([self.positions.astype(np.float64), np.ones((len(self.positions), 1))], axis=1)
-        blended = np.einsum("vk,vkij->vij", self.weights.astype(np.float64), skin[self.joints])
-        return np.einsum("vij,vj->vi", blended, p)[:, :3]
+        return self.skinned_by(self.skin_matrices(clip, frame))
+
+    def skinned_by(self, skin: NDArray) -> NDArray[np.float64]:
+        """The vertices (V, 3) moved by skinning matrices ``skin`` (J, 4, 4) (linear blend
+        skinning, as shaders/skinned.vert does: each vertex's four joints' top three rows
+        blended by its weights, then applied once)."""
+        rows = np.asarray(skin)[:, :3, :].reshape(len(skin), 12).astype(np.float64)  # (J, 12)
+        blended = (self.weights[:, :, None] * rows[self.joints]).sum(axis=1).reshape(-1, 3, 4)  # (V, 3, 4)
+        p = self.positions.astype(np.float64)
+        return (blended[:, :, 0] * p[:, 0:1] + blended[:, :, 1] * p[:, 1:2] + blended[:, :, 2] * p[:, 2:3]
+                + blended[:, :, 3])
 
 
 def joint_matrices(clip: SkeletonClip, frame: int) -> NDArray[np.float64]:
