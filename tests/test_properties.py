@@ -216,3 +216,16 @@ def test_any_biped_is_finite_exact_and_mirrored(spec, world) -> None:
         mirror = np.array([-1.0, 1.0, 1.0])
         assert np.abs(motion.joints[half:2 * half, 0] - motion.joints[:half, 1] * mirror).max() < 1e-9
         assert np.abs(motion.spine[half:2 * half] - motion.spine[:half] * mirror).max() < 1e-9
+
+
+def test_a_leg_s_longest_reach_is_never_shorter_than_its_shortest() -> None:
+    """Found by a 2000-example run: a sprawled leg with a metatarsus four times its femur
+    and tibia together (0.0625, 0.0625, 0.5 m), its rest turned far out, had an L_max below
+    its L_min; the ball was held out of the ankle's reach and femur and tibia stretched 2.7 %."""
+    from app.kinematics.rig import leg_lengths
+
+    grid = np.stack(np.meshgrid([0.0625, 0.25, 1.0], [0.0625, 1.0], [0.05, 0.5, 2.0], np.radians([0.0, 40.0, 76.0]),
+                                np.radians([0.0, 30.0, 60.0, 90.0]), indexing="ij"), axis=-1).reshape(-1, 5)
+    femur, tibia, metatarsus, lift, swing_rest = grid.T
+    l_max, _, l_min = leg_lengths(femur, tibia, metatarsus, lift, np.full(len(grid), 0.05), swing_rest)
+    assert np.all(l_max >= l_min) and np.all(l_max <= femur + tibia + metatarsus)

@@ -47,7 +47,7 @@ def leg_lengths(femur: NDArray, tibia: NDArray, metatarsus: NDArray, ankle_lift:
     ``L_rest = L_max * clamp(1 - bend, 0.2, 1)``, and ``L_min`` is the largest of
     ``0.2 L_max``, the distance below which the knee cannot fold (``|f - t| - m``) and, for
     a metatarsus longer than femur and tibia together, the distance below which the ankle
-    cannot reach (``m - f - t``), with a small margin.
+    cannot reach (``m - f - t``), with a small margin; ``L_max`` is never below ``L_min``.
     """
     reach = femur + tibia
     phi = ankle_lift + swing_rest
@@ -55,6 +55,10 @@ def leg_lengths(femur: NDArray, tibia: NDArray, metatarsus: NDArray, ankle_lift:
     l_max = np.sqrt(np.maximum(reach ** 2 - flat ** 2, 0.0)) + metatarsus * np.sin(phi)
     l_rest = l_max * np.clip(1.0 - natural_bend, 0.2, 1.0)
     l_min = np.maximum.reduce([0.2 * l_max, np.abs(femur - tibia) - metatarsus, metatarsus - reach]) * 1.001
+    # A metatarsus much longer than femur and tibia, turned far from the hip-ball line (a
+    # sprawled leg's rest turn), gave an L_max below L_min: the ball was held beyond the
+    # ankle's reach and the leg's bones stretched. Such a leg's range is L_min at least.
+    l_max = np.maximum(l_max, l_min)
     return l_max, l_rest, l_min
 
 
