@@ -7,6 +7,7 @@ import csv
 import io
 import os
 import re
+from collections import Counter
 from dataclasses import dataclass, replace
 from typing import Literal
 
@@ -46,9 +47,10 @@ def check_columns_once(header: list[str], where: str) -> None:
     """Refuse a CSV header naming a column twice (one of them would be silently
     ignored); unnamed columns are not read, so they may repeat. ``where``: the message's
     file (and line) prefix."""
-    twice = [h for h in dict.fromkeys(header) if h and header.count(h) > 1]
-    if twice:
-        raise InputError(f"{where}: column {_shown(twice[0])} appears {header.count(twice[0])} times in the header; "
+    counts = Counter(h for h in header if h)  # linear: a header may name thousands of columns
+    twice = next((h for h, n in counts.items() if n > 1), None)
+    if twice is not None:
+        raise InputError(f"{where}: column {_shown(twice)} appears {counts[twice]} times in the header; "
                          "give each column once")
 
 
