@@ -176,7 +176,7 @@ def place_girdles(rig: Rig, world: World, s: NDArray[np.float64], support: NDArr
         if reach is not None:  # ... nor nearer its foot's ankle than femur and tibia can fold
             fold = 1.02 * np.abs(rig.femur - rig.tibia)
             near = np.maximum(near, reach_point[..., 1] + np.sqrt(np.maximum(fold ** 2 - far ** 2, 0.0)))
-        near = near - free
+        near = near - free - hip_offset[..., 1]  # the hip's lowest, as the girdle's (the hips tilt with it)
         return allowed, np.maximum(floor, np.maximum(near[:, 0::2], near[:, 1::2]))
 
     allowed, lowest = limits(lateral)
