@@ -427,7 +427,9 @@ def test_the_glb_carries_the_eyes_nose_and_mane_where_the_viewer_draws_them(tmp_
         rows = np.asarray(parts.frame(frame).ellipsoids, np.float64)
         skull_eyes = rows[np.all(np.abs(rows[:, Ell.COLOR] - EYE_COLOR) < 1e-5, axis=1), 0:3]
         eyes = in_file[:2 * per].reshape(2, per, 3).mean(axis=1)
-        assert np.linalg.norm(eyes - skull_eyes, axis=1).max() < 0.01, (creature, frame)
+        # Where the parts draw them, or out along the line from the skull onto the skin
+        # (the horse's skin, blended over skull, jowl and neck, lies 1 cm out there).
+        assert np.linalg.norm(eyes - skull_eyes, axis=1).max() < 0.02, (creature, frame)
 
 
 def test_a_glb_export_reads_back_in_its_own_colours(tmp_path: Path) -> None:

@@ -314,3 +314,32 @@ def test_a_black_coat_keeps_every_part_of_its_skin() -> None:
             capsules, ellipsoids, _ = _parts(motion)
             counts.append((len(capsules), len(ellipsoids)))
         assert counts[0] == counts[1], (name, counts)
+
+
+@pytest.mark.parametrize("name", ["horse", "deer", "dog", "human", "theropod"])
+def test_the_eyes_stand_half_out_of_the_skin(name: str) -> None:
+    """The eyes sit on the skinned body, not in it: along the line from the skull's centre
+    through each eye, at least half the eye's reach lies outside the skin. They were set
+    on the skull, and the skin blended over skull, jowl and neck buried a horse's to a
+    dot a few pixels across."""
+    from app.render.bodies import _build, bind_motion
+    from app.render.scene import EYE_COLOR, feature_anchors
+    from app.skin.features import _first_hit
+
+    rig = build_rig(load_creature(name))
+    body = _build(rig, "full")
+    features = body.features
+    assert features is not None
+    skull = feature_anchors(bind_motion(rig))  # the motion the body is bound in
+    skull = skull[np.all(np.isfinite(skull), axis=1)][0]
+    eye = np.all(np.abs(features.colors - EYE_COLOR) < 1e-5, axis=1)
+    per = eye.sum() // 2
+    assert eye.sum() == 2 * per
+    positions = features.positions[eye].astype(np.float64).reshape(2, per, 3)
+    centres = positions.mean(axis=1)
+    direction = (centres - skull) / np.linalg.norm(centres - skull, axis=1, keepdims=True)
+    outermost = np.max(np.einsum("kvi,ki->kv", positions - skull, direction), axis=1)
+    reach = outermost - np.einsum("ki,ki->k", centres - skull, direction)
+    skin = _first_hit(np.tile(skull, (2, 1)), direction, body.positions.astype(np.float64)[body.faces])
+    assert np.all(np.isfinite(skin))
+    assert np.all(outermost - skin >= 0.45 * reach), (name, outermost - skin, reach)

@@ -260,6 +260,20 @@ def skin_features(motion) -> NDArray[np.float64]:
     return np.concatenate([eyes, nose, mane]).astype(np.float64)
 
 
+def feature_anchors(motion) -> NDArray[np.float64]:
+    """For each row of :func:`skin_features`, the point inside the head (K, 3) that a
+    feature is seated out from onto the skin (the skull's centre, for the eyes: the skin
+    blended over skull, jowl and neck lies outside the skull, and buried them), NaN for
+    the features that stay where they are (the nose, the mane)."""
+    rows = skin_features(motion)
+    anchors = np.full((len(rows), 3), np.nan)
+    if len(rows):
+        skull, _ = _skull(motion.head[:1], motion.rig)
+        eyes = np.all(np.abs(rows[:, Ell.COLOR] - EYE_COLOR) < 1e-6, axis=1)
+        anchors[eyes] = skull[0]
+    return anchors
+
+
 def skin_overlays(motion) -> NDArray[np.float64]:
     """The centres (K, 3) of :func:`skin_features`."""
     return skin_features(motion)[:, Ell.CENTRE]

@@ -430,8 +430,8 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
     from :func:`app.kinematics.skeleton.skeleton_clip`), in their first frame."""
     import trimesh
 
-    from ..render.scene import mane_color, skin_features, srgb_to_linear
-    from .features import feature_mesh
+    from ..render.scene import feature_anchors, mane_color, skin_features, srgb_to_linear
+    from .features import feature_mesh, seat_on_skin
 
     start = time.perf_counter()
     capsules, ellipsoids, part_colors = _parts(motion)
@@ -465,7 +465,8 @@ def build_body(motion: Motion, clip: SkeletonClip, detail: Detail = "full") -> S
         bind = joint_matrices(clip, 0)
         features = None
         if carries_features:  # the eyes, nose and mane, skinned as the vertices nearest them
-            on_skin = feature_mesh(skin_features(motion), verts, joints, weights)
+            rows = seat_on_skin(skin_features(motion), feature_anchors(motion), verts, faces)
+            on_skin = feature_mesh(rows, verts, joints, weights)
             if on_skin is not None:
                 f_positions, f_normals, f_colors, f_faces, f_joints, f_weights = on_skin
                 features = SkinnedBody(positions=f_positions, normals=f_normals, colors=f_colors, faces=f_faces,
