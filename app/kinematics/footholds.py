@@ -79,6 +79,10 @@ def place_feet(terrain: Terrain, ideal: NDArray[np.float64], front: NDArray[np.f
     n = ideal.shape[0]
     if n == 0:
         return Footholds(np.zeros((0, 3)), np.zeros((0, 3)), np.zeros(0, dtype=bool), np.zeros(0, dtype=bool))
+    if terrain.flat:  # every spot of the plane is level and even: the ideal ones, as they are
+        points = np.stack([ideal[:, 0], np.zeros(n), ideal[:, 1]], axis=-1)
+        normals = np.broadcast_to(np.array([0.0, 1.0, 0.0]), (n, 3)).copy()
+        return Footholds(points, normals, np.ones(n, dtype=bool), np.zeros(n, dtype=bool))
     steepest = np.full(n, terrain.max_slope) if max_slope is None else np.asarray(max_slope, dtype=np.float64)
     probe_offsets = footprint_probes(front, back, side, heading)
     # Most ideal spots are fine as they are: test them first, search only around the rest.

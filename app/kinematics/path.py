@@ -96,6 +96,14 @@ class StraightPath(Path):
         points = np.stack([np.zeros_like(s), s], axis=-1)
         return points, np.broadcast_to(np.array([0.0, 1.0]), points.shape).copy()
 
+    def sample(self, s: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """As :meth:`Path.sample`, the same numbers in a few operations (the live motion
+        samples its path several times per step)."""
+        s = np.asarray(s, dtype=np.float64)
+        direction = np.array([math.sin(self.heading), math.cos(self.heading)])
+        points = np.multiply.outer(s, direction) + np.asarray(self.start)
+        return points, np.broadcast_to(direction, points.shape).copy()
+
     def describe(self) -> str:
         return "straight" + (f":heading={math.degrees(self.heading):g}" if self.heading else "")
 
