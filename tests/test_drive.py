@@ -95,8 +95,10 @@ def test_holding_w_moves_the_creature_by_its_speed_times_time() -> None:
 def test_a_turns_left_and_d_right_within_the_limits() -> None:
     for steer, sign in ((1.0, 1.0), (-1.0, -1.0)):
         driver, _frames, speeds, _, curvatures = drive("dog", 3.0, lambda t: 0.0, lambda t, s=steer: s)
-        _, tangent = driver.path.sample(np.array([driver.live.travel]))
-        heading = math.atan2(tangent[0, 0], tangent[0, 1])
+        # The heading turned through along the way (unwrapped: three seconds of a full
+        # turn takes the dog round by about half a circle, where atan2 wraps).
+        _, tangent = driver.path.sample(np.linspace(0.0, driver.live.travel, 400))
+        heading = np.unwrap(np.arctan2(tangent[:, 0], tangent[:, 1]))[-1]
         assert sign * heading > math.radians(60)  # left is +X, heading grows
         limits = driver.limits
         radius = limits.min_radius * driver.base_rig.body_length

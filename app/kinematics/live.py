@@ -9,7 +9,8 @@ predicted mid-stance, half a step ahead of its hip — and swings there. A gait 
 reaches each foot without a jump:
 
 - each foot takes the new duty factor and step height at its next touchdown, and the new
-  stride at its next lift-off (the body's speed follows the feet's strides);
+  stride at its next lift-off; the body's travel per cycle follows the gait's stride
+  over its duty factor smoothly, as fast as its planted feet bear it (held in a flight);
 - each foot moves its phase offset towards the new one only while it is in the air, at
   most :data:`SWING_RETIME` of the clock's rate; during a switch the new gait is aimed
   at in the alignment that slowing swings alone reaches soonest (:func:`slowing_shift`:
@@ -52,6 +53,10 @@ BLEND_CYCLES = 0.35
 SWING_RETIME = 0.6
 LOOK_AHEAD = 20.0  # s of walking on whose footholds a new world must offer
 SMALL_CHANGE = 0.03  # relative frequency (and absolute bob) change applied at once
+# How quickly the body's travel per cycle follows the gait's: at a rate of the planted
+# feet's stance weights (each foot's sin(pi u) over its stance fraction u) per this many
+# cycles.
+RATE_EASE = 0.2
 
 
 def _mix_waves(a: FootWave, b: FootWave, w: float) -> FootWave:
@@ -118,6 +123,7 @@ class LiveMotion:
         self.start_dir, self.end_dir = plan.start_dir[0].copy(), plan.end_dir[0].copy()
         self.apex = plan.apex[0].copy()
         self.lift_at, self.land_at = plan.lift_at[0].copy(), plan.land_at[0].copy()
+        self._rate = per_cycle  # metres per cycle the body travels (travel_per_cycle)
         self.start_compromised = plan.compromised[0].copy()  # feet on uneven ground (the least-bad spot)
         self.end_compromised = plan.compromised[0].copy()
         self.compromised_count = 0  # compromised footholds planned since the start
@@ -171,11 +177,28 @@ class LiveMotion:
         return float(self.clock % 1.0)
 
     def travel_per_cycle(self) -> float:
-        """Metres the body moves per cycle: the planted feet's stride over their duty
-        factor (every foot's when none is planted)."""
-        planted = self.foot_phase() < self.duty
-        feet = planted if planted.any() else np.ones_like(planted)
-        return float(np.mean(ground_speed(self.stride, self.duty)[feet])) * self.rig.leg_scale
+        """Metres the body moves per cycle now: the gait's stride over its duty factor,
+        followed smoothly (:meth:`_follow_feet`)."""
+        return self._rate
+
+    def _follow_feet(self, cycles: float) -> None:
+        """Move the body's travel per cycle towards the gait's (its stride over its duty
+        factor), at a rate of the planted feet's stance weights (each foot's sin(pi u)
+        over its stance fraction u: none at touchdown and lift-off) per :data:`RATE_EASE`
+        cycles: held through a flight, eased in as feet land. It was the plain mean of
+        the planted feet's own stride over duty factor, and each foot takes a new gait's
+        numbers at its own touchdown and lift-off (a foot that lifted before a gait switch
+        landed with the old stride over the new duty factor): along a speed ramp the body
+        jumped by up to 1.6 m/s in one frame and back (a horse's gallop: 95 m/s^2)."""
+        phase = self.foot_phase()
+        planted = phase < self.duty
+        weight = np.where(planted, np.sin(np.pi * np.clip(phase / self.duty, 0.0, 1.0)), 0.0)
+        total = float(weight.sum())
+        if total <= 0.0:
+            return
+        g = self.rig.gait
+        wanted = float(ground_speed(g.stride, g.duty_factor)) * self.rig.leg_scale
+        self._rate += (wanted - self._rate) * -np.expm1(-total * cycles / RATE_EASE)
 
     # -- swing speeds -----------------------------------------------------------------
 
@@ -393,6 +416,7 @@ class LiveMotion:
         self.stride = np.where(lifted, g.stride, self.stride)
         self.duty = np.where(landed, g.duty_factor, self.duty)
         self.step_height = np.where(landed, g.step_height, self.step_height)
+        self._follow_feet(cycles)
         if lifted.any():
             self._plan_swings(np.nonzero(lifted)[0], after)
         self._stepped |= self._landed & lifted
